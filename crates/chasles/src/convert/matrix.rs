@@ -1,0 +1,122 @@
+//! Quaternion ↔ rotation matrix (Dam et al. 1998, App. B.3 and B.4).
+//!
+//! Quaternion → matrix is B.3's `M = V_q H_{q⁻¹}`. Matrix → quaternion does **not** use
+//! B.4's trace-only formula `s = ½√(1 + tr R)`, `v = (R₃₂ − R₂₃, …)/(4s)`: near 180° the
+//! trace is −1, `s → 0` and the division loses every digit. We use Shepperd's
+//! largest-diagonal method instead (Shepperd 1978): of the four candidates
+//! `4w² = 1 + tr`, `4x² = 1 + 2R₀₀ − tr`, … the largest is taken as the pivot, so the
+//! divisor is never below ½. The sign is chosen so that `w ≥ 0` (B.4 also takes the
+//! positive root), which is the shorter-arc representative.
+
+use crate::{Error, Mat3, Mat4, Quat, Real, Result};
+
+impl<T: Real> Quat<T> {
+    /// The rotation matrix of q (App. B.3). A non-unit q is treated as `q/‖q‖` (the matrix
+    /// of `q p q⁻¹`, Proposition 18); the zero quaternion, which is no rotation, gives the
+    /// identity — use [`Quat::normalize`] first to catch it as an error.
+    pub fn to_rotation_matrix(self) -> Mat3<T> {
+        let n2 = self.norm_squared();
+        let s = if n2 > T::ZERO { T::TWO / n2 } else { T::ZERO };
+        let (w, x, y, z) = (self.w, self.x, self.y, self.z);
+        let (xx, yy, zz) = (x * x * s, y * y * s, z * z * s);
+        let (xy, xz, yz) = (x * y * s, x * z * s, y * z * s);
+        let (wx, wy, wz) = (w * x * s, w * y * s, w * z * s);
+        Mat3::from_rows([
+            [T::ONE - (yy + zz), xy - wz, xz + wy],
+            [xy + wz, T::ONE - (xx + zz), yz - wx],
+            [xz - wy, yz + wx, T::ONE - (xx + yy)],
+        ])
+    }
+
+    /// The 4×4 homogeneous rotation matrix (App. B.3).
+    pub fn to_matrix4(self) -> Mat4<T> {
+        Mat4::from_rotation_translation(&self.to_rotation_matrix(), crate::Vec3::zero())
+    }
+
+    /// The unit quaternion (with `w ≥ 0`) of a rotation matrix, exact at every angle
+    /// including 180° (Shepperd's method). Errors: non-finite entries, or a matrix further
+    /// than [`crate::default_tolerance`] from a rotation (`‖RᵀR − I‖`, `det R`).
+    pub fn from_rotation_matrix(r: &Mat3<T>) -> Result<Self> {
+        if !r.is_finite() {
+            return Err(Error::NonFinite {
+                what: "rotation matrix",
+            });
+        }
+        let dev = r.rotation_deviation();
+        if dev > crate::default_tolerance::<T>() * T::from_i32(4) {
+            let reason = if r.determinant() < T::ZERO {
+                "determinant is negative (a reflection)"
+            } else {
+                "columns are not orthonormal"
+            };
+            return Err(Error::NotRotation {
+                reason,
+                deviation: dev.to_f64(),
+            });
+        }
+        Ok(Self::from_rotation_matrix_unchecked(r))
+    }
+
+    /// Shepperd's method without the rotation check; the result is normalized, so a matrix
+    /// that is nearly a rotation gives a nearby unit quaternion.
+    pub fn from_rotation_matrix_unchecked(r: &Mat3<T>) -> Self {
+        let m = &r.m;
+        let tr = m[0][0] + m[1][1] + m[2][2];
+        let one = T::ONE;
+        let quarter = T::HALF * T::HALF;
+        // Candidates for 4w², 4x², 4y², 4z².
+        let cw = one + tr;
+        let cx = one + m[0][0] - m[1][1] - m[2][2];
+        let cy = one - m[0][0] + m[1][1] - m[2][2];
+        let cz = one - m[0][0] - m[1][1] + m[2][2];
+        let q = if cw >= cx && cw >= cy && cw >= cz {
+            let s = cw.sqrt() * T::TWO; // 4w
+            Self::new(
+                quarter * s,
+                (m[2][1] - m[1][2]) / s,
+                (m[0][2] - m[2][0]) / s,
+                (m[1][0] - m[0][1]) / s,
+            )
+        } else if cx >= cy && cx >= cz {
+            let s = cx.sqrt() * T::TWO; // 4x
+            Self::new(
+                (m[2][1] - m[1][2]) / s,
+                quarter * s,
+                (m[0][1] + m[1][0]) / s,
+                (m[0][2] + m[2][0]) / s,
+            )
+        } else if cy >= cz {
+            let s = cy.sqrt() * T::TWO; // 4y
+            Self::new(
+                (m[0][2] - m[2][0]) / s,
+                (m[0][1] + m[1][0]) / s,
+                quarter * s,
+                (m[1][2] + m[2][1]) / s,
+            )
+        } else {
+            let s = cz.sqrt() * T::TWO; // 4z
+            Self::new(
+                (m[1][0] - m[0][1]) / s,
+                (m[0][2] + m[2][0]) / s,
+                (m[1][2] + m[2][1]) / s,
+                quarter * s,
+            )
+        };
+        let q = q.to_positive_hemisphere();
+        q.normalize().unwrap_or_else(|_| Self::identity())
+    }
+
+    /// Dam et al.'s App. B.4 trace-only formula, kept to show why it is not used: it loses
+    /// all precision as the angle approaches 180° (`s → 0`). Not for production use.
+    pub fn from_rotation_matrix_trace_only(r: &Mat3<T>) -> Self {
+        let m = &r.m;
+        let s = T::HALF * (T::ONE + m[0][0] + m[1][1] + m[2][2]).max(T::ZERO).sqrt();
+        let d = T::from_i32(4) * s;
+        Self::new(
+            s,
+            (m[2][1] - m[1][2]) / d,
+            (m[0][2] - m[2][0]) / d,
+            (m[1][0] - m[0][1]) / d,
+        )
+    }
+}

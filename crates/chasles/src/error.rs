@@ -1,0 +1,103 @@
+//! Typed errors for everything in the core crate that can be asked something impossible.
+//!
+//! Every fallible function returns [`Result<T>`](crate::Result); nothing in the crate panics
+//! on a NaN, an infinity, a zero quaternion or a non-rigid matrix.
+
+use thiserror::Error;
+
+/// What went wrong. Each variant names the problem and, where useful, the offending value
+/// (as `f64`, so that the error type is not generic).
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum Error {
+    /// An input contains NaN or ±∞.
+    #[error("{what} is not finite (contains NaN or infinity)")]
+    NonFinite {
+        /// Which input.
+        what: &'static str,
+    },
+    /// A quaternion, vector or axis of zero length where a direction or an inverse is needed.
+    #[error("{what} has zero length and cannot be normalized or inverted")]
+    ZeroNorm {
+        /// Which input.
+        what: &'static str,
+    },
+    /// A dual number with zero real part has no inverse (Kavan et al. 2006, §3).
+    #[error("the dual number {re} + ε{du} is purely dual (real part 0) and has no inverse")]
+    PurelyDual {
+        /// Real part.
+        re: f64,
+        /// Dual part.
+        du: f64,
+    },
+    /// The square root of a dual number needs a positive real part (Kavan et al. 2006, §3).
+    #[error("the square root of the dual number {re} + ε{du} is undefined: the real part must be positive")]
+    NonPositiveSqrt {
+        /// Real part.
+        re: f64,
+        /// Dual part.
+        du: f64,
+    },
+    /// The logarithm of a dual number needs a positive real part.
+    #[error("the logarithm of the dual number {re} + ε{du} is undefined: the real part must be positive")]
+    NonPositiveLog {
+        /// Real part.
+        re: f64,
+        /// Dual part.
+        du: f64,
+    },
+    /// A matrix that should be a rotation (orthonormal, determinant +1) is not.
+    #[error("the matrix is not a rotation: {reason} (deviation {deviation:e})")]
+    NotRotation {
+        /// What check failed.
+        reason: &'static str,
+        /// The size of the failure.
+        deviation: f64,
+    },
+    /// A 4×4 matrix that should be a rigid transformation is not.
+    #[error("the 4x4 matrix is not a rigid transformation: {reason} (deviation {deviation:e})")]
+    NotRigid {
+        /// What check failed.
+        reason: &'static str,
+        /// The size of the failure.
+        deviation: f64,
+    },
+    /// A dual quaternion that should be unit is not.
+    #[error("the dual quaternion is not unit: |q0| - 1 = {norm_deviation:e}, <q0, qe> = {dot:e}")]
+    NotUnit {
+        /// |q0| − 1.
+        norm_deviation: f64,
+        /// ⟨q0, qε⟩ (must be 0).
+        dot: f64,
+    },
+    /// A quaternion that should be unit is not.
+    #[error("the quaternion is not unit: its norm is {norm}")]
+    NotUnitQuat {
+        /// ‖q‖.
+        norm: f64,
+    },
+    /// The wrong number of values for a representation.
+    #[error("{what} needs {expected} numbers, got {got}")]
+    WrongLength {
+        /// Which representation.
+        what: &'static str,
+        /// Accepted counts, in words.
+        expected: &'static str,
+        /// How many were given.
+        got: usize,
+    },
+    /// Unknown name for an Euler-angle order.
+    #[error("unknown Euler order {0:?}: use three of x, y, z with no two neighbours equal, lower case for extrinsic (fixed axes, e.g. \"xyz\"), upper case for intrinsic (e.g. \"XYZ\")")]
+    UnknownEulerOrder(String),
+}
+
+/// Result with the crate's [`Error`].
+pub type Result<T> = core::result::Result<T, Error>;
+
+/// Returns `Err(NonFinite)` unless every value is finite.
+pub(crate) fn check_finite<T: crate::Real>(what: &'static str, values: &[T]) -> Result<()> {
+    if values.iter().all(|v| v.is_finite()) {
+        Ok(())
+    } else {
+        Err(Error::NonFinite { what })
+    }
+}

@@ -1,0 +1,210 @@
+//! The scalar type every algebraic type is generic over.
+//!
+//! [`Real`] is implemented for `f32` and `f64`. It is deliberately small — the arithmetic
+//! operators plus the handful of elementary functions the papers use — so that other number
+//! types (for instance a FLOP-counting wrapper, see Kavan et al. 2006, Table 1, row "FLOPS")
+//! can implement it too.
+
+use core::fmt::{Debug, Display};
+use core::ops::{Add, AddAssign, Div, DivAssign, Mul, MulAssign, Neg, Sub, SubAssign};
+
+/// A real number: `f32`, `f64`, or any type that behaves like them.
+pub trait Real:
+    Copy
+    + PartialEq
+    + PartialOrd
+    + Debug
+    + Display
+    + Default
+    + Send
+    + Sync
+    + 'static
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + Neg<Output = Self>
+    + AddAssign
+    + SubAssign
+    + MulAssign
+    + DivAssign
+{
+    /// 0.
+    const ZERO: Self;
+    /// 1.
+    const ONE: Self;
+    /// 2.
+    const TWO: Self;
+    /// 1/2.
+    const HALF: Self;
+    /// π.
+    const PI: Self;
+    /// Machine epsilon: the gap between 1 and the next larger number.
+    const EPSILON: Self;
+
+    /// Converts from `f64` (rounding to the nearest representable value).
+    fn from_f64(v: f64) -> Self;
+    /// Converts to `f64`.
+    fn to_f64(self) -> f64;
+    /// Square root.
+    fn sqrt(self) -> Self;
+    /// Sine.
+    fn sin(self) -> Self;
+    /// Cosine.
+    fn cos(self) -> Self;
+    /// Arc sine.
+    fn asin(self) -> Self;
+    /// Arc cosine.
+    fn acos(self) -> Self;
+    /// Four-quadrant arc tangent of `self / x`, in ]−π, π].
+    fn atan2(self, x: Self) -> Self;
+    /// e^self.
+    fn exp(self) -> Self;
+    /// Natural logarithm.
+    fn ln(self) -> Self;
+    /// Absolute value.
+    fn abs(self) -> Self;
+    /// Whether the value is neither infinite nor NaN.
+    fn is_finite(self) -> bool;
+
+    /// The larger of two values (NaN-ignoring like `f64::max`).
+    #[inline]
+    #[allow(clippy::eq_op)] // `x != x` is the NaN test for a generic type
+    fn max(self, other: Self) -> Self {
+        if self >= other || other != other {
+            self
+        } else {
+            other
+        }
+    }
+    /// The smaller of two values (NaN-ignoring like `f64::min`).
+    #[inline]
+    #[allow(clippy::eq_op)] // `x != x` is the NaN test for a generic type
+    fn min(self, other: Self) -> Self {
+        if self <= other || other != other {
+            self
+        } else {
+            other
+        }
+    }
+    /// Sine and cosine at once.
+    #[inline]
+    fn sin_cos(self) -> (Self, Self) {
+        (self.sin(), self.cos())
+    }
+    /// Converts a small integer constant.
+    #[inline]
+    fn from_i32(v: i32) -> Self {
+        Self::from_f64(f64::from(v))
+    }
+}
+
+macro_rules! impl_real {
+    ($t:ident) => {
+        impl Real for $t {
+            const ZERO: Self = 0.0;
+            const ONE: Self = 1.0;
+            const TWO: Self = 2.0;
+            const HALF: Self = 0.5;
+            const PI: Self = core::$t::consts::PI;
+            const EPSILON: Self = $t::EPSILON;
+
+            #[inline]
+            fn from_f64(v: f64) -> Self {
+                v as $t
+            }
+            #[inline]
+            fn to_f64(self) -> f64 {
+                f64::from(self)
+            }
+            #[inline]
+            fn sqrt(self) -> Self {
+                $t::sqrt(self)
+            }
+            #[inline]
+            fn sin(self) -> Self {
+                $t::sin(self)
+            }
+            #[inline]
+            fn cos(self) -> Self {
+                $t::cos(self)
+            }
+            #[inline]
+            fn asin(self) -> Self {
+                $t::asin(self)
+            }
+            #[inline]
+            fn acos(self) -> Self {
+                $t::acos(self)
+            }
+            #[inline]
+            fn atan2(self, x: Self) -> Self {
+                $t::atan2(self, x)
+            }
+            #[inline]
+            fn exp(self) -> Self {
+                $t::exp(self)
+            }
+            #[inline]
+            fn ln(self) -> Self {
+                $t::ln(self)
+            }
+            #[inline]
+            fn abs(self) -> Self {
+                $t::abs(self)
+            }
+            #[inline]
+            fn is_finite(self) -> bool {
+                $t::is_finite(self)
+            }
+            #[inline]
+            fn max(self, other: Self) -> Self {
+                $t::max(self, other)
+            }
+            #[inline]
+            fn min(self, other: Self) -> Self {
+                $t::min(self, other)
+            }
+            #[inline]
+            fn sin_cos(self) -> (Self, Self) {
+                $t::sin_cos(self)
+            }
+        }
+    };
+}
+
+impl_real!(f32);
+impl_real!(f64);
+
+/// `sin(x)/x`, exact at and near 0 (Taylor series below a threshold instead of 0/0).
+#[inline]
+pub fn sinc<T: Real>(x: T) -> T {
+    let x2 = x * x;
+    // Below x² < sqrt(eps) the series 1 − x²/6 + x⁴/120 is exact to rounding.
+    if x2 < T::EPSILON.sqrt() {
+        T::ONE - x2 / T::from_i32(6) * (T::ONE - x2 / T::from_i32(20))
+    } else {
+        x.sin() / x
+    }
+}
+
+/// `atan2(n, w) / n` for `n ≥ 0`: the factor that turns the vector part of a quaternion
+/// into its logarithm. Finite for `n → 0` when `w > 0` (limit `1/w`).
+///
+/// For `n = 0` and `w ≤ 0` the true value is infinite (the half-angle is π but the axis is
+/// undefined); callers handle that case before calling.
+#[inline]
+pub fn atan2_over<T: Real>(n: T, w: T) -> T {
+    if n == T::ZERO {
+        T::ONE / w
+    } else {
+        n.atan2(w) / n
+    }
+}
+
+/// The relative tolerance used by the library's "is this unit / rigid / a rotation" checks:
+/// `sqrt(ε)`-scaled, about 1.5e-8 for f64 and 3.5e-4 for f32.
+#[inline]
+pub fn default_tolerance<T: Real>() -> T {
+    T::EPSILON.sqrt()
+}

@@ -1,0 +1,106 @@
+//! Round trips through glam, nalgebra and mint are exact (`==`): the conversions map
+//! components by name (glam and nalgebra store x, y, z, w; we store w, x, y, z) and do no
+//! arithmetic. Run with `cargo test -p chasles --all-features` (`.ci/run` does).
+#![cfg(all(feature = "glam", feature = "nalgebra", feature = "mint"))]
+
+mod common;
+use chasles::{DualQuat, EulerOrder, Mat3, Mat4, Quat, Vec3};
+use common::*;
+use proptest::prelude::*;
+
+proptest! {
+    #[test]
+    fn glam_round_trips_are_exact(q in unit_quat(), v in any_vec(), r in unit_dq()) {
+        let q64 = quat_of::<f64>(q);
+        let g: glam::DQuat = q64.into();
+        // Same rotation, glam's memory order x, y, z, w.
+        prop_assert_eq!(g.to_array(), [q64.x, q64.y, q64.z, q64.w]);
+        prop_assert_eq!(Quat::from(g), q64);
+        let q32 = quat_of::<f32>(q);
+        prop_assert_eq!(Quat::from(glam::Quat::from(q32)), q32);
+        let v64 = vec_of::<f64>(v);
+        prop_assert_eq!(Vec3::from(glam::DVec3::from(v64)), v64);
+        let v32 = vec_of::<f32>(v);
+        prop_assert_eq!(Vec3::from(glam::Vec3::from(v32)), v32);
+        let m = q64.to_rotation_matrix();
+        prop_assert_eq!(Mat3::from(glam::DMat3::from(m)), m);
+        let m4 = dq_of::<f64>(r).to_matrix4();
+        prop_assert_eq!(Mat4::from(glam::DMat4::from(m4)), m4);
+        let m4f = dq_of::<f32>(r).to_matrix4();
+        prop_assert_eq!(Mat4::from(glam::Mat4::from(m4f)), m4f);
+        // Same meaning: glam rotates a vector as we do, and its matrix is ours.
+        let p = glam::DVec3::from(v64);
+        let ours = q64.rotate(v64);
+        let theirs = g * p;
+        prop_assert!((ours - Vec3::from(theirs)).norm() < 1e-12);
+        let gm = glam::DMat3::from_quat(g);
+        prop_assert!(Mat3::from(gm).max_abs_diff(&m) < 1e-15);
+        let t = glam::DMat4::from(m4).transform_point3(p);
+        prop_assert!((Vec3::from(t) - m4.transform_point(v64)).norm() < 1e-12);
+    }
+
+    #[test]
+    fn nalgebra_round_trips_are_exact(q in unit_quat(), v in any_vec(), r in unit_dq()) {
+        let q64 = quat_of::<f64>(q);
+        let nq: nalgebra::Quaternion<f64> = q64.into();
+        prop_assert_eq!(nq.coords.as_slice(), &[q64.x, q64.y, q64.z, q64.w][..]);
+        prop_assert_eq!(Quat::from(nq), q64);
+        let u: nalgebra::UnitQuaternion<f64> = q64.try_into().unwrap();
+        prop_assert_eq!(Quat::from(u), q64);
+        let u32: nalgebra::UnitQuaternion<f32> = quat_of::<f32>(q).try_into().unwrap();
+        prop_assert_eq!(Quat::from(u32), quat_of::<f32>(q));
+        let dq = dq_of::<f64>(r);
+        let nd: nalgebra::UnitDualQuaternion<f64> = dq.try_into().unwrap();
+        prop_assert_eq!(DualQuat::from(nd), dq);
+        let v64 = vec_of::<f64>(v);
+        prop_assert_eq!(Vec3::from(nalgebra::Vector3::from(v64)), v64);
+        let m = q64.to_rotation_matrix();
+        prop_assert_eq!(Mat3::from(nalgebra::Matrix3::from(m)), m);
+        let m4 = dq.to_matrix4();
+        prop_assert_eq!(Mat4::from(nalgebra::Matrix4::from(m4)), m4);
+        // Same meaning: rotation, rigid transform and Isometry3.
+        let p = nalgebra::Point3::new(v64.x, v64.y, v64.z);
+        prop_assert!((Vec3::from(u * nalgebra::Vector3::from(v64)) - q64.rotate(v64)).norm() < 1e-12);
+        let moved = nd.transform_point(&p);
+        prop_assert!((Vec3::new(moved.x, moved.y, moved.z) - dq.transform_point(v64)).norm() < 1e-12);
+        let iso: nalgebra::Isometry3<f64> = dq.try_into().unwrap();
+        let back = DualQuat::from(iso);
+        prop_assert!((back.transform_point(v64) - dq.transform_point(v64)).norm() < 1e-12);
+        prop_assert!(Mat4::from(iso.to_homogeneous()).max_abs_diff(&m4) < 1e-12);
+    }
+
+    #[test]
+    fn mint_round_trips_are_exact(q in unit_quat(), r in unit_dq()) {
+        let q64 = quat_of::<f64>(q);
+        let mq: mint::Quaternion<f64> = q64.into();
+        prop_assert_eq!(mq.s, q64.w);
+        prop_assert_eq!(Quat::from(mq), q64);
+        let m = q64.to_rotation_matrix();
+        let rows: mint::RowMatrix3<f64> = m.into();
+        prop_assert_eq!(rows.x.y, m.m[0][1]);
+        prop_assert_eq!(Mat3::from(rows), m);
+        let cols: mint::ColumnMatrix3<f64> = m.into();
+        prop_assert_eq!(cols.y.x, m.m[0][1]);
+        prop_assert_eq!(Mat3::from(cols), m);
+        let m4 = dq_of::<f32>(r).to_matrix4();
+        prop_assert_eq!(Mat4::from(mint::RowMatrix4::from(m4)), m4);
+        prop_assert_eq!(Mat4::from(mint::ColumnMatrix4::from(m4)), m4);
+    }
+}
+
+#[test]
+fn non_unit_values_are_refused_by_the_unit_types() {
+    let q = Quat::<f64>::new(2.0, 0.0, 0.0, 0.0);
+    let r: Result<nalgebra::UnitQuaternion<f64>, _> = q.try_into();
+    assert!(matches!(r, Err(chasles::Error::NotUnitQuat { norm }) if norm == 2.0));
+    let dq = DualQuat::new(Quat::<f64>::identity(), Quat::new(1.0, 0.0, 0.0, 0.0));
+    let r: Result<nalgebra::UnitDualQuaternion<f64>, _> = dq.try_into();
+    assert!(matches!(r, Err(chasles::Error::NotUnit { .. })));
+    let r: Result<nalgebra::Isometry3<f64>, _> = dq.try_into();
+    assert!(r.is_err());
+    // Euler angles agree with glam's extrinsic/intrinsic conventions: glam's EulerRot::XYZ
+    // is intrinsic X then Y then Z, our "XYZ".
+    let g = glam::DQuat::from_euler(glam::EulerRot::XYZ, 0.1, 0.2, 0.3);
+    let ours = Quat::from_euler("XYZ".parse::<EulerOrder>().unwrap(), [0.1, 0.2, 0.3]);
+    assert!((Quat::from(g) - ours).norm() < 1e-15);
+}
