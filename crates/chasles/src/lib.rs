@@ -66,3 +66,8 @@ pub use quat::Quat;
 pub use real::{default_tolerance, Real};
 pub use screw::Screw;
 pub use vec3::Vec3;
+
+/// The README's examples, compiled and run as doc tests.
+#[doc = include_str!("../../../README.md")]
+#[cfg(doctest)]
+pub struct ReadmeDoctests;

@@ -33,6 +33,27 @@ impl<T: Real> Quat<T> {
         Mat4::from_rotation_translation(&self.to_rotation_matrix(), crate::Vec3::zero())
     }
 
+    /// The unit quaternion of a 4×4 homogeneous *rotation* matrix (App. B.3's 4×4 form).
+    /// Errors: non-finite entries, a translation or a last row other than `[0, 0, 0, 1]`
+    /// (use [`crate::DualQuat::from_matrix4`] for rigid motions), or a non-rotation block.
+    pub fn from_matrix4(m: &Mat4<T>) -> Result<Self> {
+        if !m.is_finite() {
+            return Err(Error::NonFinite { what: "4x4 matrix" });
+        }
+        let mut dev = T::ZERO;
+        for i in 0..3 {
+            dev = dev.max(m.m[i][3].abs()).max(m.m[3][i].abs());
+        }
+        dev = dev.max((m.m[3][3] - T::ONE).abs());
+        if dev > crate::default_tolerance::<T>() * T::from_i32(4) {
+            return Err(Error::NotRotation {
+                reason: "the 4x4 matrix has a translation or a projective part",
+                deviation: dev.to_f64(),
+            });
+        }
+        Self::from_rotation_matrix(&m.linear_part())
+    }
+
     /// The unit quaternion (with `w ≥ 0`) of a rotation matrix, exact at every angle
     /// including 180° (Shepperd's method). Errors: non-finite entries, or a matrix further
     /// than [`crate::default_tolerance`] from a rotation (`‖RᵀR − I‖`, `det R`).

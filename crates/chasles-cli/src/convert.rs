@@ -1,0 +1,77 @@
+//! `chasles convert`: one value between representations, or one JSON value per line.
+
+use crate::repr::{motion_from_json, motion_from_numbers, parse_numbers, render, Fmt, Repr};
+use anyhow::{anyhow, bail, Context, Result};
+use std::io::{BufRead, Write};
+
+/// Options of `chasles convert`.
+pub struct ConvertArgs {
+    /// Input representation (required for plain numbers and bare JSON arrays).
+    pub from: Option<Repr>,
+    /// Output representation.
+    pub to: Repr,
+    /// Numbers, after the options.
+    pub values: Vec<String>,
+    /// Read JSON lines from stdin.
+    pub jsonl: bool,
+    /// Fixed decimals instead of the shortest round-trip form.
+    pub precision: Option<usize>,
+}
+
+/// Runs the command; returns the process exit code.
+pub fn run(args: ConvertArgs) -> Result<i32> {
+    let fmt = Fmt(args.precision);
+    if args.jsonl {
+        if !args.values.is_empty() {
+            bail!("--jsonl reads stdin; do not also give values on the command line");
+        }
+        let stdin = std::io::stdin();
+        let stdout = std::io::stdout();
+        return run_jsonl(stdin.lock(), &mut stdout.lock(), args.from, args.to, fmt);
+    }
+    let from = args
+        .from
+        .ok_or_else(|| anyhow!("--from is required for values on the command line"))?;
+    let numbers = parse_numbers(&args.values)?;
+    let motion = motion_from_numbers(from, &numbers).with_context(|| format!("--from {from}"))?;
+    let out = render(&motion, args.to, fmt).with_context(|| format!("--to {}", args.to))?;
+    for n in motion.notes.iter().chain(out.notes.iter()) {
+        eprintln!("note: {n}");
+    }
+    println!("{}", out.text);
+    Ok(0)
+}
+
+/// One JSON value per input line, one JSON result per output line; a bad line gets
+/// `{"line": N, "error": "..."}` in its place (so outputs stay aligned with inputs), a
+/// message on stderr, and the exit code becomes 1. Blank lines are skipped.
+pub fn run_jsonl(
+    input: impl BufRead,
+    out: &mut impl Write,
+    from: Option<Repr>,
+    to: Repr,
+    fmt: Fmt,
+) -> Result<i32> {
+    let mut code = 0;
+    for (i, line) in input.lines().enumerate() {
+        let n = i + 1;
+        let line = line.with_context(|| format!("reading line {n}"))?;
+        if line.trim().is_empty() {
+            continue;
+        }
+        let result = serde_json::from_str(&line)
+            .map_err(|e| anyhow!("not valid JSON: {e}"))
+            .and_then(|v| motion_from_json(&v, from))
+            .and_then(|m| render(&m, to, fmt));
+        match result {
+            Ok(o) => writeln!(out, "{}", o.json)?,
+            Err(e) => {
+                code = 1;
+                let msg = format!("{e:#}");
+                eprintln!("error: line {n}: {msg}");
+                writeln!(out, "{}", serde_json::json!({ "line": n, "error": msg }))?;
+            }
+        }
+    }
+    Ok(code)
+}

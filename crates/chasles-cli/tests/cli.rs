@@ -1,0 +1,353 @@
+//! The `chasles` binary end to end: conversions checked against closed forms, JSON lines,
+//! errors on bad input (one line, non-zero exit), and the tour.
+
+use std::io::Write;
+use std::process::{Command, Output, Stdio};
+
+fn chasles(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_chasles"))
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+fn with_stdin(args: &[&str], input: &str) -> Output {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_chasles"))
+        .args(args)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(input.as_bytes())
+        .unwrap();
+    child.wait_with_output().unwrap()
+}
+
+fn numbers(s: &str) -> Vec<f64> {
+    s.split(|c: char| c.is_whitespace() || c == ',' || c == '[' || c == ']')
+        .filter_map(|t| t.parse().ok())
+        .collect()
+}
+
+fn stdout(o: &Output) -> String {
+    assert!(
+        o.status.success(),
+        "failed: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    String::from_utf8(o.stdout.clone()).unwrap()
+}
+
+fn assert_close(got: &[f64], want: &[f64], tol: f64) {
+    assert_eq!(got.len(), want.len(), "{got:?} vs {want:?}");
+    for (g, w) in got.iter().zip(want) {
+        assert!((g - w).abs() <= tol, "{got:?} vs {want:?}");
+    }
+}
+
+#[test]
+fn euler_to_quaternion_matches_closed_form() {
+    // Extrinsic xyz: q = qz(γ) qy(β) qx(α), product of half-angle quaternions.
+    let (a, b, g) = (0.1f64 / 2.0, 0.2f64 / 2.0, 0.3f64 / 2.0);
+    let w = g.cos() * b.cos() * a.cos() + g.sin() * b.sin() * a.sin();
+    let x = g.cos() * b.cos() * a.sin() - g.sin() * b.sin() * a.cos();
+    let y = g.cos() * b.sin() * a.cos() + g.sin() * b.cos() * a.sin();
+    let z = g.sin() * b.cos() * a.cos() - g.cos() * b.sin() * a.sin();
+    let out = stdout(&chasles(&[
+        "convert",
+        "--from",
+        "euler:xyz",
+        "--to",
+        "quat",
+        "0.1",
+        "0.2",
+        "0.3",
+    ]));
+    assert!(
+        out.trim_start().starts_with('['),
+        "quaternions print as [w, x, y, z]: {out}"
+    );
+    assert_close(&numbers(&out), &[w, x, y, z], 1e-15);
+}
+
+#[test]
+fn negative_numbers_and_rigid_motions() {
+    // 180° about x (w = 0), then translate (−1, 2, 3): dual part ½ t q0.
+    let out = stdout(&chasles(&[
+        "convert", "--from", "rt", "--to", "dq", "--", "0", "1", "0", "0", "-1", "2", "3",
+    ]));
+    // ½ [0, (−1, 2, 3)] [0, (1, 0, 0)] = ½ [1, (0, 3, −2)]
+    assert_close(
+        &numbers(&out),
+        &[0.0, 1.0, 0.0, 0.0, 0.5, 0.0, 1.5, -1.0],
+        1e-15,
+    );
+    let out = stdout(&chasles(&[
+        "convert", "--from", "rt", "--to", "matrix", "0", "1", "0", "0", "-1", "2", "3",
+    ]));
+    assert_close(
+        &numbers(&out),
+        &[
+            1.0, 0.0, 0.0, -1.0, 0.0, -1.0, 0.0, 2.0, 0.0, 0.0, -1.0, 3.0, 0.0, 0.0, 0.0, 1.0,
+        ],
+        1e-15,
+    );
+    // Round trip through the printed 4×4 matrix, pasted back as one argument.
+    let back = stdout(&chasles(&[
+        "convert", "--from", "matrix", "--to", "rt", &out,
+    ]));
+    assert_close(
+        &numbers(&back),
+        &[0.0, 1.0, 0.0, 0.0, -1.0, 2.0, 3.0],
+        1e-15,
+    );
+}
+
+#[test]
+fn screw_of_a_known_motion() {
+    // 90° about z then (1, 2, 3): axis z through (−0.5, 1.5, 0), slide 3.
+    let h = std::f64::consts::FRAC_PI_4;
+    let q = [h.cos(), 0.0, 0.0, h.sin()];
+    let args: Vec<String> = q
+        .iter()
+        .chain(&[1.0, 2.0, 3.0])
+        .map(|v| v.to_string())
+        .collect();
+    let mut a = vec![
+        "convert",
+        "--from",
+        "rt",
+        "--to",
+        "screw",
+        "--precision",
+        "9",
+    ];
+    a.extend(args.iter().map(|s| s.as_str()));
+    let out = stdout(&chasles(&a));
+    let line = |k: &str| numbers(out.lines().find(|l| l.starts_with(k)).unwrap());
+    assert_close(&line("axis"), &[0.0, 0.0, 1.0], 1e-9);
+    assert_close(&line("point"), &[-0.5, 1.5, 0.0], 1e-9);
+    assert_close(&line("angle"), &[std::f64::consts::FRAC_PI_2], 1e-9);
+    assert_close(&line("translation"), &[3.0], 1e-9);
+    // And back from the screw.
+    let back = stdout(&chasles(&[
+        "convert",
+        "--from",
+        "screw",
+        "--to",
+        "rt",
+        "0",
+        "0",
+        "1",
+        "-0.5",
+        "1.5",
+        "0",
+        "1.5707963267948966",
+        "3",
+    ]));
+    assert_close(
+        &numbers(&back),
+        &[q[0], 0.0, 0.0, q[3], 1.0, 2.0, 3.0],
+        1e-12,
+    );
+}
+
+#[test]
+fn half_turn_matrix_and_gimbal_note() {
+    let out = stdout(&chasles(&[
+        "convert", "--from", "matrix", "--to", "quat", "1", "0", "0", "0", "-1", "0", "0", "0",
+        "-1",
+    ]));
+    let q = numbers(&out);
+    assert!((q[1].abs() - 1.0).abs() < 1e-15, "{out}");
+    let o = chasles(&[
+        "convert",
+        "--from",
+        "euler:xyz",
+        "--to",
+        "euler:xyz",
+        "0.4",
+        "1.5707963267948966",
+        "-1.1",
+    ]);
+    let angles = numbers(&stdout(&o));
+    assert_close(&angles, &[1.5, std::f64::consts::FRAC_PI_2, 0.0], 1e-12);
+    assert!(String::from_utf8_lossy(&o.stderr).contains("gimbal lock"));
+}
+
+#[test]
+fn json_lines_keep_order_and_flag_bad_lines() {
+    let input = r#"{"quat": [0, 1, 0, 0]}
+[0.1, 0.2, 0.3]
+
+{"rotation": [1, 0, 0, 0], "translation": [1, 2]}
+not json
+{"euler": [0, 0, 1.5707963267948966], "order": "xyz"}
+"#;
+    let o = with_stdin(
+        &["convert", "--jsonl", "--from", "rotvec", "--to", "quat"],
+        input,
+    );
+    assert_eq!(o.status.code(), Some(1), "a bad line makes the exit code 1");
+    let lines: Vec<serde_json::Value> = String::from_utf8(o.stdout)
+        .unwrap()
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert_eq!(lines.len(), 5);
+    assert_eq!(lines[0]["quat"], serde_json::json!([0.0, 1.0, 0.0, 0.0]));
+    let rv = lines[1]["quat"].as_array().unwrap();
+    let n = (0.01f64 + 0.04 + 0.09).sqrt();
+    assert!((rv[0].as_f64().unwrap() - (n / 2.0).cos()).abs() < 1e-15);
+    assert_eq!(lines[2]["line"], 4);
+    assert!(lines[2]["error"].as_str().unwrap().contains("translation"));
+    assert_eq!(lines[3]["line"], 5);
+    assert!(lines[3]["error"]
+        .as_str()
+        .unwrap()
+        .contains("not valid JSON"));
+    let q = lines[4]["quat"].as_array().unwrap();
+    assert!((q[3].as_f64().unwrap() - std::f64::consts::FRAC_1_SQRT_2).abs() < 1e-15);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        stderr.contains("line 4") && stderr.contains("line 5"),
+        "{stderr}"
+    );
+}
+
+#[test]
+fn bad_input_gets_one_line_error_and_non_zero_exit() {
+    let cases: &[(&[&str], &str)] = &[
+        (
+            &[
+                "convert", "--from", "quat", "--to", "matrix", "0", "0", "0", "0",
+            ],
+            "zero length",
+        ),
+        (
+            &["convert", "--from", "quat", "--to", "matrix", "1", "0", "0"],
+            "needs 4 numbers",
+        ),
+        (
+            &[
+                "convert", "--from", "quat", "--to", "matrix", "1", "nan", "0", "0",
+            ],
+            "not a finite number",
+        ),
+        (
+            &[
+                "convert", "--from", "quat", "--to", "matrix", "1", "x", "0", "0",
+            ],
+            "not a number",
+        ),
+        (
+            &[
+                "convert",
+                "--from",
+                "euler:xxy",
+                "--to",
+                "quat",
+                "0",
+                "0",
+                "0",
+            ],
+            "unknown Euler order",
+        ),
+        (
+            &["convert", "--from", "spin", "--to", "quat", "0"],
+            "unknown representation",
+        ),
+        (
+            &[
+                "convert", "--from", "matrix", "--to", "quat", "-1", "0", "0", "0", "1", "0", "0",
+                "0", "1",
+            ],
+            "reflection",
+        ),
+        (
+            &[
+                "convert", "--from", "rt", "--to", "quat", "1", "0", "0", "0", "1", "0", "0",
+            ],
+            "translation",
+        ),
+        (
+            &[
+                "convert",
+                "--from",
+                "axis-angle",
+                "--to",
+                "quat",
+                "0",
+                "0",
+                "0",
+                "1",
+            ],
+            "rotation axis",
+        ),
+        (
+            &["convert", "--to", "quat", "1", "0", "0", "0"],
+            "--from is required",
+        ),
+    ];
+    for (args, needle) in cases {
+        let o = chasles(args);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(!o.status.success(), "{args:?} succeeded");
+        assert!(err.contains(needle), "{args:?}: {err}");
+        assert_eq!(
+            err.trim().lines().count(),
+            1,
+            "{args:?}: not one line: {err}"
+        );
+        assert!(o.stdout.is_empty(), "{args:?} printed a result");
+    }
+}
+
+#[test]
+fn non_unit_quaternion_is_normalized_with_a_note() {
+    let o = chasles(&[
+        "convert",
+        "--from",
+        "quat",
+        "--to",
+        "axis-angle",
+        "2",
+        "0",
+        "0",
+        "2",
+    ]);
+    let v = numbers(&stdout(&o));
+    assert_close(&v, &[0.0, 0.0, 1.0, std::f64::consts::FRAC_PI_2], 1e-15);
+    assert!(String::from_utf8_lossy(&o.stderr).contains("normalized"));
+}
+
+#[test]
+fn tour_prints_computed_numbers() {
+    let out = stdout(&chasles(&["tour", "--samples", "200"]));
+    for section in [
+        "App. B.4",
+        "gimbal lock",
+        "eq. (1)",
+        "Lemma 1",
+        "Identities over 200",
+    ] {
+        assert!(out.contains(section), "missing {section}");
+    }
+    // Every identity row carries two measured errors, within the test-suite tolerances.
+    let rows: Vec<&str> = out
+        .lines()
+        .skip_while(|l| !l.contains("Identities over"))
+        .skip(2)
+        .take(8)
+        .collect();
+    assert_eq!(rows.len(), 8);
+    for r in rows {
+        let v = numbers(r);
+        assert!(v.len() >= 2 && v[0] < 1e-12 && v[1] < 1e-5, "{r}");
+    }
+}
