@@ -61,7 +61,7 @@ pub use convert::euler::{EulerAngles, EulerOrder};
 pub use dual::Dual;
 pub use dualquat::DualQuat;
 pub use error::{Error, Result};
-pub use matrix::{Mat3, Mat4};
+pub use matrix::{Mat, Mat3, Mat4};
 pub use quat::Quat;
 pub use real::{default_tolerance, Real};
 pub use screw::Screw;

@@ -1,49 +1,95 @@
-//! Row-major 3×3 and 4×4 matrices acting on column vectors (`p' = M p`), as in
-//! Dam et al. 1998, App. B.1 and B.3 and Kavan et al. 2006, §3.
+//! Row-major square matrices acting on column vectors (`p' = M p`), as in Dam et al. 1998,
+//! App. B.1 and B.3 and Kavan et al. 2006, §3: [`Mat3`] for rotations, [`Mat4`] for
+//! homogeneous (rigid) transformations — both the one type [`Mat`].
 
 use crate::{Real, Vec3};
 use core::ops::Mul;
 
-/// A 3×3 matrix, row-major: `m[row][col]`.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct Mat3<T> {
+/// An N×N matrix, row-major: `m[row][col]`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Mat<T, const N: usize> {
     /// Rows.
-    pub m: [[T; 3]; 3],
+    pub m: [[T; N]; N],
 }
 
-/// A 4×4 homogeneous matrix, row-major: `m[row][col]`; a rigid transformation has the
-/// rotation in the upper-left 3×3, the translation in the last column and `[0, 0, 0, 1]`
-/// as the last row.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct Mat4<T> {
-    /// Rows.
-    pub m: [[T; 4]; 4],
+/// A 3×3 matrix (rotations).
+pub type Mat3<T> = Mat<T, 3>;
+
+/// A 4×4 homogeneous matrix; a rigid transformation has the rotation in the upper-left
+/// 3×3, the translation in the last column and `[0, 0, 0, 1]` as the last row.
+pub type Mat4<T> = Mat<T, 4>;
+
+impl<T: Real, const N: usize> Default for Mat<T, N> {
+    fn default() -> Self {
+        Self {
+            m: [[T::ZERO; N]; N],
+        }
+    }
 }
 
-impl<T: Real> Mat3<T> {
+impl<T: Real, const N: usize> Mat<T, N> {
     /// From rows.
     #[inline]
-    pub const fn from_rows(m: [[T; 3]; 3]) -> Self {
+    pub const fn from_rows(m: [[T; N]; N]) -> Self {
         Self { m }
     }
     /// The identity.
     pub fn identity() -> Self {
-        let mut m = [[T::ZERO; 3]; 3];
-        for (i, row) in m.iter_mut().enumerate() {
-            row[i] = T::ONE;
-        }
-        Self { m }
+        Self::from_rows(core::array::from_fn(|i| {
+            core::array::from_fn(|j| if i == j { T::ONE } else { T::ZERO })
+        }))
     }
     /// The transpose.
     pub fn transpose(&self) -> Self {
-        let mut m = [[T::ZERO; 3]; 3];
-        for (i, row) in m.iter_mut().enumerate() {
-            for (j, v) in row.iter_mut().enumerate() {
-                *v = self.m[j][i];
+        Self::from_rows(core::array::from_fn(|i| {
+            core::array::from_fn(|j| self.m[j][i])
+        }))
+    }
+    /// The entries, row by row.
+    pub fn entries(&self) -> impl Iterator<Item = T> + '_ {
+        self.m.iter().flat_map(|r| r.iter().copied())
+    }
+    /// The largest absolute entry of `self − other`.
+    pub fn max_abs_diff(&self, other: &Self) -> T {
+        self.entries()
+            .zip(other.entries())
+            .fold(T::ZERO, |acc, (x, y)| acc.max((x - y).abs()))
+    }
+    /// Whether every entry is finite.
+    pub fn is_finite(&self) -> bool {
+        self.entries().all(|v| v.is_finite())
+    }
+}
+
+impl<T: Real, const N: usize> Mul for Mat<T, N> {
+    type Output = Self;
+    fn mul(self, o: Self) -> Self {
+        Self::from_rows(core::array::from_fn(|i| {
+            core::array::from_fn(|j| (0..N).fold(T::ZERO, |acc, k| acc + self.m[i][k] * o.m[k][j]))
+        }))
+    }
+}
+
+macro_rules! row_major {
+    ($n:literal, $nn:literal) => {
+        impl<T: Real> Mat<T, $n> {
+            #[doc = concat!("All ", stringify!($nn), " entries, row by row.")]
+            pub fn to_row_major(&self) -> [T; $nn] {
+                core::array::from_fn(|k| self.m[k / $n][k % $n])
+            }
+            #[doc = concat!("From ", stringify!($nn), " entries, row by row.")]
+            pub fn from_row_major(a: [T; $nn]) -> Self {
+                Self::from_rows(core::array::from_fn(|i| {
+                    core::array::from_fn(|j| a[i * $n + j])
+                }))
             }
         }
-        Self { m }
-    }
+    };
+}
+row_major!(3, 9);
+row_major!(4, 16);
+
+impl<T: Real> Mat3<T> {
     /// The determinant.
     pub fn determinant(&self) -> T {
         let m = &self.m;
@@ -61,33 +107,6 @@ impl<T: Real> Mat3<T> {
             m[2][0] * v.x + m[2][1] * v.y + m[2][2] * v.z,
         )
     }
-    /// All nine entries, row by row.
-    pub fn to_row_major(&self) -> [T; 9] {
-        let mut out = [T::ZERO; 9];
-        for (k, v) in out.iter_mut().enumerate() {
-            *v = self.m[k / 3][k % 3];
-        }
-        out
-    }
-    /// From nine entries, row by row.
-    pub fn from_row_major(a: [T; 9]) -> Self {
-        let mut m = [[T::ZERO; 3]; 3];
-        for (k, v) in a.iter().enumerate() {
-            m[k / 3][k % 3] = *v;
-        }
-        Self { m }
-    }
-    /// The largest absolute entry of `self − other`.
-    pub fn max_abs_diff(&self, other: &Self) -> T {
-        let (a, b) = (self.to_row_major(), other.to_row_major());
-        a.iter()
-            .zip(b.iter())
-            .fold(T::ZERO, |acc, (x, y)| acc.max((*x - *y).abs()))
-    }
-    /// Whether every entry is finite.
-    pub fn is_finite(&self) -> bool {
-        self.to_row_major().iter().all(|v| v.is_finite())
-    }
     /// How far from a rotation: `max(‖MᵀM − I‖∞, |det M − 1|)`.
     pub fn rotation_deviation(&self) -> T {
         let mtm = self.transpose() * *self;
@@ -96,46 +115,23 @@ impl<T: Real> Mat3<T> {
     }
 }
 
-impl<T: Real> Mul for Mat3<T> {
-    type Output = Self;
-    fn mul(self, o: Self) -> Self {
-        let mut m = [[T::ZERO; 3]; 3];
-        for (i, row) in m.iter_mut().enumerate() {
-            for (j, v) in row.iter_mut().enumerate() {
-                *v = self.m[i][0] * o.m[0][j] + self.m[i][1] * o.m[1][j] + self.m[i][2] * o.m[2][j];
-            }
-        }
-        Self { m }
-    }
-}
-
 impl<T: Real> Mat4<T> {
-    /// From rows.
-    #[inline]
-    pub const fn from_rows(m: [[T; 4]; 4]) -> Self {
-        Self { m }
-    }
-    /// The identity.
-    pub fn identity() -> Self {
-        Self::from_rotation_translation(&Mat3::identity(), Vec3::zero())
-    }
     /// The rigid transformation `[R t; 0 1]`.
     pub fn from_rotation_translation(r: &Mat3<T>, t: Vec3<T>) -> Self {
-        let mut m = [[T::ZERO; 4]; 4];
-        for (i, (row, r_row)) in m.iter_mut().zip(r.m.iter()).enumerate() {
-            row[..3].copy_from_slice(r_row);
-            row[3] = t.get(i);
-        }
-        m[3][3] = T::ONE;
-        Self { m }
+        Self::from_rows(core::array::from_fn(|i| {
+            core::array::from_fn(|j| match (i, j) {
+                (3, 3) => T::ONE,
+                (3, _) => T::ZERO,
+                (_, 3) => t.get(i),
+                _ => r.m[i][j],
+            })
+        }))
     }
     /// The upper-left 3×3 block.
     pub fn linear_part(&self) -> Mat3<T> {
-        let mut r = [[T::ZERO; 3]; 3];
-        for (i, row) in r.iter_mut().enumerate() {
-            row.copy_from_slice(&self.m[i][..3]);
-        }
-        Mat3::from_rows(r)
+        Mat3::from_rows(core::array::from_fn(|i| {
+            core::array::from_fn(|j| self.m[i][j])
+        }))
     }
     /// The last column's first three entries.
     pub fn translation(&self) -> Vec3<T> {
@@ -144,49 +140,5 @@ impl<T: Real> Mat4<T> {
     /// `M [p, 1]`, dropping the homogeneous coordinate (affine part only).
     pub fn transform_point(&self, p: Vec3<T>) -> Vec3<T> {
         self.linear_part().mul_vec(p) + self.translation()
-    }
-    /// All sixteen entries, row by row.
-    pub fn to_row_major(&self) -> [T; 16] {
-        let mut out = [T::ZERO; 16];
-        for (k, v) in out.iter_mut().enumerate() {
-            *v = self.m[k / 4][k % 4];
-        }
-        out
-    }
-    /// From sixteen entries, row by row.
-    pub fn from_row_major(a: [T; 16]) -> Self {
-        let mut m = [[T::ZERO; 4]; 4];
-        for (k, v) in a.iter().enumerate() {
-            m[k / 4][k % 4] = *v;
-        }
-        Self { m }
-    }
-    /// The largest absolute entry of `self − other`.
-    pub fn max_abs_diff(&self, other: &Self) -> T {
-        let (a, b) = (self.to_row_major(), other.to_row_major());
-        a.iter()
-            .zip(b.iter())
-            .fold(T::ZERO, |acc, (x, y)| acc.max((*x - *y).abs()))
-    }
-    /// Whether every entry is finite.
-    pub fn is_finite(&self) -> bool {
-        self.to_row_major().iter().all(|v| v.is_finite())
-    }
-}
-
-impl<T: Real> Mul for Mat4<T> {
-    type Output = Self;
-    fn mul(self, o: Self) -> Self {
-        let mut m = [[T::ZERO; 4]; 4];
-        for (i, row) in m.iter_mut().enumerate() {
-            for (j, v) in row.iter_mut().enumerate() {
-                let mut acc = T::ZERO;
-                for k in 0..4 {
-                    acc += self.m[i][k] * o.m[k][j];
-                }
-                *v = acc;
-            }
-        }
-        Self { m }
     }
 }

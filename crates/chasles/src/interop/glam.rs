@@ -32,8 +32,7 @@ macro_rules! glam_conversions {
         }
         impl From<$gm3> for Mat3<$t> {
             fn from(m: $gm3) -> Self {
-                let c = m.to_cols_array_2d();
-                Mat3::from_rows(core::array::from_fn(|i| core::array::from_fn(|j| c[j][i])))
+                Mat3::from_rows(m.to_cols_array_2d()).transpose()
             }
         }
         impl From<Mat3<$t>> for $gm3 {
@@ -43,15 +42,12 @@ macro_rules! glam_conversions {
         }
         impl From<$gm4> for Mat4<$t> {
             fn from(m: $gm4) -> Self {
-                let c = m.to_cols_array_2d();
-                Mat4::from_rows(core::array::from_fn(|i| core::array::from_fn(|j| c[j][i])))
+                Mat4::from_rows(m.to_cols_array_2d()).transpose()
             }
         }
         impl From<Mat4<$t>> for $gm4 {
             fn from(m: Mat4<$t>) -> Self {
-                let cols: [[$t; 4]; 4] =
-                    core::array::from_fn(|j| core::array::from_fn(|i| m.m[i][j]));
-                <$gm4>::from_cols_array_2d(&cols)
+                <$gm4>::from_cols_array_2d(&m.transpose().m)
             }
         }
     };

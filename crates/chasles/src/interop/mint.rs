@@ -74,14 +74,11 @@ impl<T: Real> From<Mat4<T>> for mint::RowMatrix4<T> {
 impl<T: Real> From<mint::ColumnMatrix4<T>> for Mat4<T> {
     fn from(m: mint::ColumnMatrix4<T>) -> Self {
         let cols: [[T; 4]; 4] = m.into();
-        Mat4::from_rows(core::array::from_fn(|i| {
-            core::array::from_fn(|j| cols[j][i])
-        }))
+        Mat4::from_rows(cols).transpose()
     }
 }
 impl<T: Real> From<Mat4<T>> for mint::ColumnMatrix4<T> {
     fn from(m: Mat4<T>) -> Self {
-        let cols: [[T; 4]; 4] = core::array::from_fn(|j| core::array::from_fn(|i| m.m[i][j]));
-        cols.into()
+        m.transpose().m.into()
     }
 }
