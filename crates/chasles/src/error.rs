@@ -75,6 +75,51 @@ pub enum Error {
         /// ‖q‖.
         norm: f64,
     },
+    /// Too few key frames for a method.
+    #[error("{what} needs at least {needed} key frames, got {got}")]
+    TooFewKeys {
+        /// Which method or operation.
+        what: &'static str,
+        /// The minimum.
+        needed: usize,
+        /// How many were given.
+        got: usize,
+    },
+    /// Fewer output frames than key frames: every key must appear as a frame.
+    #[error("{frames} frames cannot hold {keys} key frames: ask for at least {keys}")]
+    TooFewFrames {
+        /// Frames asked for.
+        frames: usize,
+        /// Key frames.
+        keys: usize,
+    },
+    /// Key times that are not finite or not strictly increasing.
+    #[error("key time {index} ({value}) must be finite and greater than the previous one")]
+    BadKeyTime {
+        /// Index of the offending key.
+        index: usize,
+        /// Its time.
+        value: f64,
+    },
+    /// A key frame that is not a usable rotation.
+    #[error("key frame {index}: {source}")]
+    BadKey {
+        /// Index of the key.
+        index: usize,
+        /// What is wrong with it.
+        #[source]
+        source: Box<Error>,
+    },
+    /// A parameter outside its allowed range.
+    #[error("{what} must be {rule}, got {value}")]
+    BadParameter {
+        /// Which parameter.
+        what: &'static str,
+        /// The rule, in words.
+        rule: &'static str,
+        /// The value given.
+        value: f64,
+    },
     /// The wrong number of values for a representation.
     #[error("{what} needs {expected} numbers, got {got}")]
     WrongLength {

@@ -7,7 +7,9 @@
 //! * Dam, Koch & Lillholm (1998), *Quaternions, Interpolation and Animation*: §3.3
 //!   (quaternions: [`Quat`]), App. A (conventions) and App. B (conversions: [`convert`]);
 //! * Kavan, Collins, Žára & O'Sullivan (2006), *Dual Quaternions for Rigid Transformation
-//!   Blending*: §3 ([`Dual`], [`DualQuat`], eq. 1–2, [`screw`]) and Lemma 1.
+//!   Blending*: §3 ([`Dual`], [`DualQuat`], eq. 1–2, [`screw`]) and Lemma 1;
+//! * Dam et al. chapters 5–7: interpolation along key frames ([`interp`]: LinEuler, LinMat,
+//!   Lerp, Slerp, Squad, Spring) and the measures that compare them ([`analysis`]).
 //!
 //! ## Conventions
 //! * Quaternions are `[w, x, y, z]` (scalar first, as both papers write `[s, v]`) in every
@@ -46,11 +48,13 @@
 
 #![warn(missing_docs)]
 
+pub mod analysis;
 pub mod convert;
 pub mod dual;
 pub mod dualquat;
 pub mod error;
 pub mod interop;
+pub mod interp;
 pub mod matrix;
 pub mod quat;
 pub mod real;

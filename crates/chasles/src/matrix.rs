@@ -107,6 +107,24 @@ impl<T: Real> Mat3<T> {
             m[2][0] * v.x + m[2][1] * v.y + m[2][2] * v.z,
         )
     }
+    /// The inverse, or `None` when the determinant is zero or not finite.
+    pub fn inverse(&self) -> Option<Self> {
+        let det = self.determinant();
+        if det == T::ZERO || !det.is_finite() {
+            return None;
+        }
+        let m = &self.m;
+        let c = |r0: usize, r1: usize, c0: usize, c1: usize| {
+            m[r0][c0] * m[r1][c1] - m[r0][c1] * m[r1][c0]
+        };
+        // Adjugate (transposed cofactors) over the determinant.
+        let adj = [
+            [c(1, 2, 1, 2), -c(0, 2, 1, 2), c(0, 1, 1, 2)],
+            [-c(1, 2, 0, 2), c(0, 2, 0, 2), -c(0, 1, 0, 2)],
+            [c(1, 2, 0, 1), -c(0, 2, 0, 1), c(0, 1, 0, 1)],
+        ];
+        Some(Self::from_rows(adj.map(|r| r.map(|v| v / det))))
+    }
     /// How far from a rotation: `max(‖MᵀM − I‖∞, |det M − 1|)`.
     pub fn rotation_deviation(&self) -> T {
         let mtm = self.transpose() * *self;

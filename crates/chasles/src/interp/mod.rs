@@ -1,0 +1,104 @@
+//! Interpolation of rotations along key frames (Dam et al. 1998, chapters 5–7).
+//!
+//! Two-key methods, applied interval by interval: [`lin_euler`] (eq. 6.1), [`lin_mat`]
+//! (eq. 6.2), [`lerp`] (eq. 6.3), [`slerp`] (eq. 6.4 and 6.13). Curves over many keys:
+//! [`squad`] (Definition 17, eq. 6.14–6.16) and [`spring`] (§6.3.7: curvature minimized by
+//! gradient descent). [`timing`] shares the frames among the intervals (§6.2). The
+//! report's example key sets are in [`examples`].
+//!
+//! [`interpolate`] samples a whole curve: every key appears exactly once among the frames,
+//! flagged in [`Frame::key`].
+
+pub mod examples;
+pub mod keys;
+pub mod lerp;
+pub mod lin_euler;
+pub mod lin_mat;
+pub mod slerp;
+pub mod spring;
+pub mod squad;
+pub mod timing;
+
+pub use keys::{Hemisphere, KeyFrames};
+pub use spring::{spring, SpringConfig, SpringResult, Start, StepRule};
+pub use squad::Squad;
+pub use timing::Timing;
+
+use crate::{EulerOrder, Mat3, Quat, Real, Result};
+
+/// One frame of an interpolated curve.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Frame<T> {
+    /// The rotation (unit, except for the raw curves of [`Method::Lerp`]).
+    pub q: Quat<T>,
+    /// The curve parameter: key time interpolated linearly, or `interval + h`.
+    pub t: T,
+    /// Which key this frame is, if it is one.
+    pub key: Option<usize>,
+}
+
+/// A piecewise method (Spring, being global, is [`spring()`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Method {
+    /// Eq. 6.1 on Euler angles in the given order (the report: [`EulerOrder::DAM`]).
+    LinEuler(EulerOrder),
+    /// Eq. 6.2 on rotation matrices; frames are the rotation part of the raw matrices.
+    LinMat,
+    /// Eq. 6.3, raw: frames are not unit quaternions.
+    Lerp,
+    /// Eq. 6.3 normalized (Figure 6.3).
+    Nlerp,
+    /// Eq. 6.13.
+    Slerp,
+    /// Definition 17.
+    Squad,
+}
+
+/// Samples `frames` frames of a piecewise curve through the keys. Errors: fewer frames
+/// than keys; LinMat through keys 180° apart (singular matrix).
+pub fn interpolate<T: Real>(
+    method: Method,
+    keys: &KeyFrames<T>,
+    frames: usize,
+    timing: Timing,
+) -> Result<Vec<Frame<T>>> {
+    let counts = timing::distribute(keys, frames, timing)?;
+    let grid = timing::samples::<T>(&counts);
+    let q = keys.quats();
+    let squad = match method {
+        Method::Squad => Some(Squad::new(keys)?),
+        _ => None,
+    };
+    let mats: Vec<Mat3<T>> = match method {
+        Method::LinMat => q.iter().map(|k| k.to_rotation_matrix()).collect(),
+        _ => Vec::new(),
+    };
+    grid.iter()
+        .map(|s| {
+            let (a, b) = (q[s.interval], q[s.interval + 1]);
+            let r = match (s.key, method) {
+                (Some(k), _) => q[k],
+                (None, Method::LinEuler(order)) => lin_euler::lin_euler_quat(order, a, b, s.h)?,
+                (None, Method::LinMat) => {
+                    let m = lin_mat::lin_mat(&mats[s.interval], &mats[s.interval + 1], s.h);
+                    let r = lin_mat::rotation_part(&m)?;
+                    // Keep the sign continuous with the keys.
+                    if r.dot(a * (T::ONE - s.h) + b * s.h) < T::ZERO {
+                        -r
+                    } else {
+                        r
+                    }
+                }
+                (None, Method::Lerp) => lerp::lerp(a, b, s.h),
+                (None, Method::Nlerp) => lerp::nlerp(a, b, s.h),
+                (None, Method::Slerp) => slerp::slerp(a, b, s.h),
+                (None, Method::Squad) => squad.as_ref().map_or(a, |sq| sq.eval(s.interval, s.h)),
+            };
+            Ok(Frame {
+                q: r,
+                t: keys.parameter(s.interval, s.h),
+                key: s.key,
+            })
+        })
+        .collect()
+}

@@ -1,0 +1,429 @@
+//! Interpolation (Dam et al. 1998, chapters 5–7), shown by number: Slerp's constant speed
+//! on the great arc (Propositions 27–29), Lerp's mid-interval speed peak, LinEuler leaving
+//! the arc, Squad through every key and C¹ there (Proposition 30) while Slerp is not,
+//! frame distribution (§6.2). Tolerances of `common::Tol` (1e-12 f64, 1e-5 f32).
+
+mod common;
+use chasles::analysis::curvature::{curvature_energy, Width};
+use chasles::analysis::velocity::{velocity_angle, velocity_chord};
+use chasles::interp::lerp::{lerp, nlerp};
+use chasles::interp::lin_mat::{lin_mat, non_rigidity, rotation_part};
+use chasles::interp::slerp::{slerp, slerp_pow, slerp_shortest};
+use chasles::interp::timing::{distribute, largest_remainder};
+use chasles::interp::{examples, interpolate, Frame, Hemisphere, KeyFrames, Method, Squad, Timing};
+use chasles::{Error, EulerOrder, Quat, Real, Vec3};
+use common::*;
+use proptest::prelude::*;
+
+fn qs<T: Real>(f: &[Frame<T>]) -> Vec<Quat<T>> {
+    f.iter().map(|x| x.q).collect()
+}
+
+fn slerp_great_arc<T: Tol>((p, q): ([f64; 4], [f64; 4]), tol: f64) -> Result<(), TestCaseError> {
+    let (p, q) = (quat_of::<T>(p), quat_of::<T>(q));
+    let omega = (p - q).norm().atan2((p + q).norm()).to_f64() * 2.0;
+    prop_assume!(omega > 1e-3 && omega < 3.1);
+    let n = 20;
+    let frames: Vec<Quat<T>> = (0..=n)
+        .map(|k| slerp(p, q, T::from_f64(k as f64 / n as f64)))
+        .collect();
+    // Endpoints (6.8–6.9), unit length (6.10).
+    close(&frames[0].to_array(), &p.to_array(), tol)?;
+    close(&frames[n].to_array(), &q.to_array(), tol * 10.0)?;
+    for f in &frames {
+        close(&[f.norm()], &[T::ONE], tol)?;
+        // In the plane of p and q: f = a p + b q exactly (Proposition 28).
+        let pq = p.dot(q);
+        let (fp, fq) = (f.dot(p), f.dot(q));
+        let det = T::ONE - pq * pq;
+        let a = (fp - fq * pq) / det;
+        let b = (fq - fp * pq) / det;
+        close(&(p * a + q * b).to_array(), &f.to_array(), tol * 100.0)?;
+    }
+    // Constant speed: every step turns by Ω/n in 4D.
+    for w in frames.windows(2) {
+        let step = T::TWO * (w[1] - w[0]).norm().atan2((w[1] + w[0]).norm());
+        close(&[step], &[T::from_f64(omega / n as f64)], tol * 100.0)?;
+    }
+    // The shorter arc between the 4D points (Proposition 29): p·slerp(½) ≥ 0.
+    prop_assert!(p.dot(frames[n / 2]) >= T::ZERO);
+    // Eq. 6.13 = eq. 6.4–6.7 (Proposition 27), and symmetry.
+    let h = T::from_f64(0.3);
+    let want = slerp(p, q, h).to_array();
+    close(&slerp_pow(p, q, h).unwrap().to_array(), &want, tol * 10.0)?;
+    close(
+        &((p * q.conjugate()).powf(T::ONE - h).unwrap() * q).to_array(),
+        &want,
+        tol * 10.0,
+    )?;
+    close(
+        &((q * p.conjugate()).powf(h).unwrap() * p).to_array(),
+        &want,
+        tol * 10.0,
+    )?;
+    close(
+        &(q * (q.conjugate() * p).powf(T::ONE - h).unwrap()).to_array(),
+        &want,
+        tol * 10.0,
+    )?;
+    close(&slerp(q, p, T::ONE - h).to_array(), &want, tol * 10.0)
+}
+both_precisions!(
+    slerp_is_the_constant_speed_great_arc,
+    slerp_great_arc,
+    unit_quat(),
+    unit_quat()
+);
+
+fn slerp_tiny_angles<T: Tol>(
+    (p, axis): ([f64; 4], [f64; 3]),
+    tol: f64,
+) -> Result<(), TestCaseError> {
+    let p = quat_of::<T>(p);
+    let axis = vec_of::<T>(axis);
+    prop_assume!(axis.norm().to_f64() > 0.1);
+    for d in [0.0, 1e-30, 1e-15, 1e-9, 1e-5] {
+        let q = p * Quat::from_axis_angle(axis, T::from_f64(d)).unwrap();
+        for h in [0.0, 0.25, 0.5, 1.0] {
+            let h = T::from_f64(h);
+            let s = slerp(p, q, h);
+            prop_assert!(s.is_finite(), "d = {d}");
+            close(&[s.norm()], &[T::ONE], tol)?;
+            close(&s.to_array(), &nlerp(p, q, h).to_array(), tol)?;
+        }
+    }
+    // Antipodal keys: defined, unit, constant speed; the shortest rotation stays put.
+    let q = -p;
+    let frames: Vec<Quat<T>> = (0..=8)
+        .map(|k| slerp(p, q, T::from_f64(k as f64 / 8.0)))
+        .collect();
+    close(&frames[8].to_array(), &q.to_array(), tol * 10.0)?;
+    let steps: Vec<T> = frames.windows(2).map(|w| (w[1] - w[0]).norm()).collect();
+    for s in &steps {
+        close(&[*s], &[steps[0]], tol * 10.0)?;
+    }
+    for k in 0..=8 {
+        let s = slerp_shortest(p, q, T::from_f64(k as f64 / 8.0));
+        close(&s.to_array(), &p.to_array(), tol)?;
+    }
+    Ok(())
+}
+both_precisions!(
+    slerp_is_exact_for_tiny_and_antipodal_angles,
+    slerp_tiny_angles,
+    unit_quat(),
+    any_vec()
+);
+
+fn two_keys<T: Real>(angle: f64) -> KeyFrames<T> {
+    let a = Quat::identity();
+    let b = Quat::from_axis_angle(Vec3::new(T::ONE, T::TWO, T::ZERO), T::from_f64(angle)).unwrap();
+    KeyFrames::new(&[a, b], None, Hemisphere::Chain).unwrap()
+}
+
+#[test]
+fn lerp_speed_peaks_mid_interval_and_slerp_is_flat() {
+    let keys = two_keys::<f64>(2.5);
+    let n = 101;
+    let lerp_v = velocity_angle(&qs(
+        &interpolate(Method::Nlerp, &keys, n, Timing::Uniform).unwrap()
+    ));
+    let slerp_v = velocity_angle(&qs(
+        &interpolate(Method::Slerp, &keys, n, Timing::Uniform).unwrap()
+    ));
+    let mid = n / 2;
+    let (lmax, lmin) = (lerp_v[mid], lerp_v[1]);
+    assert!(
+        lerp_v.iter().all(|v| *v <= lmax + 1e-15),
+        "Lerp's speed peaks mid-interval"
+    );
+    // At the middle the chord is cos(Ω/2) = cos(0.625) long: speed × 1/cos² ≈ 1.5.
+    assert!(lmax / lmin > 1.45, "peak {lmax} vs end {lmin}");
+    let (smin, smax) = slerp_v
+        .iter()
+        .fold((f64::MAX, 0.0f64), |(a, b), v| (a.min(*v), b.max(*v)));
+    assert!(
+        (smax - smin) / smax < 1e-12,
+        "Slerp speed varies by {}",
+        (smax - smin) / smax
+    );
+    // The raw Lerp is a chord of constant chord speed, inside the sphere.
+    let raw = interpolate(Method::Lerp, &keys, n, Timing::Uniform).unwrap();
+    let chord = velocity_chord(&qs(&raw));
+    assert!((chord[mid] - chord[1]).abs() < 1e-12);
+    assert!(raw[mid].q.norm() < 0.9);
+    assert_eq!(lerp(keys.quats()[0], keys.quats()[1], 0.5f64), raw[mid].q);
+}
+
+#[test]
+fn lin_euler_leaves_the_great_arc_and_slerp_does_not() {
+    let set = examples::table_5_1();
+    let keys = KeyFrames::new(&set.keys::<f64>(), None, Hemisphere::Chain).unwrap();
+    let off_arc = |m| {
+        let f = interpolate(m, &keys, 300, Timing::Uniform).unwrap();
+        // Distance of each frame from the plane of its interval's two keys.
+        f.iter()
+            .filter(|x| x.key.is_none())
+            .map(|x| {
+                let i = x.t.floor() as usize;
+                let (p, q) = (keys.quats()[i], keys.quats()[i + 1]);
+                let pq = p.dot(q);
+                let det = 1.0 - pq * pq;
+                let (fp, fq) = (x.q.dot(p), x.q.dot(q));
+                let proj = p * ((fp - fq * pq) / det) + q * ((fq - fp * pq) / det);
+                (x.q - proj).norm()
+            })
+            .fold(0.0f64, f64::max)
+    };
+    let lin_euler = off_arc(Method::LinEuler(EulerOrder::DAM));
+    let slerp = off_arc(Method::Slerp);
+    assert!(lin_euler > 0.05, "LinEuler off the arc by only {lin_euler}");
+    assert!(slerp < 1e-12, "Slerp off the arc by {slerp}");
+    // LinEuler's frames are rotations (unit), unlike raw Lerp.
+    let f = interpolate(
+        Method::LinEuler(EulerOrder::DAM),
+        &keys,
+        300,
+        Timing::Uniform,
+    )
+    .unwrap();
+    assert!(f.iter().all(|x| (x.q.norm() - 1.0).abs() < 1e-12));
+}
+
+/// Left and right derivatives d/dh at key `k` (second-order one-sided differences).
+fn one_sided(eval: &dyn Fn(usize, f64) -> Quat<f64>, k: usize) -> (Quat<f64>, Quat<f64>) {
+    let d = 1e-4;
+    let l = (eval(k - 1, 1.0) * 3.0 - eval(k - 1, 1.0 - d) * 4.0 + eval(k - 1, 1.0 - 2.0 * d))
+        / (2.0 * d);
+    let r = (eval(k, 0.0) * -3.0 + eval(k, d) * 4.0 - eval(k, 2.0 * d)) / (2.0 * d);
+    (l, r)
+}
+
+#[test]
+fn squad_passes_through_keys_and_is_c1_there_while_slerp_is_not() {
+    for set in examples::all() {
+        let keys = KeyFrames::new(&set.keys::<f64>(), None, Hemisphere::Chain).unwrap();
+        let sq = Squad::new(&keys).unwrap();
+        let q = keys.quats();
+        for k in 0..q.len() - 1 {
+            assert_eq!(sq.eval(k, 0.0), q[k], "{}: key {k}", set.name);
+            assert!(
+                (sq.eval(k, 1.0) - q[k + 1]).norm() < 1e-15,
+                "{}: key {}",
+                set.name,
+                k + 1
+            );
+        }
+        let mut slerp_jump = 0.0f64;
+        for k in 1..q.len() - 1 {
+            let (l, r) = one_sided(&|i, h| sq.eval(i, h), k);
+            assert!(
+                (l - r).norm() < 1e-6,
+                "{}: Squad derivative jumps by {} at key {k}",
+                set.name,
+                (l - r).norm()
+            );
+            let (l, r) = one_sided(&|i, h| slerp(q[i], q[i + 1], h), k);
+            slerp_jump = slerp_jump.max((l - r).norm());
+        }
+        assert!(
+            slerp_jump > 1e-2,
+            "{}: Slerp is C1? jump {slerp_jump}",
+            set.name
+        );
+        // Every key appears exactly once among the frames, flagged.
+        let f = interpolate(Method::Squad, &keys, 120, Timing::Angle).unwrap();
+        assert_eq!(f.len(), 120);
+        let flagged: Vec<usize> = f.iter().filter_map(|x| x.key).collect();
+        assert_eq!(flagged, (0..q.len()).collect::<Vec<_>>());
+        for x in &f {
+            if let Some(k) = x.key {
+                assert_eq!(x.q, q[k]);
+            }
+        }
+    }
+}
+
+#[test]
+fn squad_in_f32_matches_f64() {
+    let set = examples::table_5_1();
+    let k64 = KeyFrames::new(&set.keys::<f64>(), None, Hemisphere::Chain).unwrap();
+    let k32 = KeyFrames::new(&set.keys::<f32>(), None, Hemisphere::Chain).unwrap();
+    let a = interpolate(Method::Squad, &k64, 200, Timing::Angle).unwrap();
+    let b = interpolate(Method::Squad, &k32, 200, Timing::Angle).unwrap();
+    for (x, y) in a.iter().zip(&b) {
+        let d = (x.q - y.q.cast::<f64>()).norm();
+        assert!(d < 1e-5, "f32 Squad differs by {d}");
+    }
+}
+
+#[test]
+fn every_method_stays_on_the_pendulum_arc() {
+    let set = examples::by_name("pendulum").unwrap();
+    let keys = KeyFrames::new(&set.keys::<f64>(), None, Hemisphere::Chain).unwrap();
+    for m in [
+        Method::Slerp,
+        Method::Nlerp,
+        Method::Squad,
+        Method::LinMat,
+        Method::LinEuler(EulerOrder::DAM),
+    ] {
+        for f in interpolate(m, &keys, 100, Timing::Angle).unwrap() {
+            assert!(
+                f.q.y.abs() < 1e-12 && f.q.z.abs() < 1e-12,
+                "{m:?} leaves the arc: {:?}",
+                f.q
+            );
+        }
+    }
+}
+
+#[test]
+fn angle_timing_shares_frames_by_interval_angle() {
+    let set = examples::table_5_1();
+    let keys = KeyFrames::new(&set.keys::<f64>(), None, Hemisphere::Chain).unwrap();
+    let counts = distribute(&keys, 550, Timing::Angle).unwrap();
+    assert_eq!(counts.iter().sum::<usize>(), 550 - 6);
+    let q = keys.quats();
+    let angles: Vec<f64> = q
+        .windows(2)
+        .map(|w| w[0].dot(w[1]).abs().min(1.0).acos())
+        .collect();
+    let total: f64 = angles.iter().sum();
+    for (c, a) in counts.iter().zip(&angles) {
+        assert!((*c as f64 - a / total * 544.0).abs() <= 1.0, "{counts:?}");
+    }
+    // Slerp with angle timing has (nearly) constant speed across intervals (Figure 6.8).
+    let v = velocity_angle(&qs(
+        &interpolate(Method::Slerp, &keys, 550, Timing::Angle).unwrap()
+    ));
+    let inner = &v[1..v.len() - 1];
+    let (lo, hi) = inner
+        .iter()
+        .fold((f64::MAX, 0.0f64), |(a, b), x| (a.min(*x), b.max(*x)));
+    assert!(hi / lo < 1.1, "speed ratio {}", hi / lo);
+    let u = velocity_angle(&qs(&interpolate(
+        Method::Slerp,
+        &keys,
+        550,
+        Timing::Uniform,
+    )
+    .unwrap()));
+    let (lo, hi) = u[1..u.len() - 1]
+        .iter()
+        .fold((f64::MAX, 0.0f64), |(a, b), x| (a.min(*x), b.max(*x)));
+    assert!(hi / lo > 1.3, "uniform timing should vary: {}", hi / lo);
+    assert_eq!(
+        largest_remainder(&[1.0, 1.0, 1.0], 10)
+            .iter()
+            .sum::<usize>(),
+        10
+    );
+    assert_eq!(largest_remainder(&[0.0, 0.0], 3), vec![2, 1]);
+}
+
+#[test]
+fn key_times_set_the_parameter_and_uniform_timing_follows_them() {
+    let q: Vec<Quat<f64>> = examples::table_5_1().keys()[..3].to_vec();
+    let keys = KeyFrames::new(&q, Some(&[0.0, 1.0, 5.0]), Hemisphere::Chain).unwrap();
+    let f = interpolate(Method::Slerp, &keys, 53, Timing::Uniform).unwrap();
+    assert_eq!(
+        distribute(&keys, 53, Timing::Uniform).unwrap(),
+        vec![10, 40]
+    );
+    assert_eq!(f[0].t, 0.0);
+    assert_eq!(f[11].t, 1.0);
+    assert_eq!(f[11].key, Some(1));
+    assert_eq!(f[52].t, 5.0);
+    assert!(f.windows(2).all(|w| w[1].t > w[0].t));
+}
+
+#[test]
+fn lin_mat_is_not_rigid_and_its_rotation_part_is_nearest() {
+    let a = Quat::<f64>::identity();
+    let b = Quat::from_axis_angle(Vec3::new(0.0, 0.0, 1.0), 2.0).unwrap();
+    let (ma, mb) = (a.to_rotation_matrix(), b.to_rotation_matrix());
+    let mid = lin_mat(&ma, &mb, 0.5);
+    assert!(
+        non_rigidity(&mid) > 0.3,
+        "LinMat midpoint should shrink: {}",
+        non_rigidity(&mid)
+    );
+    assert!(non_rigidity(&ma) < 1e-15);
+    // Rotation part of the midpoint of a turn about z is the half turn (symmetry).
+    let r = rotation_part(&mid).unwrap();
+    let want = Quat::from_axis_angle(Vec3::new(0.0, 0.0, 1.0), 1.0).unwrap();
+    assert!((r - want).norm() < 1e-12, "{r:?}");
+    assert!((rotation_part(&mb).unwrap() - b).norm() < 1e-15);
+    // 180° apart: the midpoint is singular — a typed error, not a NaN.
+    let c = Quat::from_axis_angle(Vec3::new(0.0, 0.0, 1.0), std::f64::consts::PI).unwrap();
+    let m = lin_mat(&ma, &c.to_rotation_matrix(), 0.5);
+    assert!(matches!(rotation_part(&m), Err(Error::NotRotation { .. })));
+}
+
+#[test]
+fn curvature_energy_of_a_great_arc_is_zero_and_of_squad_is_not() {
+    let keys = two_keys::<f64>(1.5);
+    let arc = qs(&interpolate(Method::Slerp, &keys, 50, Timing::Uniform).unwrap());
+    assert!(curvature_energy(&arc, Width::Unit) < 1e-28);
+    assert!(curvature_energy(&arc, Width::Centered) < 1e-24);
+    let set = examples::table_5_1();
+    let keys = KeyFrames::new(&set.keys::<f64>(), None, Hemisphere::Chain).unwrap();
+    let e_squad = curvature_energy(
+        &qs(&interpolate(Method::Squad, &keys, 550, Timing::Angle).unwrap()),
+        Width::Unit,
+    );
+    let e_slerp = curvature_energy(
+        &qs(&interpolate(Method::Slerp, &keys, 550, Timing::Angle).unwrap()),
+        Width::Unit,
+    );
+    assert!(
+        e_squad > 0.0 && e_squad < e_slerp / 10.0,
+        "squad {e_squad} slerp {e_slerp}"
+    );
+}
+
+#[test]
+fn bad_keys_get_typed_errors() {
+    let one = [Quat::<f64>::identity()];
+    assert!(matches!(
+        KeyFrames::new(&one, None, Hemisphere::Chain),
+        Err(Error::TooFewKeys { got: 1, .. })
+    ));
+    let zero = [Quat::<f64>::identity(), Quat::zero(), Quat::identity()];
+    let e = KeyFrames::new(&zero, None, Hemisphere::Chain).unwrap_err();
+    assert!(matches!(e, Error::BadKey { index: 1, .. }), "{e}");
+    assert!(e.to_string().contains("key frame 1"));
+    let two = [Quat::<f64>::identity(), Quat::identity()];
+    assert!(matches!(
+        KeyFrames::new(&two, Some(&[1.0, 1.0]), Hemisphere::Chain),
+        Err(Error::BadKeyTime { index: 1, .. })
+    ));
+    assert!(matches!(
+        KeyFrames::new(&two, Some(&[0.0, f64::NAN]), Hemisphere::Chain),
+        Err(Error::BadKeyTime { .. })
+    ));
+    assert!(matches!(
+        KeyFrames::new(&two, Some(&[0.0]), Hemisphere::Chain),
+        Err(Error::WrongLength { .. })
+    ));
+    let keys = KeyFrames::new(&two, None, Hemisphere::Chain).unwrap();
+    assert!(matches!(
+        interpolate(Method::Slerp, &keys, 1, Timing::Uniform),
+        Err(Error::TooFewFrames { frames: 1, keys: 2 })
+    ));
+    // Hemisphere: Chain flips a key into the previous one's hemisphere; AsGiven keeps it.
+    let flip = [Quat::<f64>::identity(), -Quat::identity()];
+    assert_eq!(
+        KeyFrames::new(&flip, None, Hemisphere::Chain)
+            .unwrap()
+            .quats()[1],
+        Quat::identity()
+    );
+    assert_eq!(
+        KeyFrames::new(&flip, None, Hemisphere::AsGiven)
+            .unwrap()
+            .quats()[1],
+        -Quat::identity()
+    );
+}
