@@ -3,8 +3,12 @@
 //! * `chasles tour` — the main job: a walk through both papers on built-in data.
 //! * `chasles convert` — one rotation or rigid motion between representations
 //!   (Dam et al. 1998, App. B; Kavan et al. 2006, §3).
+//! * `chasles interp` — key-frame interpolation (Dam et al. 1998, chapters 5–7).
 
 mod convert;
+mod interp;
+mod keyfile;
+mod output;
 mod repr;
 mod tour;
 
@@ -32,6 +36,45 @@ enum Command {
         /// Seed of the random inputs.
         #[arg(long, default_value_t = 1998)]
         seed: u64,
+    },
+    /// Interpolate key frames: LinEuler, LinMat, Lerp, Slerp, Squad, Spring (Dam et al. 1998).
+    ///
+    /// Writes one row per frame — index,t,w,x,y,z,velocity,key — to --out (.csv or .json) or
+    /// as CSV to stdout, and a summary (curvature energy, velocity range, time) to the
+    /// terminal. Every key frame is one of the rows, its index in `key`. Key files: TOML or
+    /// JSON with keys as {angle, axis}, {quat = [w,x,y,z]} or {euler, order}, optional time
+    /// on every key; or builtin:NAME with NAME one of table5.1, semicircle, soft, cusp,
+    /// pendulum, perturbed, global.
+    ///
+    /// Examples:
+    ///   chasles interp --method squad --keys builtin:table5.1 --frames 550 --out squad.csv
+    ///   chasles interp --method spring --keys keys.toml --frames 200 --out spring.json
+    #[command(verbatim_doc_comment)]
+    Interp {
+        /// lineuler, linmat, lerp, slerp, squad, spring, slerpsvupti, squadsvupti, justdoit.
+        #[arg(long)]
+        method: String,
+        /// Key file (.toml or .json) or builtin:NAME.
+        #[arg(long)]
+        keys: String,
+        /// Frames in total, keys included.
+        #[arg(long, default_value_t = 200)]
+        frames: usize,
+        /// Frames per interval: uniform (or by key times), or by the interval's angle (§6.2).
+        #[arg(long, value_enum, default_value_t = TimingArg::Angle)]
+        timing: TimingArg,
+        /// Output file, .csv or .json (default: CSV on stdout).
+        #[arg(long)]
+        out: Option<std::path::PathBuf>,
+        /// Keep the keys' signs (q vs −q) instead of bringing each into the previous key's hemisphere.
+        #[arg(long)]
+        keep_signs: bool,
+        /// Spring methods: weight c_k of the curvature at key frames (§6.3.7).
+        #[arg(long, allow_negative_numbers = true)]
+        key_weight: Option<f64>,
+        /// Spring methods: weight c_w of the constant-velocity penalty (eq. 6.41).
+        #[arg(long, allow_negative_numbers = true)]
+        velocity_weight: Option<f64>,
     },
     /// Convert one rotation or rigid motion between representations.
     ///
@@ -67,6 +110,12 @@ enum Command {
     },
 }
 
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum TimingArg {
+    Uniform,
+    Angle,
+}
+
 fn parse_repr(s: &str) -> Result<Repr, String> {
     s.parse().map_err(|e: anyhow::Error| e.to_string())
 }
@@ -84,6 +133,29 @@ fn main() {
     };
     let result = match cli.command {
         Command::Tour { samples, seed } => tour::run(tour::TourArgs { samples, seed }).map(|_| 0),
+        Command::Interp {
+            method,
+            keys,
+            frames,
+            timing,
+            out,
+            keep_signs,
+            key_weight,
+            velocity_weight,
+        } => interp::run(interp::InterpArgs {
+            method,
+            keys,
+            frames,
+            timing: match timing {
+                TimingArg::Uniform => chasles::interp::Timing::Uniform,
+                TimingArg::Angle => chasles::interp::Timing::Angle,
+            },
+            out,
+            keep_signs,
+            key_weight,
+            velocity_weight,
+        })
+        .map(|_| 0),
         Command::Convert {
             from,
             to,

@@ -351,3 +351,202 @@ fn tour_prints_computed_numbers() {
         assert!(v.len() >= 2 && v[0] < 1e-12 && v[1] < 1e-5, "{r}");
     }
 }
+
+fn csv_rows(text: &str) -> Vec<Vec<String>> {
+    text.lines()
+        .skip(1)
+        .map(|l| l.split(',').map(str::to_string).collect())
+        .collect()
+}
+
+#[test]
+fn interp_every_method_on_builtin_sets() {
+    let dir = tempfile::tempdir().unwrap();
+    for method in [
+        "lineuler",
+        "linmat",
+        "lerp",
+        "slerp",
+        "squad",
+        "spring",
+        "slerpsvupti",
+        "squadsvupti",
+        "justdoit",
+    ] {
+        for set in ["table5.1", "cusp"] {
+            let out = dir.path().join(format!("{method}-{set}.csv"));
+            let o = chasles(&[
+                "interp",
+                "--method",
+                method,
+                "--keys",
+                &format!("builtin:{set}"),
+                "--frames",
+                "60",
+                "--out",
+                out.to_str().unwrap(),
+            ]);
+            let summary = stdout(&o);
+            assert!(
+                summary.contains("curvature energy")
+                    && summary.contains("velocity")
+                    && summary.contains("time"),
+                "{summary}"
+            );
+            let text = std::fs::read_to_string(&out).unwrap();
+            assert!(text.starts_with("index,t,w,x,y,z,velocity,key\n"));
+            let rows = csv_rows(&text);
+            assert_eq!(rows.len(), 60, "{method} {set}");
+            let keys: Vec<usize> = rows
+                .iter()
+                .filter(|r| !r[7].is_empty())
+                .map(|r| r[7].parse().unwrap())
+                .collect();
+            let n_keys = if set == "cusp" { 5 } else { 6 };
+            assert_eq!(
+                keys,
+                (0..n_keys).collect::<Vec<_>>(),
+                "{method} {set}: keys appear once each, in order"
+            );
+            for r in &rows {
+                let q: Vec<f64> = r[2..6].iter().map(|v| v.parse().unwrap()).collect();
+                let n = q.iter().map(|v| v * v).sum::<f64>().sqrt();
+                assert!((n - 1.0).abs() < 1e-9, "{method}: frame not unit ({n})");
+                assert!(r[6].parse::<f64>().unwrap() >= 0.0);
+            }
+            assert!(
+                !String::from_utf8_lossy(&o.stderr).contains("iterations"),
+                "no progress bar when not on a terminal"
+            );
+        }
+    }
+}
+
+#[test]
+fn interp_key_files_json_output_and_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    let toml = dir.path().join("keys.toml");
+    std::fs::write(&toml, "order = \"ZYX\"\n[[keys]]\nangle = 1.0\naxis = [1, 3, 0]\ntime = 0\n[[keys]]\nquat = [1, 0, 0, 0]\ntime = 1\n[[keys]]\neuler = [0.3, 0, 0]\ntime = 3\n").unwrap();
+    let out = dir.path().join("o.json");
+    stdout(&chasles(&[
+        "interp",
+        "--method",
+        "squad",
+        "--keys",
+        toml.to_str().unwrap(),
+        "--frames",
+        "9",
+        "--timing",
+        "uniform",
+        "--out",
+        out.to_str().unwrap(),
+    ]));
+    let rows: Vec<serde_json::Value> =
+        serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+    assert_eq!(rows.len(), 9);
+    let names: Vec<&str> = rows[0]
+        .as_object()
+        .unwrap()
+        .keys()
+        .map(|k| k.as_str())
+        .collect();
+    assert_eq!(names, ["index", "t", "w", "x", "y", "z", "velocity", "key"]);
+    // Times 0, 1, 3: uniform timing shares the 6 in-betweens 1 : 2 → key 1 is row 3.
+    assert_eq!(rows[3]["key"], 1);
+    assert_eq!(rows[3]["t"], 1.0);
+    assert_eq!(rows[8]["t"], 3.0);
+    // Intrinsic ZYX with (0.3, 0, 0): 0.3 about z.
+    let z = rows[8]["z"].as_f64().unwrap();
+    assert!((z - 0.15f64.sin()).abs() < 1e-15);
+    // Stdout CSV when there is no --out; the summary goes to stderr.
+    let o = chasles(&[
+        "interp",
+        "--method",
+        "slerp",
+        "--keys",
+        "builtin:pendulum",
+        "--frames",
+        "5",
+    ]);
+    assert!(stdout(&o).starts_with("index,t,w,x,y,z,velocity,key"));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("curvature energy"));
+
+    let cases: &[(&str, &str, &str)] = &[
+        ("bad.toml", "[[keys]]\nangle = 1.0\naxis = [1, 3, 0]\n[[keys]]\neuler = [0.1, 0.2\n", "line 5"),
+        ("zero.toml", "[[keys]]\nangle = 1.0\naxis = [0, 0, 0]\n[[keys]]\nquat = [1, 0, 0, 0]\n", "keys[0].axis"),
+        ("both.toml", "[[keys]]\nangle = 1.0\naxis = [1, 0, 0]\nquat = [1, 0, 0, 0]\n[[keys]]\nquat = [1, 0, 0, 0]\n", "keys[0] must have exactly one"),
+        ("time.toml", "[[keys]]\nquat = [1, 0, 0, 0]\ntime = 0\n[[keys]]\nquat = [1, 0, 0, 0]\n", "keys[1].time"),
+        ("back.toml", "[[keys]]\nquat = [1, 0, 0, 0]\ntime = 1\n[[keys]]\nquat = [1, 0, 0, 0]\ntime = 0\n", "key time 1"),
+        ("typo.json", "{\"keys\": [{\"angle\": 1, \"axis\": [1, 0, 0]}, {\"quat\": [1, 0, 0, 0], \"tim\": 2}]}", "unknown field `tim`"),
+        ("zeroq.json", "[{\"quat\": [0, 0, 0, 0]}, {\"quat\": [1, 0, 0, 0]}]", "keys[0].quat"),
+        ("one.json", "[{\"quat\": [1, 0, 0, 0]}]", "at least 2 keys"),
+        ("keys.txt", "", "must end in .toml or .json"),
+    ];
+    for (name, text, needle) in cases {
+        let path = dir.path().join(name);
+        std::fs::write(&path, text).unwrap();
+        let target = dir.path().join("never.csv");
+        let o = chasles(&[
+            "interp",
+            "--method",
+            "spring",
+            "--keys",
+            path.to_str().unwrap(),
+            "--out",
+            target.to_str().unwrap(),
+        ]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(!o.status.success() && err.contains(needle), "{name}: {err}");
+        assert_eq!(err.trim().lines().count(), 1, "{name}: {err}");
+        assert!(!target.exists(), "{name}: no output file on error");
+    }
+    for (args, needle) in [
+        (
+            vec!["--method", "bezier", "--keys", "builtin:cusp"],
+            "unknown method",
+        ),
+        (
+            vec!["--method", "slerp", "--keys", "builtin:nothing"],
+            "no built-in key set",
+        ),
+        (
+            vec![
+                "--method",
+                "slerp",
+                "--keys",
+                "builtin:cusp",
+                "--frames",
+                "3",
+            ],
+            "at least 5",
+        ),
+        (
+            vec![
+                "--method",
+                "slerp",
+                "--keys",
+                "builtin:cusp",
+                "--out",
+                "x.txt",
+            ],
+            ".csv or .json",
+        ),
+        (
+            vec![
+                "--method",
+                "spring",
+                "--keys",
+                "builtin:cusp",
+                "--key-weight",
+                "-1",
+            ],
+            "key weight",
+        ),
+    ] {
+        let mut a = vec!["interp"];
+        a.extend(args);
+        let o = chasles(&a);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(!o.status.success() && err.contains(needle), "{a:?}: {err}");
+    }
+}

@@ -427,3 +427,28 @@ fn bad_keys_get_typed_errors() {
         -Quat::identity()
     );
 }
+
+#[test]
+fn eberly_series_weights_match_trigonometry() {
+    use chasles::interp::slerp::slerp_weights_series;
+    let mut worst = 0.0f64;
+    for i in 0..=400 {
+        let omega = i as f64 / 400.0 * std::f64::consts::FRAC_PI_2;
+        for k in 0..=100 {
+            let h = k as f64 / 100.0;
+            let (a, b) = slerp_weights_series(omega.cos(), h);
+            let (wa, wb) = if omega == 0.0 {
+                (1.0 - h, h)
+            } else {
+                (
+                    ((1.0 - h) * omega).sin() / omega.sin(),
+                    (h * omega).sin() / omega.sin(),
+                )
+            };
+            worst = worst.max((a - wa).abs()).max((b - wb).abs());
+        }
+    }
+    assert!(worst < 4e-8, "series weights off by {worst}");
+    assert_eq!(slerp_weights_series(0.3f32, 0.0), (1.0, 0.0));
+    assert_eq!(slerp_weights_series(0.3f32, 1.0), (0.0, 1.0));
+}
