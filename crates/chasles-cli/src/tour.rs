@@ -3,6 +3,12 @@
 //! and B; Kavan et al. §3); interpolation, blending, skinning and the pictures join it as
 //! they land.
 
+use chasles::analysis::curvature::{curvature_energy, Width};
+use chasles::analysis::velocity::velocity_angle;
+use chasles::interp::slerp::slerp;
+use chasles::interp::{
+    examples, interpolate, spring, Hemisphere, KeyFrames, Method, SpringConfig, Squad, Timing,
+};
 use chasles::{DualQuat, EulerOrder, Mat3, Quat, Real, Vec3};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
@@ -140,6 +146,8 @@ pub fn run(args: TourArgs) -> anyhow::Result<()> {
         st.translation
     );
 
+    interpolation()?;
+
     heading(&format!(
         "Identities over {} random inputs (seed {}): worst error, relative",
         args.samples, args.seed
@@ -159,6 +167,96 @@ pub fn run(args: TourArgs) -> anyhow::Result<()> {
         println!("  {a:>9.1e} {b:>9.1e}  {name}");
     }
     println!("\nTolerances the test suite demands: 1e-12 (f64) and 1e-5 (f32). Run `cargo test --workspace`.");
+    Ok(())
+}
+
+fn energy(f: &[chasles::interp::Frame<f64>]) -> f64 {
+    curvature_energy(&f.iter().map(|x| x.q).collect::<Vec<_>>(), Width::Unit)
+}
+
+/// Dam et al. chapters 5–7 on the built-in key sets.
+fn interpolation() -> anyhow::Result<()> {
+    heading("Dam et al. ch. 5–6: Table 5.1's six keys, 550 frames shared by interval angle (§6.2)");
+    let set = examples::table_5_1();
+    let keys = KeyFrames::new(&set.keys::<f64>(), None, Hemisphere::Chain)?;
+    println!("  method      curvature energy (eq. 6.23)   speed max/min between keys");
+    let methods: [(&str, Option<Method>); 6] = [
+        ("lineuler", Some(Method::LinEuler(EulerOrder::DAM))),
+        ("linmat", Some(Method::LinMat)),
+        ("lerp", Some(Method::Nlerp)),
+        ("slerp", Some(Method::Slerp)),
+        ("squad", Some(Method::Squad)),
+        ("spring", None),
+    ];
+    for (name, m) in methods {
+        let frames = match m {
+            Some(m) => interpolate(m, &keys, 550, Timing::Angle)?,
+            None => {
+                spring(
+                    &keys,
+                    550,
+                    Timing::Angle,
+                    &SpringConfig::spring(),
+                    &mut |_| {},
+                )?
+                .frames
+            }
+        };
+        let v = velocity_angle(&frames.iter().map(|f| f.q).collect::<Vec<_>>());
+        // Speed ratio inside the intervals (frames next to keys left out).
+        let inner: Vec<f64> = frames
+            .windows(3)
+            .zip(&v[1..])
+            .filter(|(w, _)| w.iter().all(|f| f.key.is_none()))
+            .map(|(_, s)| *s)
+            .collect();
+        let (lo, hi) = inner
+            .iter()
+            .fold((f64::MAX, 0.0f64), |(a, b), x| (a.min(*x), b.max(*x)));
+        println!("  {name:<10}  {:<28.4e}  {:.3}", energy(&frames), hi / lo);
+    }
+    let sq = Squad::new(&keys)?;
+    let q = keys.quats();
+    let jump = |f: &dyn Fn(usize, f64) -> Quat<f64>| {
+        (1..q.len() - 1)
+            .map(|k| {
+                let d = 1e-4;
+                let l = (f(k - 1, 1.0) * 3.0 - f(k - 1, 1.0 - d) * 4.0 + f(k - 1, 1.0 - 2.0 * d))
+                    / (2.0 * d);
+                let r = (f(k, 0.0) * -3.0 + f(k, d) * 4.0 - f(k, 2.0 * d)) / (2.0 * d);
+                (l - r).norm()
+            })
+            .fold(0.0f64, f64::max)
+    };
+    println!(
+        "  Squad is C¹ at the keys (Proposition 30): largest jump of dq/dh {:.1e}; Slerp's {:.2}",
+        jump(&|i, h| sq.eval(i, h)),
+        jump(&|i, h| slerp(q[i], q[i + 1], h))
+    );
+
+    heading("Dam et al. ch. 7: Spring against Squad on the chapter's examples (200 frames)");
+    println!("  set          Slerp start   Squad         Spring        Spring / Squad");
+    for set in examples::all().into_iter().skip(1) {
+        let keys = KeyFrames::new(&set.keys::<f64>(), None, Hemisphere::Chain)?;
+        let sl = energy(&interpolate(Method::Slerp, &keys, 200, Timing::Angle)?);
+        let sq = energy(&interpolate(Method::Squad, &keys, 200, Timing::Angle)?);
+        let sp = energy(
+            &spring(
+                &keys,
+                200,
+                Timing::Angle,
+                &SpringConfig::spring(),
+                &mut |_| {},
+            )?
+            .frames,
+        );
+        println!(
+            "  {:<12} {sl:<13.4e} {sq:<13.4e} {sp:<13.4e} {:.3}   ({})",
+            set.name,
+            sp / sq,
+            set.section
+        );
+    }
     Ok(())
 }
 

@@ -338,6 +338,18 @@ fn tour_prints_computed_numbers() {
     ] {
         assert!(out.contains(section), "missing {section}");
     }
+    // Spring ends below Squad on every chapter-7 set (ratio column < 1).
+    let rows: Vec<&str> = out
+        .lines()
+        .skip_while(|l| !l.contains("Spring against Squad"))
+        .skip(2)
+        .take(6)
+        .collect();
+    assert_eq!(rows.len(), 6);
+    for r in rows {
+        let ratio = numbers(r.split_whitespace().nth(4).unwrap())[0];
+        assert!(ratio < 1.0, "{r}");
+    }
     // Every identity row carries two measured errors, within the test-suite tolerances.
     let rows: Vec<&str> = out
         .lines()
