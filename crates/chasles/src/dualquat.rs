@@ -200,6 +200,13 @@ impl<T: Real> DualQuat<T> {
         })?;
         Ok(Self::from_rotation_translation(q, m.translation()))
     }
+    /// [`DualQuat::from_matrix4`] without the checks, for matrices known to be rigid.
+    pub fn from_matrix4_unchecked(m: &Mat4<T>) -> Self {
+        Self::from_rotation_translation(
+            Quat::from_rotation_matrix_unchecked(&m.linear_part()),
+            m.translation(),
+        )
+    }
     /// Converts the scalar type (e.g. f32 → f64).
     pub fn cast<U: Real>(self) -> DualQuat<U> {
         DualQuat::new(self.real.cast(), self.dual.cast())

@@ -120,6 +120,26 @@ pub enum Error {
         /// The value given.
         value: f64,
     },
+    /// A blending weight that is negative or not finite.
+    #[error("weight {index} is {value}: weights must be finite and non-negative")]
+    BadWeight {
+        /// Index of the weight.
+        index: usize,
+        /// Its value.
+        value: f64,
+    },
+    /// Weights whose sum is not positive.
+    #[error("the weights sum to {sum}: they must sum to a positive number (they are then scaled to sum to 1)")]
+    WeightSum {
+        /// The sum.
+        sum: f64,
+    },
+    /// A count mismatch between transforms and weights, or too few transforms.
+    #[error("{what}")]
+    BlendInput {
+        /// What is wrong.
+        what: String,
+    },
     /// The wrong number of values for a representation.
     #[error("{what} needs {expected} numbers, got {got}")]
     WrongLength {

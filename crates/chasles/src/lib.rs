@@ -8,6 +8,9 @@
 //!   (quaternions: [`Quat`]), App. A (conventions) and App. B (conversions: [`convert`]);
 //! * Kavan, Collins, Žára & O'Sullivan (2006), *Dual Quaternions for Rigid Transformation
 //!   Blending*: §3 ([`Dual`], [`DualQuat`], eq. 1–2, [`screw`]) and Lemma 1;
+//! * Kavan et al. §2–5 and Appendices A–B: blending of rigid transformations ([`blend`]:
+//!   Lin, Dec, Log, iterative Log, QLB, ScLERP, DLB, DIB) and their properties
+//!   ([`analysis::properties`], the paper's Table 1 measured);
 //! * Dam et al. chapters 5–7: interpolation along key frames ([`interp`]: LinEuler, LinMat,
 //!   Lerp, Slerp, Squad, Spring) and the measures that compare them ([`analysis`]).
 //!
@@ -49,6 +52,7 @@
 #![warn(missing_docs)]
 
 pub mod analysis;
+pub mod blend;
 pub mod convert;
 pub mod dual;
 pub mod dualquat;

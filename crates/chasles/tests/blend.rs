@@ -1,0 +1,345 @@
+//! Blending of rigid transformations (Kavan et al. 2006): weights, each method's defining
+//! behaviour, Table 1 measured against the paper, and the paper's claims by number.
+
+use chasles::analysis::{claims, properties};
+use chasles::blend::dib::dib;
+use chasles::blend::dlb::dlb;
+use chasles::blend::log::{
+    exp_twist, log_blend, log_blend_iterative, log_blend_iterative_from, log_rigid,
+};
+use chasles::blend::sclerp::sclerp;
+use chasles::blend::weights::convex_weights;
+use chasles::blend::{blend_dual_quats, blend_matrices, Method, Options};
+use chasles::{DualQuat, Error, Mat4, Quat, Vec3};
+use proptest::prelude::*;
+use rand::rngs::StdRng;
+use rand::SeedableRng;
+
+fn rigid(axis: [f64; 3], angle: f64, t: [f64; 3]) -> DualQuat<f64> {
+    DualQuat::from_rotation_translation(
+        Quat::from_axis_angle(Vec3::from_array(axis), angle).unwrap(),
+        Vec3::from_array(t),
+    )
+}
+
+fn rng(seed: u64) -> StdRng {
+    StdRng::seed_from_u64(seed)
+}
+
+#[test]
+fn weights_are_checked_and_scaled() {
+    assert_eq!(convex_weights(&[1.0f64, 3.0], 2).unwrap(), vec![0.25, 0.75]);
+    assert_eq!(
+        convex_weights(&[-0.1f64, 1.0], 2),
+        Err(Error::BadWeight {
+            index: 0,
+            value: -0.1
+        })
+    );
+    assert!(matches!(
+        convex_weights(&[0.5f64, f64::NAN], 2),
+        Err(Error::BadWeight { index: 1, .. })
+    ));
+    assert!(matches!(
+        convex_weights(&[0.5f64, f64::INFINITY], 2),
+        Err(Error::BadWeight { index: 1, .. })
+    ));
+    assert_eq!(
+        convex_weights(&[0.0f64, 0.0], 2),
+        Err(Error::WeightSum { sum: 0.0 })
+    );
+    assert!(matches!(
+        convex_weights(&[1.0f64], 2),
+        Err(Error::BlendInput { .. })
+    ));
+    assert!(matches!(
+        convex_weights::<f64>(&[], 0),
+        Err(Error::BlendInput { .. })
+    ));
+    let x = [DualQuat::<f64>::identity(); 2];
+    for m in Method::ALL {
+        let e = blend_dual_quats(m, &x, &[0.0, 0.0], &Options::default()).unwrap_err();
+        assert!(e.to_string().contains("sum to 0"), "{m:?}: {e}");
+    }
+    // A non-rigid input matrix is named.
+    let mut bad = Mat4::<f64>::identity();
+    bad.m[0][0] = 2.0;
+    let e = blend_matrices(
+        Method::Dlb,
+        &[Mat4::identity(), bad],
+        &[0.5, 0.5],
+        &Options::default(),
+    )
+    .unwrap_err();
+    assert!(e.to_string().contains("transform 1"), "{e}");
+}
+
+#[test]
+fn table_1_measured_agrees_with_the_paper() {
+    let t = properties::measure(60, 11).unwrap();
+    assert!(
+        t.disagreements().is_empty(),
+        "{:?}\n{}",
+        t.disagreements(),
+        properties::to_markdown(&t)
+    );
+    // Every '−' is backed by a real deviation, every '+' by a tiny one.
+    for r in &t.rows {
+        for (name, c) in r.cells() {
+            if name == "n > 2" {
+                continue;
+            }
+            if c.holds {
+                assert!(c.worst <= properties::TOLERANCE, "{:?} {name}", r.method);
+            } else {
+                assert!(
+                    c.worst > 1e-3,
+                    "{:?} {name}: '−' with deviation {}",
+                    r.method,
+                    c.worst
+                );
+            }
+        }
+    }
+    // The methods the paper does not list: QLB is shortest path but not constant speed,
+    // the iterative Log is coordinate invariant (and, converged, bi-invariant).
+    let row = |m| t.rows.iter().find(|r| r.method == m).unwrap();
+    assert!(row(Method::Qlb).shortest_path.holds && !row(Method::Qlb).constant_speed.holds);
+    assert!(row(Method::LogIter).coordinate_invariance.holds);
+    // FLOPs: closed forms are exactly linear in n.
+    assert_eq!(row(Method::Lin).flops.formula, Some((0, 26)));
+    assert!(row(Method::Dlb).flops.formula.is_some());
+    assert!(row(Method::Log).flops.formula.is_some());
+    assert!(
+        row(Method::Dib).flops.formula.is_none(),
+        "iterative: counts depend on the input"
+    );
+    let md = properties::to_markdown(&t);
+    assert!(md.contains("| FLOPS (paper) |") && md.contains("65+49n"));
+}
+
+#[test]
+fn dlb_and_sclerp_share_the_axis_and_differ_by_the_bounds() {
+    let c = claims::dlb_vs_sclerp(300, 5).unwrap();
+    assert!(c.angle_deg < 8.15 && c.angle_deg > 8.14, "{c:?}");
+    assert!((c.angle_at.0 - std::f64::consts::PI).abs() < 1e-9);
+    // The supremum of the slide gap is 0.1501416 (closed form in the docs), at t = 0.74293.
+    assert!((c.translation - 0.150_141_55).abs() < 1e-7, "{c:?}");
+    assert!((c.translation_at.1 - 0.742_934).abs() < 2e-3, "{c:?}");
+    assert!(c.axis < 1e-10, "{c:?}");
+}
+
+#[test]
+fn lemma_3_dib_of_two_is_sclerp_after_one_update() {
+    let (diff, most) = claims::lemma_3(300, 8).unwrap();
+    assert!(diff < 1e-12, "{diff}");
+    assert_eq!(most, 1);
+}
+
+#[test]
+fn lemma_2_sclerp_is_bi_invariant() {
+    assert!(claims::lemma_2(300, 9).unwrap() < 1e-12);
+}
+
+#[test]
+fn dib_converges_in_one_to_four_updates_for_skinning_spreads() {
+    let h = claims::dib_iterations(500, 3, 30f64.to_radians(), 1e-6).unwrap();
+    assert!(h.len() <= 5, "{h:?}");
+    assert_eq!(h[0], 0, "DIB always updates at least once");
+    let wide = claims::dib_iterations(300, 3, std::f64::consts::PI, 1e-6).unwrap();
+    assert!(
+        wide.len() > 5,
+        "uniformly random rotations need more: {wide:?}"
+    );
+}
+
+#[test]
+fn figure_7_log_matrix_blending_is_not_constant_speed() {
+    let f = claims::figure_7().unwrap();
+    assert!(
+        f.worst < 1e-9,
+        "measured ‖ω_t‖ differs from Appendix B's closed form by {}",
+        f.worst
+    );
+    let (lo, hi) = f
+        .rows
+        .iter()
+        .fold((f64::MAX, 0.0f64), |(a, b), r| (a.min(r[1]), b.max(r[1])));
+    assert!(hi - lo > 1e-3, "‖ω_t‖ should vary: {lo}..{hi}");
+    assert!((claims::omega_closed_form(0.0) - (2.0 - 2.0 * 1f64.cos()).sqrt()).abs() < 1e-15);
+}
+
+#[test]
+fn alexa_blends_the_long_way_and_the_iterative_version_fixes_it() {
+    // ±170° about z: axis–angle blending goes through 0°, the long way (Bloom et al.).
+    let a = rigid([0.0, 0.0, 1.0], 170f64.to_radians(), [0.0; 3]).to_matrix4();
+    let b = rigid([0.0, 0.0, 1.0], -170f64.to_radians(), [0.0; 3]).to_matrix4();
+    let mid = log_blend(&[a, b], &[0.5, 0.5]).unwrap();
+    assert!(
+        mid.max_abs_diff(&Mat4::identity()) < 1e-12,
+        "Alexa's midpoint is the identity"
+    );
+    // §5's iterative version from the identity stays on that long-way fixed point …
+    let (it_mid, steps) = log_blend_iterative(&[a, b], &[0.5, 0.5], 1e-12, 50).unwrap();
+    assert!(it_mid.max_abs_diff(&Mat4::identity()) < 1e-12 && steps == 0);
+    // … started at an input it reaches the half turn, the shortest-path blend.
+    let (from_a, _) = log_blend_iterative_from(&[a, b], &[0.5, 0.5], a, 1e-12, 50).unwrap();
+    let half_turn = rigid([0.0, 0.0, 1.0], std::f64::consts::PI, [0.0; 3]).to_matrix4();
+    assert!(from_a.max_abs_diff(&half_turn) < 1e-9, "{from_a:?}");
+    let (id, pivot) = claims::log_iter_reaches_sclerp(300, 6).unwrap();
+    assert!(pivot > 0.99, "from the heavier input: {pivot}");
+    assert!(id < pivot, "from the identity: {id}");
+    // One iteration of the iterative version is Alexa's blend.
+    let mut r = rng(4);
+    for _ in 0..50 {
+        let x: Vec<Mat4<f64>> = (0..3)
+            .map(|_| properties::random_rigid(&mut r).to_matrix4())
+            .collect();
+        let w = [0.2, 0.3, 0.5];
+        let (one, _) = log_blend_iterative(&x, &w, 0.0, 1).unwrap();
+        assert!(one.max_abs_diff(&log_blend(&x, &w).unwrap()) < 1e-12);
+    }
+}
+
+proptest! {
+    #[test]
+    fn rigid_log_and_exp_are_inverse(q in prop::array::uniform4(-1.0f64..1.0), t in prop::array::uniform3(-5.0f64..5.0), small in 0usize..4) {
+        let q = Quat::from_array(q);
+        prop_assume!(q.norm() > 0.1);
+        // Also near the identity and near the half turn, where the series take over.
+        let q = match small {
+            0 => q.normalize().unwrap(),
+            1 => Quat::from_rotation_vector(q.vector() * 1e-7).unwrap(),
+            2 => Quat::from_axis_angle(q.vector(), std::f64::consts::PI - 1e-9).unwrap_or(Quat::identity()),
+            _ => Quat::identity(),
+        };
+        let m = DualQuat::from_rotation_translation(q, Vec3::from_array(t)).to_matrix4();
+        let back = exp_twist(&log_rigid(&m).unwrap());
+        prop_assert!(back.max_abs_diff(&m) < 1e-12, "{}", back.max_abs_diff(&m));
+    }
+
+    #[test]
+    fn matrix_and_dual_quaternion_inputs_agree(seed in 0u64..1000) {
+        let mut r = rng(seed);
+        let x: Vec<DualQuat<f64>> = (0..4).map(|_| properties::random_rigid(&mut r)).collect();
+        let m: Vec<Mat4<f64>> = x.iter().map(|d| d.to_matrix4()).collect();
+        let w = [0.1, 0.2, 0.3, 0.4];
+        for method in Method::ALL.into_iter().filter(|m| *m != Method::ScLerp) {
+            let a = blend_dual_quats(method, &x, &w, &Options::default()).unwrap();
+            let b = blend_matrices(method, &m, &w, &Options::default()).unwrap();
+            prop_assert!(a.matrix.max_abs_diff(&b.matrix) < 1e-9, "{:?}", method);
+            prop_assert_eq!(a.iterations, b.iterations);
+            prop_assert_eq!(method.iterates(), a.iterations.is_some());
+        }
+    }
+}
+
+#[test]
+fn sclerp_is_defined_at_the_half_turn_and_exact_at_the_ends() {
+    let p = rigid([1.0, 2.0, 3.0], 0.4, [1.0, 0.0, -1.0]);
+    // q is p followed by a half turn about some axis with a slide: p* q has w0 = 0.
+    let q = p * rigid([0.0, 1.0, 0.0], std::f64::consts::PI, [0.5, 2.0, 0.0]);
+    for t in [0.0, 0.25, 0.5, 1.0] {
+        let s = sclerp(p, q, t).unwrap();
+        assert!(s.is_finite() && s.is_unit(1e-12));
+    }
+    assert!(
+        sclerp(p, q, 0.0)
+            .unwrap()
+            .to_matrix4()
+            .max_abs_diff(&p.to_matrix4())
+            < 1e-14
+    );
+    assert!(
+        sclerp(p, q, 1.0)
+            .unwrap()
+            .to_matrix4()
+            .max_abs_diff(&q.to_matrix4())
+            < 1e-14
+    );
+    // Through blend_*: exactly two transforms.
+    let e = blend_dual_quats(
+        Method::ScLerp,
+        &[p, q, p],
+        &[1.0, 1.0, 1.0],
+        &Options::default(),
+    )
+    .unwrap_err();
+    assert!(e.to_string().contains("exactly two"));
+}
+
+#[test]
+fn dlb_handles_antipodal_inputs_and_lin_is_not_rigid() {
+    let q = rigid([0.0, 1.0, 0.0], 1.0, [1.0, 2.0, 3.0]);
+    // q and −q are the same transformation: DLB must not cancel them.
+    let b = dlb(&[q, -q], &[0.5, 0.5]).unwrap();
+    assert!(b.to_matrix4().max_abs_diff(&q.to_matrix4()) < 1e-14);
+    let (d, it) = dib(&[q, -q, q], &[0.2, 0.5, 0.3], 1e-12, 10).unwrap();
+    assert!(d.to_matrix4().max_abs_diff(&q.to_matrix4()) < 1e-12 && it <= 1);
+    // Lin of two rotations 120° apart shrinks: not rigid, reported as such.
+    let a = rigid([0.0, 0.0, 1.0], 0.0, [0.0; 3]);
+    let c = rigid([0.0, 0.0, 1.0], 2.0 * std::f64::consts::FRAC_PI_3, [0.0; 3]);
+    let l = blend_dual_quats(Method::Lin, &[a, c], &[0.5, 0.5], &Options::default()).unwrap();
+    assert!(!l.rigid);
+    assert!(
+        (l.matrix.linear_part().determinant() - 0.25).abs() < 1e-12,
+        "det {}",
+        l.matrix.linear_part().determinant()
+    );
+    assert!(l.dq.is_unit(1e-12), "its rotation part is still a rotation");
+}
+
+#[test]
+fn dec_depends_on_its_centre() {
+    let a = rigid([0.0, 0.0, 1.0], 0.0, [0.0; 3]);
+    let b = rigid([0.0, 0.0, 1.0], std::f64::consts::FRAC_PI_2, [0.0; 3]);
+    let at = |c: Vec3<f64>| {
+        let opt = Options {
+            center: c,
+            ..Options::default()
+        };
+        blend_dual_quats(Method::Dec, &[a, b], &[0.3, 0.7], &opt).unwrap()
+    };
+    let o = at(Vec3::zero());
+    let off = at(Vec3::new(1.0, 0.0, 0.0));
+    assert!(
+        (o.dq.translation()).norm() < 1e-12,
+        "about the origin, pure rotations blend to a rotation"
+    );
+    assert!(
+        off.dq.translation().norm() > 0.1,
+        "about another centre the result moves"
+    );
+    // Both have the same rotation: 0.7 × 90° about z (the spherical average of two is Slerp).
+    let half =
+        Quat::from_axis_angle(Vec3::new(0.0, 0.0, 1.0), 0.7 * std::f64::consts::FRAC_PI_2).unwrap();
+    assert!((o.dq.real - half).norm() < 1e-12 && (off.dq.real - half).norm() < 1e-12);
+    assert_eq!(o.iterations, Some(1));
+}
+
+#[test]
+fn blends_in_f32_match_f64() {
+    let mut r = rng(21);
+    for _ in 0..100 {
+        let x: Vec<DualQuat<f64>> = (0..4).map(|_| properties::random_rigid(&mut r)).collect();
+        let x32: Vec<DualQuat<f32>> = x.iter().map(|d| d.cast()).collect();
+        let w = [0.1, 0.2, 0.3, 0.4];
+        let w32 = [0.1f32, 0.2, 0.3, 0.4];
+        for m in [
+            Method::Dlb,
+            Method::Dib,
+            Method::Qlb,
+            Method::Lin,
+            Method::Log,
+        ] {
+            let a = blend_dual_quats(m, &x, &w, &Options::default())
+                .unwrap()
+                .matrix;
+            let b = blend_dual_quats(m, &x32, &w32, &Options::default())
+                .unwrap()
+                .matrix;
+            let d = Mat4::from_rows(b.m.map(|row| row.map(f64::from))).max_abs_diff(&a);
+            assert!(d < 1e-4, "{m:?}: f32 differs by {d}");
+        }
+    }
+}
