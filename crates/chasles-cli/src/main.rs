@@ -4,11 +4,15 @@
 //! * `chasles convert` — one rotation or rigid motion between representations
 //!   (Dam et al. 1998, App. B; Kavan et al. 2006, §3).
 //! * `chasles interp` — key-frame interpolation (Dam et al. 1998, chapters 5–7).
+//! * `chasles blend`, `chasles properties` — blending of rigid transformations and the
+//!   measured Table 1 (Kavan et al. 2006).
 
+mod blend;
 mod convert;
 mod interp;
 mod keyfile;
 mod output;
+mod properties;
 mod repr;
 mod tour;
 
@@ -76,6 +80,40 @@ enum Command {
         #[arg(long, allow_negative_numbers = true)]
         velocity_weight: Option<f64>,
     },
+    /// Blend rigid transformations: lin, dec, log, log-iter, qlb, sclerp, dlb, dib (Kavan et al. 2006).
+    ///
+    /// Input (a file or - for stdin): one JSON case or an array of cases,
+    /// {"transforms": [T, ...], "weights": [w, ...]} — optional "center" [x,y,z] (dec, qlb),
+    /// "precision" and "max_iterations" (dec, log-iter, dib) — or for sclerp
+    /// {"from": T, "to": T, "t": x}. T is {"rotation": [w,x,y,z], "translation": [x,y,z]},
+    /// {"matrix": [[...4 rows...]]} (row-major) or {"dq": [8 numbers]}. Weights must be
+    /// non-negative with a positive sum; they are scaled to sum to 1. Output: a JSON array,
+    /// per case rotation, translation, matrix, dq, rigid (and iterations where the method
+    /// iterates).
+    #[command(verbatim_doc_comment)]
+    Blend {
+        /// lin, dec, log, log-iter, qlb, sclerp, dlb or dib.
+        #[arg(long)]
+        method: String,
+        /// JSON file, or - for stdin.
+        #[arg(long)]
+        input: String,
+    },
+    /// Measure Kavan et al.'s Table 1 on random inputs, with exact FLOP counts (and --claims).
+    Properties {
+        /// Random cases per property.
+        #[arg(long, default_value_t = 200)]
+        samples: usize,
+        /// Seed of the random cases.
+        #[arg(long, default_value_t = 2006)]
+        seed: u64,
+        /// md or json.
+        #[arg(long, value_enum, default_value_t = FormatArg::Md)]
+        format: FormatArg,
+        /// Also reproduce the paper's claims: DLB vs ScLERP bounds, Lemmas 2–3, DIB updates, Figure 7.
+        #[arg(long)]
+        claims: bool,
+    },
     /// Convert one rotation or rigid motion between representations.
     ///
     /// Representations: quat (w x y z), matrix (9 or 16 numbers, row-major), matrix3,
@@ -111,6 +149,12 @@ enum Command {
 }
 
 #[derive(Clone, Copy, clap::ValueEnum)]
+enum FormatArg {
+    Md,
+    Json,
+}
+
+#[derive(Clone, Copy, clap::ValueEnum)]
 enum TimingArg {
     Uniform,
     Angle,
@@ -133,6 +177,22 @@ fn main() {
     };
     let result = match cli.command {
         Command::Tour { samples, seed } => tour::run(tour::TourArgs { samples, seed }).map(|_| 0),
+        Command::Blend { method, input } => blend::run(&method, &input).map(|_| 0),
+        Command::Properties {
+            samples,
+            seed,
+            format,
+            claims,
+        } => properties::run(
+            samples,
+            seed,
+            match format {
+                FormatArg::Md => properties::Format::Markdown,
+                FormatArg::Json => properties::Format::Json,
+            },
+            claims,
+        )
+        .map(|_| 0),
         Command::Interp {
             method,
             keys,

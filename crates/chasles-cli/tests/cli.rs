@@ -562,3 +562,194 @@ fn interp_key_files_json_output_and_errors() {
         assert!(!o.status.success() && err.contains(needle), "{a:?}: {err}");
     }
 }
+
+#[test]
+fn blend_cases_from_stdin_and_file() {
+    // Two pure rotations about z (0° and 90°) with a translation: DLB/DIB/ScLERP agree at ½.
+    let input = r#"[
+      {"transforms": [{"rotation": [1, 0, 0, 0], "translation": [0, 0, 0]},
+                      {"matrix": [[0, -1, 0, 2], [1, 0, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]}],
+       "weights": [1, 1]},
+      {"transforms": [{"dq": [1, 0, 0, 0, 0, 0, 0, 0]}, {"rotation": [0.7071067811865476, 0, 0, 0.7071067811865476], "translation": [2, 0, 0]}],
+       "weights": [0.5, 0.5], "precision": 1e-12}
+    ]"#;
+    let mut results = Vec::new();
+    for method in ["sclerp", "dlb", "dib"] {
+        let o = with_stdin(&["blend", "--method", method, "--input", "-"], input);
+        let v: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+        let arr = v.as_array().unwrap();
+        assert_eq!(arr.len(), 2);
+        for r in arr {
+            assert_eq!(r["rigid"], true);
+            for k in ["rotation", "translation", "matrix", "dq"] {
+                assert!(r.get(k).is_some(), "{method}: missing {k}");
+            }
+            assert_eq!(r.get("iterations").is_some(), method == "dib");
+        }
+        results.push(arr[0].clone());
+    }
+    // ScLERP at ½ of a 90° screw about the vertical line through (1, 1): 45° about z.
+    let q: Vec<f64> = results[0]["rotation"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect();
+    let h = std::f64::consts::FRAC_PI_8;
+    assert_close(&q, &[h.cos(), 0.0, 0.0, h.sin()], 1e-12);
+    // DIB of two = ScLERP (Lemma 3); DLB shares the axis here by symmetry too.
+    for r in &results[1..] {
+        let m0: Vec<f64> = results[0]["matrix"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .flat_map(|row| {
+                row.as_array()
+                    .unwrap()
+                    .iter()
+                    .map(|v| v.as_f64().unwrap())
+                    .collect::<Vec<_>>()
+            })
+            .collect();
+        let m1: Vec<f64> = r["matrix"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .flat_map(|row| {
+                row.as_array()
+                    .unwrap()
+                    .iter()
+                    .map(|v| v.as_f64().unwrap())
+                    .collect::<Vec<_>>()
+            })
+            .collect();
+        assert_close(&m1, &m0, 1e-9);
+    }
+    // The sclerp form, and lin reporting non-rigid results, from a file.
+    let dir = tempfile::tempdir().unwrap();
+    let f = dir.path().join("case.json");
+    std::fs::write(&f, r#"{"from": {"rotation": [1, 0, 0, 0]}, "to": {"rotation": [0, 0, 0, 1], "translation": [1, 0, 0]}, "t": 0.25}"#).unwrap();
+    let v: serde_json::Value = serde_json::from_str(&stdout(&chasles(&[
+        "blend",
+        "--method",
+        "sclerp",
+        "--input",
+        f.to_str().unwrap(),
+    ])))
+    .unwrap();
+    assert_eq!(v.as_array().unwrap().len(), 1);
+    let lin = with_stdin(
+        &["blend", "--method", "lin", "--input", "-"],
+        r#"{"transforms": [{"rotation": [1,0,0,0]}, {"rotation": [0,0,0,1]}], "weights": [1, 1]}"#,
+    );
+    let v: serde_json::Value = serde_json::from_str(&stdout(&lin)).unwrap();
+    assert_eq!(v[0]["rigid"], false, "Lin of a half turn is not rigid");
+}
+
+#[test]
+fn blend_errors_name_the_case_and_field() {
+    let cases: &[(&str, &str, &str)] = &[
+        (
+            "dlb",
+            r#"[{"transforms": [{"rotation": [1,0,0,0]}], "weights": [1]}, {"transforms": [{"rotation": [1,0,0]}], "weights": [1]}]"#,
+            "case 1",
+        ),
+        (
+            "dlb",
+            r#"[{"transforms": [{"rotation": [1,0,0,0]}], "weights": [1]}, {"transforms": [{"rotation": [1,0,0]}], "weights": [1]}]"#,
+            "transforms[0]",
+        ),
+        (
+            "dlb",
+            r#"{"transforms": [{"rotation": [1,0,0,0]}, {"rotation": [1,0,0,0]}], "weights": [-1, 2]}"#,
+            "weight 0 is -1",
+        ),
+        (
+            "dlb",
+            r#"{"transforms": [{"rotation": [1,0,0,0]}, {"rotation": [1,0,0,0]}], "weights": [0, 0]}"#,
+            "sum to 0",
+        ),
+        (
+            "dlb",
+            r#"{"transforms": [{"rotation": [1,0,0,0]}], "weights": [1, 1]}"#,
+            "1 transforms but 2 weights",
+        ),
+        (
+            "dib",
+            r#"{"transforms": [{"rotation": [1,0,0,0]}], "weights": ["a"]}"#,
+            "weights[0]",
+        ),
+        (
+            "dlb",
+            r#"{"transforms": [{"matrix": [[2,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]}], "weights": [1]}"#,
+            "not a rigid transformation",
+        ),
+        ("dlb", r#"{"weights": [1]}"#, "missing field 'transforms'"),
+        (
+            "sclerp",
+            r#"{"from": {"rotation": [1,0,0,0]}, "to": {"rotation": [1,0,0,0]}, "t": 2}"#,
+            "field 't'",
+        ),
+        (
+            "sclerp",
+            r#"{"transforms": [{"rotation": [1,0,0,0]}], "weights": [1]}"#,
+            "exactly two",
+        ),
+        ("dlb", "{not json", "not valid JSON"),
+        ("slerpy", "{}", "unknown method"),
+    ];
+    for (method, input, needle) in cases {
+        let o = with_stdin(&["blend", "--method", method, "--input", "-"], input);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(!o.status.success(), "{input}");
+        assert!(err.contains(needle), "{input}: {err}");
+        assert!(o.stdout.is_empty(), "no partial output");
+    }
+}
+
+#[test]
+fn properties_table_and_claims() {
+    let out = stdout(&chasles(&["properties", "--samples", "40", "--claims"]));
+    assert!(
+        out.contains("All 36 cells the paper lists agree with it."),
+        "{out}"
+    );
+    for needle in [
+        "| FLOPS (ours) |",
+        "Lemma 3",
+        "Lemma 2",
+        "Figure 7",
+        "8.149",
+        "15.014",
+    ] {
+        assert!(out.contains(needle), "missing {needle}");
+    }
+    let j: serde_json::Value = serde_json::from_str(&stdout(&chasles(&[
+        "properties",
+        "--samples",
+        "30",
+        "--format",
+        "json",
+    ])))
+    .unwrap();
+    assert_eq!(j["disagreements"].as_array().unwrap().len(), 0);
+    let rows = j["table_1"]["rows"].as_array().unwrap();
+    assert_eq!(rows.len(), 8);
+    for r in rows {
+        for p in [
+            "rigidity",
+            "bi-invariance",
+            "coordinate invariance",
+            "constant speed",
+            "shortest path",
+        ] {
+            assert!(
+                r[p]["worst"].is_number(),
+                "{} {p}: every cell carries its measured deviation",
+                r["method"]
+            );
+        }
+    }
+    let o = chasles(&["properties", "--samples", "0"]);
+    assert!(!o.status.success());
+}

@@ -343,3 +343,35 @@ fn blends_in_f32_match_f64() {
         }
     }
 }
+
+fn sclerp_closed_form_matches_definition<T: chasles::Real>(
+    p: DualQuat<T>,
+    q: DualQuat<T>,
+    tol: f64,
+) {
+    use chasles::blend::sclerp::sclerp_pow;
+    for k in 0..=10 {
+        let t = T::from_f64(k as f64 / 10.0);
+        let a = sclerp(p, q, t).unwrap().to_matrix4();
+        let b = sclerp_pow(p, q, t).unwrap().to_matrix4();
+        let d = a.max_abs_diff(&b).to_f64();
+        assert!(d < tol, "t = {t}: {d:e}");
+    }
+}
+
+proptest! {
+    #[test]
+    fn sclerp_closed_form_equals_the_power_definition(seed in 0u64..10_000, scale in prop::sample::select(vec![1.0, 1e-2, 1e-4, 1e-7, 0.0])) {
+        // Random pairs, and pairs whose relative rotation is tiny or zero (pure translation).
+        let mut r = rng(seed);
+        let p = properties::random_rigid(&mut r);
+        let rel = properties::random_rigid(&mut r);
+        let small = DualQuat::from_rotation_translation(
+            Quat::from_rotation_vector(rel.real.vector() * scale).unwrap(),
+            rel.translation(),
+        );
+        let q = if scale == 1.0 { rel } else { p * small };
+        sclerp_closed_form_matches_definition(p, q, 1e-12);
+        sclerp_closed_form_matches_definition(p.cast::<f32>(), q.cast::<f32>(), 2e-5);
+    }
+}
