@@ -46,8 +46,11 @@ fn weight_series<T: Real>(t: T, omega: T) -> (T, T) {
 pub fn sclerp<T: Real>(p: DualQuat<T>, q: DualQuat<T>, t: T) -> Result<DualQuat<T>> {
     // v − v is exactly 0 for every finite v and NaN otherwise: one branch for 17 values;
     // the detailed check, which names the input, runs only when it fails.
+    #[allow(clippy::eq_op)] // deliberate: the NaN/∞ probe
     let z = (p.real - p.real) + (p.dual - p.dual) + (q.real - q.real) + (q.dual - q.dual);
-    if z.w + z.x + z.y + z.z + (t - t) != T::ZERO {
+    #[allow(clippy::eq_op)]
+    let zt = t - t;
+    if z.w + z.x + z.y + z.z + zt != T::ZERO {
         crate::error::check_finite("dual quaternion", &p.to_array())?;
         crate::error::check_finite("dual quaternion", &q.to_array())?;
         crate::error::check_finite("interpolation parameter", &[t])?;
