@@ -16,7 +16,10 @@ use std::hint::black_box;
 
 const CASES: usize = 256;
 
-fn inputs(n: usize, seed: u64) -> Vec<(Vec<DualQuat<f64>>, Vec<Mat4<f64>>, Vec<f64>)> {
+/// One blend's inputs: as dual quaternions, as matrices, and the weights.
+type Case = (Vec<DualQuat<f64>>, Vec<Mat4<f64>>, Vec<f64>);
+
+fn inputs(n: usize, seed: u64) -> Vec<Case> {
     let mut rng = StdRng::seed_from_u64(seed);
     (0..CASES)
         .map(|_| {
