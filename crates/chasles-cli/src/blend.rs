@@ -37,8 +37,11 @@ fn transform(v: &Value, at: &str) -> Result<DualQuat<f64>> {
     Ok(m.dq)
 }
 
+/// One case as read: transforms, weights and options.
+type Case = (Vec<DualQuat<f64>>, Vec<f64>, Options<f64>);
+
 /// One case: transforms, weights and options.
-fn case(v: &Value, method: Method) -> Result<(Vec<DualQuat<f64>>, Vec<f64>, Options<f64>)> {
+fn case(v: &Value, method: Method) -> Result<Case> {
     let o = v
         .as_object()
         .ok_or_else(|| anyhow!("expected an object with 'transforms' and 'weights'"))?;
