@@ -284,6 +284,95 @@ pub fn energy_and_gradient<T: Real>(
     (f, grad)
 }
 
+/// What one descent step proposes.
+enum Step<T> {
+    /// Take this point, with its energy and gradient.
+    Accept(Vec<Quat<T>>, T, Vec<Quat<T>>),
+    /// Momentum dropped: try again from the current point.
+    Restart,
+    /// No step lowers F any more: converged to rounding.
+    Stop,
+}
+
+/// Nesterov's `t_{k+1} = (1 + √(1 + 4t²))/2`.
+fn y_t_next<T: Real>(t: T) -> T {
+    (T::ONE + (T::ONE + T::from_i32(4) * t * t).sqrt()) * T::HALF
+}
+
+/// Fixed, normalized or adaptive step from q (see [`StepRule`]).
+fn plain_step<T: Real>(
+    q: &[Quat<T>],
+    f: T,
+    g: &[Quat<T>],
+    gn: T,
+    e: &mut T,
+    is_key: &[bool],
+    cfg: &SpringConfig,
+) -> Step<T> {
+    let scale = match cfg.step {
+        StepRule::Normalized(_) => *e / gn,
+        _ => *e,
+    };
+    let mut trial: Vec<Quat<T>> = q.iter().zip(g).map(|(a, b)| *a - *b * scale).collect();
+    let (mut f2, mut g2) = energy_and_gradient(&trial, is_key, cfg);
+    if let StepRule::Adaptive(_) = cfg.step {
+        let mut tries = 0;
+        while !decreased(f2, f) && tries < 40 {
+            *e *= T::HALF;
+            trial = q.iter().zip(g).map(|(a, b)| *a - *b * *e).collect();
+            (f2, g2) = energy_and_gradient(&trial, is_key, cfg);
+            tries += 1;
+        }
+        if !decreased(f2, f) {
+            return Step::Stop;
+        }
+        *e *= T::from_f64(1.2);
+    }
+    Step::Accept(trial, f2, g2)
+}
+
+/// One accelerated step: from the extrapolated point y (q itself after a restart), with
+/// the Armijo condition at y; a rise of F drops the momentum.
+fn accelerated_step<T: Real>(
+    q: &[Quat<T>],
+    f: T,
+    g: &[Quat<T>],
+    momentum: &mut Option<(Vec<Quat<T>>, T)>,
+    e: &mut T,
+    is_key: &[bool],
+    cfg: &SpringConfig,
+) -> Step<T> {
+    let (y, t) = momentum.take().unwrap_or_else(|| (q.to_vec(), T::ONE));
+    let (fy, gy) = if t == T::ONE {
+        (f, g.to_vec())
+    } else {
+        energy_and_gradient(&y, is_key, cfg)
+    };
+    let gy2 = gy.iter().fold(T::ZERO, |a, v| a + v.dot(*v));
+    if gy2 == T::ZERO {
+        return Step::Stop;
+    }
+    let mut tries = 0;
+    loop {
+        let x_new: Vec<Quat<T>> = y.iter().zip(&gy).map(|(a, b)| *a - *b * *e).collect();
+        let (f_new, g_new) = energy_and_gradient(&x_new, is_key, cfg);
+        if f_new <= fy - T::HALF * *e * gy2 || tries >= 40 {
+            if !decreased(f_new, f) {
+                // Restart without momentum; if that was already a plain step, stop.
+                return if t == T::ONE {
+                    Step::Stop
+                } else {
+                    Step::Restart
+                };
+            }
+            *momentum = Some((y, t));
+            return Step::Accept(x_new, f_new, g_new);
+        }
+        *e *= T::HALF;
+        tries += 1;
+    }
+}
+
 /// `new < old`, false when either is NaN (so a NaN energy is never accepted).
 fn decreased<T: Real>(new: T, old: T) -> bool {
     new < old
@@ -372,95 +461,38 @@ fn spring_f64(
         };
         history.push(record(0, f, gn));
         let mut e = T::from_f64(cfg.step.length());
-        // Nesterov state: the extrapolated point y, its energy and gradient, and t.
+        // Nesterov state: the next extrapolated point y and its t (after a step, the point
+        // the step started from until the loop replaces it).
         let mut momentum: Option<(Vec<Quat<T>>, T)> = None;
         for it in 1..=level.iterations {
-            if let StepRule::Accelerated(_) = cfg.step {
-                let (y, t) = momentum.take().unwrap_or((q.clone(), T::ONE));
-                let (fy, gy) = if t == T::ONE {
-                    (f, g.clone())
-                } else {
-                    energy_and_gradient(&y, &is_key, cfg)
-                };
-                let gy2 = gy.iter().fold(T::ZERO, |a, v| a + v.dot(*v));
-                if gy2 == T::ZERO {
-                    break;
+            if gn == T::ZERO || gn.to_f64() < cfg.min_gradient_norm {
+                break;
+            }
+            let step = match cfg.step {
+                StepRule::Accelerated(_) => {
+                    accelerated_step(&q, f, &g, &mut momentum, &mut e, &is_key, cfg)
                 }
-                let mut tries = 0;
-                let (mut x_new, mut f_new, mut g_new);
-                loop {
-                    x_new = y
-                        .iter()
-                        .zip(&gy)
-                        .map(|(a, b)| *a - *b * e)
-                        .collect::<Vec<_>>();
-                    (f_new, g_new) = energy_and_gradient(&x_new, &is_key, cfg);
-                    if f_new <= fy - T::HALF * e * gy2 || tries >= 40 {
-                        break;
-                    }
-                    e *= T::HALF;
-                    tries += 1;
-                }
-                if !decreased(f_new, f) {
-                    // Restart: drop the momentum, keep q, try again from q next iteration.
-                    if t == T::ONE {
-                        break; // even a plain step cannot lower F: converged to rounding
-                    }
-                    continue;
-                }
-                let t_new = (T::ONE + (T::ONE + T::from_i32(4) * t * t).sqrt()) * T::HALF;
-                let beta = (t - T::ONE) / t_new;
-                let y_new = x_new
+                _ => plain_step(&q, f, &g, gn, &mut e, &is_key, cfg),
+            };
+            let (q_new, f_new, g_new) = match step {
+                Step::Stop => break,
+                Step::Restart => continue,
+                Step::Accept(q_new, f_new, g_new) => (q_new, f_new, g_new),
+            };
+            let change = ((f - f_new).abs() / f.abs().max(T::from_f64(f64::MIN_POSITIVE))).to_f64();
+            if let Some((_, t)) = momentum.take() {
+                // Extrapolate from the accepted point: y = x_new + β (x_new − x).
+                let beta = (t - T::ONE) / y_t_next(t);
+                let y_new = q_new
                     .iter()
                     .zip(&q)
                     .map(|(a, b)| *a + (*a - *b) * beta)
                     .collect();
-                let change =
-                    ((f - f_new).abs() / f.abs().max(T::from_f64(f64::MIN_POSITIVE))).to_f64();
-                q = x_new;
-                f = f_new;
-                g = g_new;
-                gn = norm_of(&g);
-                momentum = Some((y_new, t_new));
-                history.push(record(it, f, gn));
-                progress(&Progress {
-                    level: li,
-                    levels,
-                    iteration: it,
-                    iterations: level.iterations,
-                    energy: f.to_f64(),
-                });
-                if change < cfg.min_energy_change || gn.to_f64() < cfg.min_gradient_norm {
-                    break;
-                }
-                continue;
+                momentum = Some((y_new, y_t_next(t)));
             }
-            if gn == T::ZERO || gn.to_f64() < cfg.min_gradient_norm {
-                break;
-            }
-            let scale = match cfg.step {
-                StepRule::Normalized(_) => e / gn,
-                _ => e,
-            };
-            let mut trial: Vec<Quat<T>> = q.iter().zip(&g).map(|(a, b)| *a - *b * scale).collect();
-            let (mut f2, mut g2) = energy_and_gradient(&trial, &is_key, cfg);
-            if let StepRule::Adaptive(_) = cfg.step {
-                let mut tries = 0;
-                while !decreased(f2, f) && tries < 40 {
-                    e *= T::HALF;
-                    trial = q.iter().zip(&g).map(|(a, b)| *a - *b * e).collect();
-                    (f2, g2) = energy_and_gradient(&trial, &is_key, cfg);
-                    tries += 1;
-                }
-                if !decreased(f2, f) {
-                    break; // no step lowers F any more: converged to rounding
-                }
-                e *= T::from_f64(1.2);
-            }
-            let change = ((f - f2).abs() / f.abs().max(T::from_f64(f64::MIN_POSITIVE))).to_f64();
-            q = trial;
-            f = f2;
-            g = g2;
+            q = q_new;
+            f = f_new;
+            g = g_new;
             gn = norm_of(&g);
             history.push(record(it, f, gn));
             progress(&Progress {
