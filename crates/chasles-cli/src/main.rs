@@ -14,6 +14,7 @@ mod keyfile;
 mod output;
 mod properties;
 mod repr;
+mod skin;
 mod tour;
 
 use clap::{Parser, Subcommand};
@@ -114,6 +115,39 @@ enum Command {
         #[arg(long)]
         claims: bool,
     },
+    /// Skin a rigged glTF mesh (lbs, dqs, dib, log, qlb), one pose or a whole clip (Kavan et al. 2006, §6).
+    ///
+    /// Examples:
+    ///   chasles skin --rig Fox.glb --anim Run --time 0.4 --method dqs --out fox.obj
+    ///   chasles skin --rig CesiumMan.glb --all-frames --fps 24 --method lbs --out frames/
+    ///   chasles skin --artifacts      (the candy-wrapper table on a twisted cylinder)
+    #[command(verbatim_doc_comment)]
+    Skin {
+        /// The rig, .gltf or .glb.
+        #[arg(long)]
+        rig: Option<std::path::PathBuf>,
+        /// The clip, by name or index (default: the first, when --time or --all-frames is given).
+        #[arg(long)]
+        anim: Option<String>,
+        /// Time in the clip, seconds (default 0; without --anim and --time: the rest pose).
+        #[arg(long, allow_negative_numbers = true)]
+        time: Option<f32>,
+        /// lbs, dqs, dib, log or qlb.
+        #[arg(long, default_value = "dqs")]
+        method: String,
+        /// Output .obj, .ply or .json; with --all-frames, a folder for frame_NNNNN.obj files.
+        #[arg(long)]
+        out: Option<std::path::PathBuf>,
+        /// Skin every frame of the clip.
+        #[arg(long)]
+        all_frames: bool,
+        /// Frames per second for --all-frames.
+        #[arg(long, default_value_t = 30.0)]
+        fps: f32,
+        /// Print the candy-wrapper table (twist and bend of a two-bone cylinder, every method).
+        #[arg(long)]
+        artifacts: bool,
+    },
     /// Convert one rotation or rigid motion between representations.
     ///
     /// Representations: quat (w x y z), matrix (9 or 16 numbers, row-major), matrix3,
@@ -177,6 +211,26 @@ fn main() {
     };
     let result = match cli.command {
         Command::Tour { samples, seed } => tour::run(tour::TourArgs { samples, seed }).map(|_| 0),
+        Command::Skin {
+            rig,
+            anim,
+            time,
+            method,
+            out,
+            all_frames,
+            fps,
+            artifacts,
+        } => skin::run(skin::SkinArgs {
+            rig,
+            anim,
+            time,
+            method,
+            out,
+            all_frames,
+            fps,
+            artifacts,
+        })
+        .map(|_| 0),
         Command::Blend { method, input } => blend::run(&method, &input).map(|_| 0),
         Command::Properties {
             samples,

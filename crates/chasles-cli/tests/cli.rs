@@ -749,3 +749,148 @@ fn properties_table_and_claims() {
     let o = chasles(&["properties", "--samples", "0"]);
     assert!(!o.status.success());
 }
+
+fn gltf(name: &str) -> String {
+    format!(
+        "{}/../../../shared/data/gltf/{name}",
+        env!("CARGO_MANIFEST_DIR")
+    )
+}
+
+#[test]
+fn skin_writes_obj_ply_json_and_whole_clips() {
+    let dir = tempfile::tempdir().unwrap();
+    for (ext, first) in [("obj", "# "), ("ply", "ply"), ("json", "{")] {
+        let out = dir.path().join(format!("fox.{ext}"));
+        let o = chasles(&[
+            "skin",
+            "--rig",
+            &gltf("Fox.glb"),
+            "--anim",
+            "Run",
+            "--time",
+            "0.4",
+            "--method",
+            "dqs",
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert!(stdout(&o).contains("1728 vertices"));
+        let text = std::fs::read_to_string(&out).unwrap();
+        assert!(text.starts_with(first), "{ext}");
+        if ext == "obj" {
+            assert_eq!(text.lines().filter(|l| l.starts_with("v ")).count(), 1728);
+            assert_eq!(text.lines().filter(|l| l.starts_with("f ")).count(), 576);
+        }
+    }
+    let frames = dir.path().join("frames");
+    let o = chasles(&[
+        "skin",
+        "--rig",
+        &gltf("SimpleSkin.gltf"),
+        "--all-frames",
+        "--fps",
+        "2",
+        "--method",
+        "lbs",
+        "--out",
+        frames.to_str().unwrap(),
+    ]);
+    assert!(
+        stdout(&o).contains("wrote 12 frames"),
+        "5.5 s at 2 fps: frames 0 … 11"
+    );
+    assert_eq!(std::fs::read_dir(&frames).unwrap().count(), 12);
+    assert!(
+        !String::from_utf8_lossy(&o.stderr).contains("frames"),
+        "no progress bar when not on a terminal"
+    );
+    let table = stdout(&chasles(&["skin", "--artifacts"]));
+    assert!(
+        table.contains("| 180° | 0.000 |"),
+        "LBS collapses at 180°:\n{table}"
+    );
+}
+
+#[test]
+fn skin_errors_are_one_line_and_leave_no_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("x.obj");
+    let o = out.to_str().unwrap();
+    let junk = dir.path().join("junk.glb");
+    std::fs::write(&junk, b"not a gltf").unwrap();
+    let cases: Vec<(Vec<String>, &str)> = vec![
+        (
+            vec![
+                "--rig".into(),
+                gltf("Fox.glb"),
+                "--method".into(),
+                "blend".into(),
+                "--out".into(),
+                o.into(),
+            ],
+            "unknown method",
+        ),
+        (
+            vec![
+                "--rig".into(),
+                gltf("Fox.glb"),
+                "--anim".into(),
+                "Swim".into(),
+                "--out".into(),
+                o.into(),
+            ],
+            "no animation 'Swim'",
+        ),
+        (
+            vec![
+                "--rig".into(),
+                gltf("Fox.glb"),
+                "--out".into(),
+                dir.path().join("x.txt").to_str().unwrap().into(),
+            ],
+            ".obj, .ply or .json",
+        ),
+        (
+            vec![
+                "--rig".into(),
+                junk.to_str().unwrap().into(),
+                "--out".into(),
+                o.into(),
+            ],
+            "not a valid glTF",
+        ),
+        (
+            vec![
+                "--rig".into(),
+                dir.path().join("none.glb").to_str().unwrap().into(),
+                "--out".into(),
+                o.into(),
+            ],
+            "none.glb",
+        ),
+        (
+            vec![
+                "--rig".into(),
+                gltf("Fox.glb"),
+                "--all-frames".into(),
+                "--fps".into(),
+                "0".into(),
+                "--out".into(),
+                o.into(),
+            ],
+            "--fps",
+        ),
+        (vec!["--out".into(), o.into()], "--rig FILE is required"),
+    ];
+    for (args, needle) in cases {
+        let mut a = vec!["skin".to_string()];
+        a.extend(args);
+        let a: Vec<&str> = a.iter().map(|s| s.as_str()).collect();
+        let r = chasles(&a);
+        let err = String::from_utf8_lossy(&r.stderr);
+        assert!(!r.status.success() && err.contains(needle), "{a:?}: {err}");
+        assert_eq!(err.trim().lines().count(), 1, "{err}");
+        assert!(!out.exists(), "{a:?} left a file");
+    }
+}

@@ -1,0 +1,199 @@
+//! `chasles skin`: skin a rigged glTF mesh with any method (Kavan et al. 2006, §6), one pose
+//! or a whole clip, and the candy-wrapper table (`--artifacts`).
+
+use crate::output::{extension, write_atomic};
+use anyhow::{anyhow, bail, Context, Result};
+use chasles_skin::cylinder::{self, Motion};
+use chasles_skin::{gltf_load, skin, writers, Method, Pose, Rig, Skinned};
+use indicatif::{ProgressBar, ProgressStyle};
+use std::path::{Path, PathBuf};
+
+/// Options of `chasles skin`.
+pub struct SkinArgs {
+    /// The rig file.
+    pub rig: Option<PathBuf>,
+    /// The clip, by name or index.
+    pub anim: Option<String>,
+    /// The time in the clip (seconds).
+    pub time: Option<f32>,
+    /// The method name.
+    pub method: String,
+    /// Output file (.obj, .ply, .json) or, with `all_frames`, a folder.
+    pub out: Option<PathBuf>,
+    /// Skin every frame of the clip.
+    pub all_frames: bool,
+    /// Frames per second for `all_frames`.
+    pub fps: f32,
+    /// Print the candy-wrapper table instead.
+    pub artifacts: bool,
+}
+
+fn method(name: &str) -> Result<Method> {
+    Method::from_name(name).ok_or_else(|| {
+        let names: Vec<&str> = Method::ALL.iter().map(|m| m.name()).collect();
+        anyhow!("unknown method '{name}'; use one of: {}", names.join(", "))
+    })
+}
+
+fn clip(rig: &Rig, anim: &Option<String>) -> Result<usize> {
+    let Some(a) = anim else {
+        if rig.animations.is_empty() {
+            bail!("{}: has no animations", rig.name);
+        }
+        return Ok(0);
+    };
+    if let Some(i) = rig.animations.iter().position(|x| &x.name == a) {
+        return Ok(i);
+    }
+    match a.parse::<usize>() {
+        Ok(i) if i < rig.animations.len() => Ok(i),
+        _ => {
+            let names: Vec<String> = rig
+                .animations
+                .iter()
+                .enumerate()
+                .map(|(i, x)| {
+                    if x.name.is_empty() {
+                        i.to_string()
+                    } else {
+                        format!("{} ({i})", x.name)
+                    }
+                })
+                .collect();
+            bail!(
+                "{}: no animation '{a}'; there are: {}",
+                rig.name,
+                names.join(", ")
+            )
+        }
+    }
+}
+
+fn encode(rig: &Rig, s: &Skinned, path: &Path, comment: &str) -> Result<String> {
+    Ok(match extension(path).as_str() {
+        "obj" => writers::obj(&rig.mesh, s, comment),
+        "ply" => writers::ply(&rig.mesh, s, comment),
+        "json" => serde_json::json!({
+            "comment": comment,
+            "positions": s.positions.iter().map(|p| p.to_array()).collect::<Vec<_>>(),
+            "normals": s.normals.iter().map(|p| p.to_array()).collect::<Vec<_>>(),
+            "triangles": rig.mesh.triangles,
+        })
+        .to_string(),
+        other => bail!("--out must end in .obj, .ply or .json (got '.{other}')"),
+    })
+}
+
+/// The candy-wrapper table as Markdown.
+pub fn artifacts_table() -> Result<String> {
+    let rig = cylinder::twisted_cylinder();
+    let mut out = String::from(
+        "Twisted cylinder (two bones, smooth weights across the joint), relative to rest:\n\
+         r = mean radius of the middle cross-section, V = volume, b = largest distance from the bones (bulge)\n\n",
+    );
+    for (motion, angles, what) in [
+        (Motion::Twist, [0, 45, 90, 135, 180], "twist"),
+        (Motion::Bend, [0, 30, 60, 90, 120], "bend"),
+    ] {
+        let mut angles = angles.to_vec();
+        if motion == Motion::Bend {
+            angles.push(150);
+        }
+        out.push_str(&format!("| {what} |"));
+        for m in Method::ALL {
+            out.push_str(&format!(" {} r | V | b |", m.name()));
+        }
+        out.push_str("\n|---|");
+        out.push_str(&"---|---|---|".repeat(Method::ALL.len()));
+        out.push('\n');
+        for a in angles {
+            out.push_str(&format!("| {a}° |"));
+            for m in Method::ALL {
+                let r = cylinder::measure(&rig, m, motion, (a as f32).to_radians())?;
+                out.push_str(&format!(
+                    " {:.3} | {:.3} | {:.3} |",
+                    r.radius, r.volume, r.bulge
+                ));
+            }
+            out.push('\n');
+        }
+        out.push('\n');
+    }
+    Ok(out)
+}
+
+/// Runs `chasles skin`.
+pub fn run(a: SkinArgs) -> Result<()> {
+    if a.artifacts {
+        print!("{}", artifacts_table()?);
+        return Ok(());
+    }
+    let m = method(&a.method)?;
+    let rig_path = a
+        .rig
+        .as_ref()
+        .ok_or_else(|| anyhow!("--rig FILE is required (or --artifacts)"))?;
+    let ext = extension(rig_path);
+    if ext != "gltf" && ext != "glb" {
+        bail!(
+            "{}: rigs are read from .gltf or .glb files",
+            rig_path.display()
+        );
+    }
+    let rig = gltf_load::load(rig_path)?;
+    let out = a.out.as_ref().ok_or_else(|| anyhow!("--out is required"))?;
+    if a.all_frames {
+        if !(a.fps > 0.0 && a.fps.is_finite() && a.fps <= 1000.0) {
+            bail!("--fps must be in (0, 1000], got {}", a.fps);
+        }
+        let c = clip(&rig, &a.anim)?;
+        let duration = rig.animations[c].duration();
+        let frames = (duration * a.fps).floor() as usize + 1;
+        std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
+        let bar = ProgressBar::new(frames as u64);
+        bar.set_style(
+            ProgressStyle::with_template("skinning [{bar:30}] {pos}/{len} frames")
+                .unwrap_or_else(|_| ProgressStyle::default_bar()),
+        );
+        for f in 0..frames {
+            let t = f as f32 / a.fps;
+            let s = skin(&rig, &Pose::animated(&rig, c, t)?, m)?;
+            let file = out.join(format!("frame_{f:05}.obj"));
+            let comment = format!("{} skinned with {} at t = {t} s", rig.name, m.name());
+            write_atomic(&file, encode(&rig, &s, &file, &comment)?.as_bytes())?;
+            bar.inc(1);
+        }
+        bar.finish_and_clear();
+        println!(
+            "wrote {frames} frames of {:.3} s at {} fps to {}",
+            duration,
+            a.fps,
+            out.display()
+        );
+        return Ok(());
+    }
+    let (pose, when) = match (&a.anim, a.time) {
+        (None, None) => (Pose::rest(&rig), "the rest pose".to_string()),
+        (anim, t) => {
+            let c = clip(&rig, anim)?;
+            let t = t.unwrap_or(0.0);
+            (
+                Pose::animated(&rig, c, t)?,
+                format!("animation {c} at t = {t} s"),
+            )
+        }
+    };
+    let s = skin(&rig, &pose, m)?;
+    let comment = format!("{} skinned with {} in {when}", rig.name, m.name());
+    let text = encode(&rig, &s, out, &comment)?;
+    write_atomic(out, text.as_bytes())?;
+    println!(
+        "{}: {} vertices, {} joints, skinned with {} in {when}; wrote {}",
+        rig.name,
+        rig.mesh.positions.len(),
+        rig.joints.len(),
+        m.name(),
+        out.display()
+    );
+    Ok(())
+}

@@ -1,0 +1,348 @@
+//! Loading rigs from glTF 2.0 (`.gltf` with embedded or external buffers, and `.glb`),
+//! with the `gltf` crate for parsing.
+//!
+//! What is read: the first node that has both a mesh and a skin (all primitives of that
+//! mesh, merged), its POSITION, NORMAL (computed when absent), indices, every
+//! JOINTS_n/WEIGHTS_n set; the skin's joints and inverse bind matrices (identity when
+//! absent, as the specification says); every node's rest transform and parent; and every
+//! animation's translation, rotation and scale channels (morph-target weights are skipped).
+//!
+//! Every accessor is checked against its buffer view and buffer before it is read, so a
+//! truncated file is a [`SkinError::Truncated`] naming the accessor, never a panic. Joint
+//! indices and weights are checked per vertex ([`Influences::from_lists`]).
+
+use crate::animation::{Animation, Channel, Interpolation, Path as ChannelPath};
+use crate::error::{invalid, Result, SkinError};
+use crate::rig::{compute_normals, Influences, Mesh, Node, Rig, Trs};
+use base64::Engine;
+use chasles::{Mat4, Quat, Vec3};
+use gltf::mesh::Semantic;
+use std::path::Path;
+
+fn io(path: &Path, source: std::io::Error) -> SkinError {
+    SkinError::Io {
+        path: path.display().to_string(),
+        source,
+    }
+}
+
+fn load_buffers(
+    doc: &gltf::Document,
+    blob: Option<Vec<u8>>,
+    base: &Path,
+    name: &str,
+) -> Result<Vec<Vec<u8>>> {
+    let mut blob = blob;
+    doc.buffers()
+        .map(|b| {
+            let data = match b.source() {
+                gltf::buffer::Source::Bin => blob.take().ok_or_else(|| {
+                    SkinError::Invalid(format!(
+                        "{name}: buffer {} refers to a missing GLB binary chunk",
+                        b.index()
+                    ))
+                })?,
+                gltf::buffer::Source::Uri(uri) => {
+                    if let Some(rest) = uri.strip_prefix("data:") {
+                        let (_, payload) = rest.split_once(";base64,").ok_or_else(|| {
+                            SkinError::Invalid(format!(
+                                "{name}: buffer {}: only base64 data URIs are supported",
+                                b.index()
+                            ))
+                        })?;
+                        base64::engine::general_purpose::STANDARD
+                            .decode(payload)
+                            .map_err(|e| {
+                                SkinError::Invalid(format!(
+                                    "{name}: buffer {}: bad base64 data: {e}",
+                                    b.index()
+                                ))
+                            })?
+                    } else {
+                        let p = base.join(uri);
+                        std::fs::read(&p).map_err(|e| io(&p, e))?
+                    }
+                }
+            };
+            if data.len() < b.length() {
+                return invalid(format!(
+                    "{name}: buffer {} is truncated: {} bytes, the file declares {}",
+                    b.index(),
+                    data.len(),
+                    b.length()
+                ));
+            }
+            Ok(data)
+        })
+        .collect()
+}
+
+/// Checks that an accessor lies inside its view and buffer.
+fn check_accessor(a: &gltf::Accessor, buffers: &[Vec<u8>], what: &str) -> Result<()> {
+    let Some(view) = a.view() else {
+        return invalid(format!(
+            "accessor {} ({what}) has no buffer view (sparse-only accessors are not supported)",
+            a.index()
+        ));
+    };
+    let elem = a.size();
+    let stride = view.stride().unwrap_or(elem);
+    let needed = if a.count() == 0 {
+        0
+    } else {
+        a.offset() + stride * (a.count() - 1) + elem
+    };
+    if needed > view.length() {
+        return Err(SkinError::Truncated {
+            accessor: a.index(),
+            what: what.into(),
+            needed,
+            available: view.length(),
+        });
+    }
+    let buf = &buffers[view.buffer().index()];
+    if view.offset() + view.length() > buf.len() {
+        return Err(SkinError::Truncated {
+            accessor: a.index(),
+            what: format!("{what}, buffer view {}", view.index()),
+            needed: view.offset() + view.length(),
+            available: buf.len(),
+        });
+    }
+    Ok(())
+}
+
+fn trs(node: &gltf::Node) -> Trs {
+    let (t, r, s) = node.transform().decomposed();
+    Trs {
+        translation: Vec3::from_array(t),
+        rotation: Quat::new(r[3], r[0], r[1], r[2])
+            .normalize()
+            .unwrap_or(Quat::identity()),
+        scale: Vec3::from_array(s),
+    }
+}
+
+/// Loads a rig from a `.gltf` or `.glb` file.
+pub fn load(path: &Path) -> Result<Rig> {
+    let name = path.display().to_string();
+    let bytes = std::fs::read(path).map_err(|e| io(path, e))?;
+    let g = gltf::Gltf::from_slice(&bytes).map_err(|e| SkinError::Gltf {
+        path: name.clone(),
+        reason: e.to_string(),
+    })?;
+    let base = path.parent().unwrap_or(Path::new("."));
+    let buffers = load_buffers(&g.document, g.blob.clone(), base, &name)?;
+    from_document(&g.document, &buffers, &name)
+}
+
+fn from_document(doc: &gltf::Document, buffers: &[Vec<u8>], name: &str) -> Result<Rig> {
+    let get = |b: gltf::Buffer| Some(&buffers[b.index()][..]);
+    let skinned = doc
+        .nodes()
+        .find(|n| n.mesh().is_some() && n.skin().is_some())
+        .ok_or_else(|| {
+            SkinError::Invalid(format!(
+                "{name}: no node has both a mesh and a skin: nothing to skin"
+            ))
+        })?;
+    let (mesh, skin) = (
+        skinned.mesh().unwrap_or_else(|| unreachable!()),
+        skinned.skin().unwrap_or_else(|| unreachable!()),
+    );
+    let joint_nodes: Vec<usize> = skin.joints().map(|j| j.index()).collect();
+    let nj = joint_nodes.len();
+    let mut positions = Vec::new();
+    let mut normals: Vec<Vec3<f32>> = Vec::new();
+    let mut have_normals = true;
+    let mut triangles = Vec::new();
+    let mut lists: Vec<Vec<(usize, f32)>> = Vec::new();
+    for prim in mesh.primitives() {
+        if prim.mode() != gltf::mesh::Mode::Triangles {
+            return invalid(format!(
+                "{name}: mesh primitive {} is not made of triangles",
+                prim.index()
+            ));
+        }
+        let base = positions.len() as u32;
+        let pos_acc = prim.get(&Semantic::Positions).ok_or_else(|| {
+            SkinError::Invalid(format!(
+                "{name}: primitive {} has no POSITION",
+                prim.index()
+            ))
+        })?;
+        check_accessor(&pos_acc, buffers, "POSITION")?;
+        for (s, a) in prim.attributes() {
+            check_accessor(&a, buffers, &format!("{s:?}"))?;
+        }
+        if let Some(ix) = prim.indices() {
+            check_accessor(&ix, buffers, "indices")?;
+        }
+        let reader = prim.reader(get);
+        let p: Vec<Vec3<f32>> = reader
+            .read_positions()
+            .ok_or_else(|| {
+                SkinError::Invalid(format!(
+                    "{name}: primitive {}: POSITION unreadable",
+                    prim.index()
+                ))
+            })?
+            .map(Vec3::from_array)
+            .collect();
+        let count = p.len();
+        match reader.read_normals() {
+            Some(n) => normals.extend(n.map(Vec3::from_array)),
+            None => have_normals = false,
+        }
+        let idx: Vec<u32> = match reader.read_indices() {
+            Some(i) => i.into_u32().collect(),
+            None => (0..count as u32).collect(),
+        };
+        if idx.len() % 3 != 0 {
+            return invalid(format!(
+                "{name}: primitive {}: {} indices is not a whole number of triangles",
+                prim.index(),
+                idx.len()
+            ));
+        }
+        if let Some(bad) = idx.iter().find(|i| **i as usize >= count) {
+            return invalid(format!(
+                "{name}: primitive {}: index {bad} out of range ({count} vertices)",
+                prim.index()
+            ));
+        }
+        triangles.extend(
+            idx.chunks(3)
+                .map(|c| [c[0] + base, c[1] + base, c[2] + base]),
+        );
+        let mut per_vertex: Vec<Vec<(usize, f32)>> = vec![Vec::new(); count];
+        let mut set = 0;
+        while let (Some(j), Some(w)) = (reader.read_joints(set), reader.read_weights(set)) {
+            let j: Vec<[u16; 4]> = j.into_u16().collect();
+            let w: Vec<[f32; 4]> = w.into_f32().collect();
+            if j.len() != count || w.len() != count {
+                return invalid(format!("{name}: primitive {}: JOINTS_{set}/WEIGHTS_{set} have {}/{} entries for {count} vertices", prim.index(), j.len(), w.len()));
+            }
+            for (v, (jv, wv)) in j.iter().zip(&w).enumerate() {
+                for k in 0..4 {
+                    per_vertex[v].push((usize::from(jv[k]), wv[k]));
+                }
+            }
+            set += 1;
+        }
+        if set == 0 {
+            return invalid(format!(
+                "{name}: primitive {} has no JOINTS_0/WEIGHTS_0: it is not skinned",
+                prim.index()
+            ));
+        }
+        lists.extend(per_vertex);
+        positions.extend(p);
+    }
+    let influences = Influences::from_lists(&lists, nj)
+        .map_err(|e| SkinError::Invalid(format!("{name}: {e}")))?;
+    if !have_normals || normals.len() != positions.len() {
+        normals = compute_normals(&positions, &triangles);
+    }
+    let inverse_bind = match skin.inverse_bind_matrices() {
+        Some(a) => {
+            check_accessor(&a, buffers, "inverseBindMatrices")?;
+            let m: Vec<Mat4<f32>> = skin
+                .reader(get)
+                .read_inverse_bind_matrices()
+                .ok_or_else(|| {
+                    SkinError::Invalid(format!("{name}: inverse bind matrices unreadable"))
+                })?
+                // glTF matrices are column-major: cols[c][r].
+                .map(|cols| Mat4::from_rows(cols).transpose())
+                .collect();
+            if m.len() != nj {
+                return invalid(format!(
+                    "{name}: {} inverse bind matrices for {nj} joints",
+                    m.len()
+                ));
+            }
+            m
+        }
+        None => vec![Mat4::identity(); nj],
+    };
+    let mut nodes: Vec<Node> = doc
+        .nodes()
+        .map(|n| Node {
+            name: n.name().unwrap_or("").to_string(),
+            parent: None,
+            rest: trs(&n),
+        })
+        .collect();
+    for n in doc.nodes() {
+        for c in n.children() {
+            nodes[c.index()].parent = Some(n.index());
+        }
+    }
+    let mut animations = Vec::new();
+    for a in doc.animations() {
+        let mut channels = Vec::new();
+        for c in a.channels() {
+            use gltf::animation::util::ReadOutputs;
+            let s = c.sampler();
+            check_accessor(&s.input(), buffers, "animation input")?;
+            check_accessor(&s.output(), buffers, "animation output")?;
+            let r = c.reader(get);
+            let times: Vec<f32> = r
+                .read_inputs()
+                .ok_or_else(|| {
+                    SkinError::Invalid(format!("{name}: animation {} input unreadable", a.index()))
+                })?
+                .collect();
+            let (path, values): (ChannelPath, Vec<[f32; 4]>) = match r.read_outputs() {
+                Some(ReadOutputs::Translations(t)) => (
+                    ChannelPath::Translation,
+                    t.map(|v| [v[0], v[1], v[2], 0.0]).collect(),
+                ),
+                Some(ReadOutputs::Scales(t)) => (
+                    ChannelPath::Scale,
+                    t.map(|v| [v[0], v[1], v[2], 0.0]).collect(),
+                ),
+                Some(ReadOutputs::Rotations(q)) => (
+                    ChannelPath::Rotation,
+                    q.into_f32().map(|v| [v[3], v[0], v[1], v[2]]).collect(),
+                ),
+                _ => continue, // morph target weights
+            };
+            let interpolation = match s.interpolation() {
+                gltf::animation::Interpolation::Linear => Interpolation::Linear,
+                gltf::animation::Interpolation::Step => Interpolation::Step,
+                gltf::animation::Interpolation::CubicSpline => Interpolation::CubicSpline,
+            };
+            let ch = Channel {
+                node: c.target().node().index(),
+                path,
+                interpolation,
+                times,
+                values,
+            };
+            ch.validate(nodes.len())
+                .map_err(|e| SkinError::Invalid(format!("{name}: animation {}: {e}", a.index())))?;
+            channels.push(ch);
+        }
+        animations.push(Animation {
+            name: a.name().unwrap_or("").to_string(),
+            channels,
+        });
+    }
+    let rig = Rig {
+        name: name.to_string(),
+        mesh: Mesh {
+            positions,
+            normals,
+            triangles,
+        },
+        nodes,
+        joints: joint_nodes,
+        inverse_bind,
+        influences,
+        animations,
+    };
+    rig.validate()?;
+    Ok(rig)
+}

@@ -1,0 +1,253 @@
+//! The rig model: a mesh, a node hierarchy with a skin (joints and inverse bind matrices),
+//! per-vertex influences, and animations (Kavan et al. 2006, §6: "a triangular mesh, a
+//! list L of rigid transformations, and weights for every vertex").
+
+use crate::animation::Animation;
+use crate::error::{invalid, Result, SkinError};
+use chasles::{Mat4, Quat, Vec3};
+
+/// A node's local transform: translation, rotation, scale (applied as T · R · S).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Trs {
+    /// Translation.
+    pub translation: Vec3<f32>,
+    /// Rotation, unit quaternion `[w, x, y, z]`.
+    pub rotation: Quat<f32>,
+    /// Scale per axis.
+    pub scale: Vec3<f32>,
+}
+
+impl Default for Trs {
+    fn default() -> Self {
+        Trs {
+            translation: Vec3::zero(),
+            rotation: Quat::identity(),
+            scale: Vec3::new(1.0, 1.0, 1.0),
+        }
+    }
+}
+
+impl Trs {
+    /// The matrix `T · R · S`.
+    pub fn matrix(&self) -> Mat4<f32> {
+        let r = self.rotation.to_rotation_matrix();
+        let s = self.scale.to_array();
+        let m = chasles::Mat3::from_rows(core::array::from_fn(|i| {
+            core::array::from_fn(|j| r.m[i][j] * s[j])
+        }));
+        Mat4::from_rotation_translation(&m, self.translation)
+    }
+}
+
+/// A node of the scene hierarchy.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Node {
+    /// Its name ("" when unnamed).
+    pub name: String,
+    /// Its parent, if any.
+    pub parent: Option<usize>,
+    /// Rest (bind-scene) local transform.
+    pub rest: Trs,
+}
+
+/// The triangle mesh in its bind pose.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Mesh {
+    /// Vertex positions.
+    pub positions: Vec<Vec3<f32>>,
+    /// Vertex normals (unit; computed from the triangles when the file has none).
+    pub normals: Vec<Vec3<f32>>,
+    /// Triangles as vertex indices.
+    pub triangles: Vec<[u32; 3]>,
+}
+
+/// Per-vertex influences, any number per vertex, in compressed rows: the influences of
+/// vertex v are `joints[start[v]..start[v + 1]]` with `weights[…]`. Weights are
+/// non-negative and sum to 1 per vertex (normalized on construction).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Influences {
+    /// Row starts, one more than the vertex count.
+    pub start: Vec<u32>,
+    /// Joint indices (into the skin's joints).
+    pub joints: Vec<u16>,
+    /// Weights.
+    pub weights: Vec<f32>,
+}
+
+impl Influences {
+    /// Builds influences from per-vertex lists, dropping zero weights, checking joint
+    /// indices and weights, and normalizing each vertex's weights to sum to 1. Errors name
+    /// the vertex: a joint index out of range, a negative or non-finite weight, or weights
+    /// that sum to zero.
+    pub fn from_lists(lists: &[Vec<(usize, f32)>], joints: usize) -> Result<Self> {
+        let mut out = Influences {
+            start: Vec::with_capacity(lists.len() + 1),
+            joints: Vec::new(),
+            weights: Vec::new(),
+        };
+        out.start.push(0);
+        for (vertex, list) in lists.iter().enumerate() {
+            let mut sum = 0.0f64;
+            for &(joint, w) in list {
+                if !w.is_finite() || w < 0.0 {
+                    return Err(SkinError::BadWeights {
+                        vertex,
+                        reason: format!("weight {w} for joint {joint} is negative or not finite"),
+                    });
+                }
+                if w > 0.0 && joint >= joints {
+                    return Err(SkinError::JointOutOfRange {
+                        vertex,
+                        joint,
+                        joints,
+                    });
+                }
+                sum += f64::from(w);
+            }
+            if sum <= 0.0 {
+                return Err(SkinError::BadWeights {
+                    vertex,
+                    reason: "the weights sum to zero (the vertex is bound to no joint)".into(),
+                });
+            }
+            for &(joint, w) in list {
+                if w > 0.0 {
+                    out.joints.push(joint as u16);
+                    out.weights.push((f64::from(w) / sum) as f32);
+                }
+            }
+            out.start.push(out.joints.len() as u32);
+        }
+        if joints > usize::from(u16::MAX) {
+            return invalid(format!("{joints} joints: at most 65535 are supported"));
+        }
+        Ok(out)
+    }
+    /// Number of vertices.
+    pub fn vertices(&self) -> usize {
+        self.start.len().saturating_sub(1)
+    }
+    /// The (joint, weight) pairs of vertex v.
+    pub fn of(&self, v: usize) -> impl Iterator<Item = (usize, f32)> + '_ {
+        let (a, b) = (self.start[v] as usize, self.start[v + 1] as usize);
+        self.joints[a..b]
+            .iter()
+            .zip(&self.weights[a..b])
+            .map(|(j, w)| (usize::from(*j), *w))
+    }
+    /// The largest number of influences of any vertex.
+    pub fn max_per_vertex(&self) -> usize {
+        self.start
+            .windows(2)
+            .map(|w| (w[1] - w[0]) as usize)
+            .max()
+            .unwrap_or(0)
+    }
+}
+
+/// A rigged mesh.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Rig {
+    /// A name for messages (the file, or what built it).
+    pub name: String,
+    /// The bind-pose mesh.
+    pub mesh: Mesh,
+    /// All nodes of the hierarchy (joints and the nodes between them).
+    pub nodes: Vec<Node>,
+    /// The skin's joints, as node indices.
+    pub joints: Vec<usize>,
+    /// Inverse bind matrices, one per joint.
+    pub inverse_bind: Vec<Mat4<f32>>,
+    /// The influences of every vertex.
+    pub influences: Influences,
+    /// Animations of the nodes.
+    pub animations: Vec<Animation>,
+}
+
+impl Rig {
+    /// Checks the rig's consistency: counts, indices, finite numbers, an acyclic hierarchy.
+    pub fn validate(&self) -> Result<()> {
+        let n = self.mesh.positions.len();
+        if self.influences.vertices() != n {
+            return invalid(format!(
+                "{}: {} vertices but influences for {}",
+                self.name,
+                n,
+                self.influences.vertices()
+            ));
+        }
+        if self.mesh.normals.len() != n {
+            return invalid(format!(
+                "{}: {} vertices but {} normals",
+                self.name,
+                n,
+                self.mesh.normals.len()
+            ));
+        }
+        if let Some((i, t)) = self
+            .mesh
+            .triangles
+            .iter()
+            .enumerate()
+            .find(|(_, t)| t.iter().any(|v| *v as usize >= n))
+        {
+            return invalid(format!(
+                "{}: triangle {i} {:?} names a vertex out of range (there are {n})",
+                self.name, t
+            ));
+        }
+        if let Some(i) = self.mesh.positions.iter().position(|p| !p.is_finite()) {
+            return invalid(format!(
+                "{}: vertex {i} has a position that is not finite",
+                self.name
+            ));
+        }
+        if self.inverse_bind.len() != self.joints.len() {
+            return invalid(format!(
+                "{}: {} joints but {} inverse bind matrices",
+                self.name,
+                self.joints.len(),
+                self.inverse_bind.len()
+            ));
+        }
+        for (j, node) in self.joints.iter().enumerate() {
+            if *node >= self.nodes.len() {
+                return invalid(format!(
+                    "{}: joint {j} is node {node}, out of range (there are {})",
+                    self.name,
+                    self.nodes.len()
+                ));
+            }
+        }
+        for (i, node) in self.nodes.iter().enumerate() {
+            let mut seen = 0;
+            let mut p = node.parent;
+            while let Some(k) = p {
+                if k >= self.nodes.len() || seen > self.nodes.len() {
+                    return invalid(format!(
+                        "{}: node {i} has a broken or cyclic parent chain",
+                        self.name
+                    ));
+                }
+                p = self.nodes[k].parent;
+                seen += 1;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Unit normals of a triangle mesh, area-weighted; a vertex in no triangle gets +z.
+pub fn compute_normals(positions: &[Vec3<f32>], triangles: &[[u32; 3]]) -> Vec<Vec3<f32>> {
+    let mut n = vec![Vec3::zero(); positions.len()];
+    for t in triangles {
+        let [a, b, c] = t.map(|i| positions[i as usize]);
+        let f = (b - a).cross(c - a);
+        for i in t {
+            n[*i as usize] += f;
+        }
+    }
+    n.into_iter()
+        .map(|v| v.normalize().unwrap_or(Vec3::new(0.0, 0.0, 1.0)))
+        .collect()
+}

@@ -1,0 +1,310 @@
+//! The five real rigged models of ../shared/data/gltf (see its README): every one loads,
+//! plays its clips and skins with every method; the rest pose reproduces the bind mesh;
+//! linear blending loses volume where DQS does not; bad files get errors, not panics.
+
+use chasles::Vec3;
+use chasles_skin::animation::{Channel, Interpolation, Path as P};
+use chasles_skin::cylinder::{self, Motion};
+use chasles_skin::{
+    gltf_load, joint_transforms, skin, skin_joints, Influences, JointTransforms, Method, Pose,
+    SkinError,
+};
+use std::path::PathBuf;
+
+fn data(name: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../../shared/data/gltf")
+        .join(name)
+}
+
+/// (file, vertices, joints, clips) from the data README.
+const MODELS: [(&str, usize, usize, usize); 5] = [
+    ("CesiumMan.glb", 3273, 19, 1),
+    ("RiggedFigure.glb", 370, 19, 1),
+    ("RiggedSimple.glb", 160, 2, 1),
+    ("Fox.glb", 1728, 24, 3),
+    ("SimpleSkin.gltf", 10, 2, 1),
+];
+
+#[test]
+fn every_model_loads_plays_and_skins_with_every_method() {
+    for (file, verts, joints, clips) in MODELS {
+        let rig = gltf_load::load(&data(file)).unwrap_or_else(|e| panic!("{file}: {e}"));
+        assert_eq!(
+            (
+                rig.mesh.positions.len(),
+                rig.joints.len(),
+                rig.animations.len()
+            ),
+            (verts, joints, clips),
+            "{file}"
+        );
+        for v in 0..verts {
+            let s: f32 = rig.influences.of(v).map(|(_, w)| w).sum();
+            assert!(
+                (s - 1.0).abs() < 1e-6,
+                "{file}: vertex {v} weights sum to {s}"
+            );
+        }
+        // The bind pose (C_j = I) reproduces the bind mesh with every method.
+        let size = rig
+            .mesh
+            .positions
+            .iter()
+            .fold(0.0f32, |m, p| m.max(p.norm()));
+        for m in Method::ALL {
+            let bind = skin_joints(&rig, &JointTransforms::identity(joints), m).unwrap();
+            let err = bind
+                .positions
+                .iter()
+                .zip(&rig.mesh.positions)
+                .map(|(a, b)| (*a - *b).norm())
+                .fold(0.0f32, f32::max);
+            assert!(
+                err < 1e-5 * size.max(1.0),
+                "{file} {m:?}: bind pose moves vertices by {err}"
+            );
+            let nerr = bind
+                .normals
+                .iter()
+                .zip(&rig.mesh.normals)
+                .map(|(a, b)| (*a - *b).norm())
+                .fold(0.0f32, f32::max);
+            assert!(
+                nerr < 1e-5,
+                "{file} {m:?}: bind pose turns normals by {nerr}"
+            );
+        }
+        for (c, clip) in rig.animations.iter().enumerate() {
+            for k in 0..5 {
+                let t = clip.duration() * k as f32 / 4.0;
+                let pose = Pose::animated(&rig, c, t).unwrap();
+                for m in Method::ALL {
+                    let s = skin(&rig, &pose, m)
+                        .unwrap_or_else(|e| panic!("{file} clip {c} t {t} {m:?}: {e}"));
+                    assert!(s.positions.iter().all(|p| p.is_finite()));
+                    assert!(
+                        s.normals.iter().all(|n| (n.norm() - 1.0).abs() < 1e-3),
+                        "{file} {m:?}: normals unit"
+                    );
+                }
+                // The rigid methods agree with each other far more than with LBS where joints meet.
+                let dqs = skin(&rig, &pose, Method::Dqs).unwrap();
+                let dib = skin(&rig, &pose, Method::Dib).unwrap();
+                let d = dqs
+                    .positions
+                    .iter()
+                    .zip(&dib.positions)
+                    .map(|(a, b)| (*a - *b).norm())
+                    .fold(0.0f32, f32::max);
+                assert!(
+                    d < 0.05 * size.max(1.0),
+                    "{file}: DQS and DIB differ by {d}"
+                );
+            }
+        }
+    }
+}
+
+/// The smallest determinant of LBS's blended 3×3 over a clip (volume lost where < 1).
+fn lbs_min_det(file: &str, clip: &str) -> f32 {
+    let rig = gltf_load::load(&data(file)).unwrap();
+    let c = rig
+        .animations
+        .iter()
+        .position(|a| a.name == clip)
+        .unwrap_or(0);
+    let mut worst = f32::MAX;
+    for k in 0..=40 {
+        let t = rig.animations[c].duration() * k as f32 / 40.0;
+        let jt = joint_transforms(&rig, &Pose::animated(&rig, c, t).unwrap()).unwrap();
+        for v in 0..rig.mesh.positions.len() {
+            let mut a = chasles::Mat3::from_rows([[0.0f32; 3]; 3]);
+            for (j, w) in rig.influences.of(v) {
+                let m = jt.matrices[j].linear_part();
+                for r in 0..3 {
+                    for col in 0..3 {
+                        a.m[r][col] += m.m[r][col] * w;
+                    }
+                }
+            }
+            worst = worst.min(a.determinant());
+        }
+    }
+    worst
+}
+
+#[test]
+fn linear_blending_loses_volume_on_the_real_characters() {
+    // Data README: CesiumMan's walk reaches 0.47, Fox's Run 0.51 (an independent reader).
+    let c = lbs_min_det("CesiumMan.glb", "");
+    let f = lbs_min_det("Fox.glb", "Run");
+    assert!((c - 0.47).abs() < 0.03, "CesiumMan {c}");
+    assert!((f - 0.51).abs() < 0.03, "Fox {f}");
+}
+
+#[test]
+fn the_candy_wrapper_by_number() {
+    let rig = cylinder::twisted_cylinder();
+    let lbs = cylinder::measure(&rig, Method::Lbs, Motion::Twist, std::f32::consts::PI).unwrap();
+    let dqs = cylinder::measure(&rig, Method::Dqs, Motion::Twist, std::f32::consts::PI).unwrap();
+    assert!(lbs.radius < 0.01, "LBS collapses: {lbs:?}");
+    assert!(lbs.volume < 0.85);
+    assert!(
+        dqs.radius > 0.99 && (dqs.volume - 1.0).abs() < 0.01,
+        "DQS keeps the shape: {dqs:?}"
+    );
+    for deg in [0.0f32, 45.0, 90.0, 135.0, 180.0] {
+        let lbs = cylinder::measure(&rig, Method::Lbs, Motion::Twist, deg.to_radians()).unwrap();
+        // LBS's middle ring of a twist by θ has radius cos(θ/2) (half of each rotation).
+        assert!(
+            (lbs.radius - (deg.to_radians() / 2.0).cos()).abs() < 2e-3,
+            "{deg}: {lbs:?}"
+        );
+        for m in [Method::Dqs, Method::Dib, Method::Log] {
+            let r = cylinder::measure(&rig, m, Motion::Twist, deg.to_radians()).unwrap();
+            assert!(r.radius > 0.999, "{m:?} {deg}: {r:?}");
+        }
+    }
+    // Bending: DQS bulges a little (about 21 % at 150°), LBS thins.
+    let dqs = cylinder::measure(&rig, Method::Dqs, Motion::Bend, 150f32.to_radians()).unwrap();
+    let lbs = cylinder::measure(&rig, Method::Lbs, Motion::Bend, 150f32.to_radians()).unwrap();
+    assert!(dqs.bulge > 1.15 && dqs.bulge < 1.3, "{dqs:?}");
+    assert!(lbs.radius < 0.75 && lbs.bulge < 1.05, "{lbs:?}");
+}
+
+#[test]
+fn clip_sampling_follows_the_gltf_rules() {
+    let ch = |interpolation, values: Vec<[f32; 4]>| Channel {
+        node: 0,
+        path: P::Translation,
+        interpolation,
+        times: vec![0.0, 1.0, 3.0],
+        values,
+    };
+    let lin = ch(
+        Interpolation::Linear,
+        vec![[0.0; 4], [1.0, 2.0, 0.0, 0.0], [3.0, 2.0, 0.0, 0.0]],
+    );
+    assert_eq!(lin.sample(-1.0), [0.0; 4]);
+    assert_eq!(lin.sample(0.5), [0.5, 1.0, 0.0, 0.0]);
+    assert_eq!(lin.sample(2.0), [2.0, 2.0, 0.0, 0.0]);
+    assert_eq!(lin.sample(9.0), [3.0, 2.0, 0.0, 0.0]);
+    let step = ch(Interpolation::Step, lin.values.clone());
+    assert_eq!(step.sample(0.99), [0.0; 4]);
+    assert_eq!(step.sample(1.0), [1.0, 2.0, 0.0, 0.0]);
+    // Cubic spline through (0, 0), (1, 1), (3, 1) with zero tangents: Hermite smoothstep.
+    let z = [0.0; 4];
+    let cub = ch(
+        Interpolation::CubicSpline,
+        vec![
+            z,
+            [0.0; 4],
+            z,
+            z,
+            [1.0, 0.0, 0.0, 0.0],
+            z,
+            z,
+            [1.0, 0.0, 0.0, 0.0],
+            z,
+        ],
+    );
+    assert!((cub.sample(0.5)[0] - 0.5).abs() < 1e-6);
+    assert!((cub.sample(0.25)[0] - (3.0 * 0.0625 - 2.0 * 0.015625)).abs() < 1e-6);
+    assert!(cub.validate(1).is_ok() && lin.validate(1).is_ok());
+    assert!(
+        ch(Interpolation::CubicSpline, lin.values.clone())
+            .validate(1)
+            .is_err(),
+        "cubic needs 3 values per key"
+    );
+    // Rotations interpolate by Slerp the shorter way.
+    let rot = Channel {
+        node: 0,
+        path: P::Rotation,
+        interpolation: Interpolation::Linear,
+        times: vec![0.0, 1.0],
+        values: vec![
+            [1.0, 0.0, 0.0, 0.0],
+            [-(0.5f32.cos()), 0.0, 0.0, -(0.5f32.sin())],
+        ],
+    };
+    let q = chasles::Quat::from_array(rot.sample(0.5));
+    assert!(
+        (q.z - 0.25f32.sin()).abs() < 1e-6 && (q.w - 0.25f32.cos()).abs() < 1e-6,
+        "{q:?}"
+    );
+}
+
+#[test]
+fn bad_rigs_get_errors_naming_the_problem() {
+    assert!(matches!(
+        Influences::from_lists(&[vec![(0, 0.5), (7, 0.5)]], 2),
+        Err(SkinError::JointOutOfRange {
+            vertex: 0,
+            joint: 7,
+            joints: 2
+        })
+    ));
+    assert!(matches!(
+        Influences::from_lists(&[vec![(0, 1.0)], vec![(0, -0.5), (1, 1.5)]], 2),
+        Err(SkinError::BadWeights { vertex: 1, .. })
+    ));
+    assert!(matches!(
+        Influences::from_lists(&[vec![(0, f32::NAN)]], 2),
+        Err(SkinError::BadWeights { vertex: 0, .. })
+    ));
+    let e = Influences::from_lists(&[vec![(0, 0.0), (1, 0.0)]], 2).unwrap_err();
+    assert!(e.to_string().contains("sum to zero"), "{e}");
+    let dir = tempfile::tempdir().unwrap();
+    // Truncated files: every cut gives an error, never a panic.
+    let bytes = std::fs::read(data("RiggedSimple.glb")).unwrap();
+    for cut in [
+        10,
+        100,
+        1000,
+        bytes.len() / 2,
+        bytes.len() - 16,
+        bytes.len() - 1,
+    ] {
+        let p = dir.path().join(format!("cut{cut}.glb"));
+        std::fs::write(&p, &bytes[..cut]).unwrap();
+        assert!(gltf_load::load(&p).is_err(), "cut at {cut} loaded");
+    }
+    // A JSON glTF whose buffer is shorter than its accessors say.
+    let text = std::fs::read_to_string(data("SimpleSkin.gltf")).unwrap();
+    let mut v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let uri = v["buffers"][0]["uri"].as_str().unwrap().to_string();
+    let short = &uri[..uri.len() / 2];
+    v["buffers"][0]["uri"] = serde_json::Value::String(short.to_string());
+    let p = dir.path().join("short.gltf");
+    std::fs::write(&p, v.to_string()).unwrap();
+    let e = gltf_load::load(&p).unwrap_err();
+    assert!(
+        e.to_string().contains("truncated") || e.to_string().contains("base64"),
+        "{e}"
+    );
+    // No skin, missing file, not glTF.
+    let mut v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    for n in v["nodes"].as_array_mut().unwrap() {
+        n.as_object_mut().unwrap().remove("skin");
+    }
+    let p = dir.path().join("noskin.gltf");
+    std::fs::write(&p, v.to_string()).unwrap();
+    assert!(gltf_load::load(&p)
+        .unwrap_err()
+        .to_string()
+        .contains("nothing to skin"));
+    assert!(matches!(
+        gltf_load::load(&dir.path().join("nope.glb")),
+        Err(SkinError::Io { .. })
+    ));
+    let p = dir.path().join("junk.glb");
+    std::fs::write(&p, b"this is not gltf").unwrap();
+    assert!(matches!(gltf_load::load(&p), Err(SkinError::Gltf { .. })));
+    // An animation index or time out of range.
+    let rig = gltf_load::load(&data("SimpleSkin.gltf")).unwrap();
+    assert!(Pose::animated(&rig, 3, 0.0).is_err());
+    assert!(Pose::animated(&rig, 0, f32::NAN).is_err());
+    let _ = Vec3::<f32>::zero();
+}
