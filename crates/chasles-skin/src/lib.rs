@@ -12,10 +12,12 @@
 pub mod animation;
 pub mod cylinder;
 pub mod error;
+pub mod fast;
 pub mod gltf_load;
 pub mod pose;
 pub mod rig;
 pub mod skinning;
+pub mod synthetic;
 pub mod writers;
 
 pub use error::{Result, SkinError};

@@ -308,3 +308,62 @@ fn bad_rigs_get_errors_naming_the_problem() {
     assert!(Pose::animated(&rig, 0, f32::NAN).is_err());
     let _ = Vec3::<f32>::zero();
 }
+
+#[test]
+fn the_fast_path_agrees_with_the_reference() {
+    use chasles_skin::fast::{dqs, dual_quats8, lbs, matrices12, FastRig};
+    for (file, _, _, _) in MODELS {
+        let rig = gltf_load::load(&data(file)).unwrap();
+        let size = rig
+            .mesh
+            .positions
+            .iter()
+            .fold(1.0f32, |m, p| m.max(p.norm()));
+        let fast = FastRig::<4>::new(&rig).unwrap();
+        let fast8 = FastRig::<8>::new(&rig).unwrap();
+        for (c, clip) in rig.animations.iter().enumerate() {
+            let pose = Pose::animated(&rig, c, clip.duration() * 0.61).unwrap();
+            let jt = joint_transforms(&rig, &pose).unwrap();
+            for (m, method) in [(0, Method::Lbs), (1, Method::Dqs)] {
+                let want = skin(&rig, &pose, method).unwrap();
+                for parallel in [false, true] {
+                    let mut out = vec![[0f32; 6]; rig.mesh.positions.len()];
+                    let mut out8 = out.clone();
+                    if m == 0 {
+                        lbs(&fast, &matrices12(&jt), &mut out, parallel).unwrap();
+                        lbs(&fast8, &matrices12(&jt), &mut out8, parallel).unwrap();
+                    } else {
+                        dqs(&fast, &dual_quats8(&jt), &mut out, parallel).unwrap();
+                        dqs(&fast8, &dual_quats8(&jt), &mut out8, parallel).unwrap();
+                    }
+                    for (v, (o, o8)) in out.iter().zip(&out8).enumerate() {
+                        let p = Vec3::new(o[0], o[1], o[2]);
+                        let n = Vec3::new(o[3], o[4], o[5]);
+                        assert!(
+                            (p - want.positions[v]).norm() <= 1e-5 * size,
+                            "{file} {method:?} vertex {v}: {p:?} vs {:?}",
+                            want.positions[v]
+                        );
+                        assert!(
+                            (n - want.normals[v]).norm() <= 1e-5,
+                            "{file} {method:?} normal {v}"
+                        );
+                        assert_eq!(o, o8, "K = 4 and K = 8 agree");
+                    }
+                }
+            }
+        }
+    }
+    let rig = gltf_load::load(&data("Fox.glb")).unwrap();
+    let fast = FastRig::<4>::new(&rig).unwrap();
+    let mut short = vec![[0f32; 6]; 3];
+    assert!(
+        lbs(&fast, &[[0.0; 12]; 24], &mut short, false).is_err(),
+        "output size checked"
+    );
+    let mut out = vec![[0f32; 6]; 1728];
+    assert!(
+        dqs(&fast, &[[0.0; 8]; 3], &mut out, false).is_err(),
+        "joint count checked"
+    );
+}

@@ -1,0 +1,79 @@
+//! Synthetic rigs for benchmarks: n vertices with random positions and normals, 4 random
+//! distinct joints per vertex with random convex weights, and random rigid joint
+//! transforms within 60° of the identity (as in skinning). Deterministic for a seed.
+
+use crate::fast::{FastRig, Vertex};
+use crate::pose::JointTransforms;
+use chasles::{DualQuat, Quat, Vec3};
+
+/// A tiny deterministic generator (SplitMix64) — benchmarks need speed and repeatability,
+/// not statistical quality.
+struct Mix(u64);
+impl Mix {
+    fn next(&mut self) -> f32 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        ((z ^ (z >> 31)) >> 40) as f32 / (1u64 << 24) as f32
+    }
+}
+
+/// A fast-path rig of `n` vertices and `joints` joints (4 influences per vertex).
+pub fn rig(n: usize, joints: usize, seed: u64) -> FastRig<4> {
+    let mut r = Mix(seed);
+    let vertices = (0..n)
+        .map(|_| {
+            let p = [
+                r.next() * 2.0 - 1.0,
+                r.next() * 2.0 - 1.0,
+                r.next() * 2.0 - 1.0,
+            ];
+            let nn = Vec3::new(r.next() - 0.5, r.next() - 0.5, r.next() - 0.5)
+                .normalize()
+                .unwrap_or(Vec3::new(0.0, 0.0, 1.0));
+            let mut j = [0u16; 4];
+            for k in 0..4 {
+                loop {
+                    let c = ((r.next() * joints as f32) as usize).min(joints - 1) as u16;
+                    if !j[..k].contains(&c) {
+                        j[k] = c;
+                        break;
+                    }
+                }
+            }
+            let mut w = [
+                r.next() + 0.1,
+                r.next() * 0.5,
+                r.next() * 0.3,
+                r.next() * 0.1,
+            ];
+            let s: f32 = w.iter().sum();
+            w.iter_mut().for_each(|x| *x /= s);
+            Vertex {
+                p,
+                n: nn.to_array(),
+                j,
+                w,
+            }
+        })
+        .collect();
+    FastRig { vertices, joints }
+}
+
+/// Random rigid joint transforms within 60° of the identity.
+pub fn joints(joints: usize, seed: u64) -> JointTransforms {
+    let mut r = Mix(seed ^ 0xABCD);
+    let dual_quats: Vec<DualQuat<f32>> = (0..joints)
+        .map(|_| {
+            let axis = Vec3::new(r.next() - 0.5, r.next() - 0.5, r.next() - 0.5);
+            let q = Quat::from_axis_angle(axis, r.next() * 1.0).unwrap_or(Quat::identity());
+            DualQuat::from_rotation_translation(q, Vec3::new(r.next(), r.next(), r.next()))
+        })
+        .collect();
+    JointTransforms {
+        matrices: dual_quats.iter().map(|d| d.to_matrix4()).collect(),
+        dual_quats,
+        non_rigidity: 0.0,
+    }
+}
