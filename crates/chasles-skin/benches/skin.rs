@@ -22,8 +22,8 @@ fn careful_glam_dqs(v: &[chasles_skin::fast::Vertex<4>], d: &[(Quat, Quat)], out
         for k in 0..4 {
             let (qr, qe) = d[usize::from(v.j[k])];
             let w = if qr.dot(p0) < 0.0 { -v.w[k] } else { v.w[k] };
-            r = r + qr * w;
-            e = e + qe * w;
+            r += qr * w;
+            e += qe * w;
         }
         let inv = 1.0 / r.length();
         let (r, e) = (r * inv, e * inv);
