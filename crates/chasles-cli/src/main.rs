@@ -123,7 +123,7 @@ enum Command {
     ///   chasles skin --artifacts      (the candy-wrapper table on a twisted cylinder)
     #[command(verbatim_doc_comment)]
     Skin {
-        /// The rig, .gltf or .glb.
+        /// The rig: .gltf, .glb, or .json (the plain format of chasles_skin::json_rig).
         #[arg(long)]
         rig: Option<std::path::PathBuf>,
         /// The clip, by name or index (default: the first, when --time or --all-frames is given).
@@ -132,6 +132,9 @@ enum Command {
         /// Time in the clip, seconds (default 0; without --anim and --time: the rest pose).
         #[arg(long, allow_negative_numbers = true)]
         time: Option<f32>,
+        /// A JSON pose, {"joints": {name or index: {rotation, translation, scale}}}, instead of a clip.
+        #[arg(long)]
+        pose: Option<std::path::PathBuf>,
         /// lbs, dqs, dib, log or qlb.
         #[arg(long, default_value = "dqs")]
         method: String,
@@ -215,6 +218,7 @@ fn main() {
             rig,
             anim,
             time,
+            pose,
             method,
             out,
             all_frames,
@@ -224,6 +228,7 @@ fn main() {
             rig,
             anim,
             time,
+            pose,
             method,
             out,
             all_frames,

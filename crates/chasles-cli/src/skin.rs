@@ -4,7 +4,7 @@
 use crate::output::{extension, write_atomic};
 use anyhow::{anyhow, bail, Context, Result};
 use chasles_skin::cylinder::{self, Motion};
-use chasles_skin::{gltf_load, skin, writers, Method, Pose, Rig, Skinned};
+use chasles_skin::{json_rig, skin, writers, Method, Pose, Rig, Skinned};
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::{Path, PathBuf};
 
@@ -16,6 +16,8 @@ pub struct SkinArgs {
     pub anim: Option<String>,
     /// The time in the clip (seconds).
     pub time: Option<f32>,
+    /// A JSON pose file instead of a clip.
+    pub pose: Option<PathBuf>,
     /// The method name.
     pub method: String,
     /// Output file (.obj, .ply, .json) or, with `all_frames`, a folder.
@@ -133,14 +135,7 @@ pub fn run(a: SkinArgs) -> Result<()> {
         .rig
         .as_ref()
         .ok_or_else(|| anyhow!("--rig FILE is required (or --artifacts)"))?;
-    let ext = extension(rig_path);
-    if ext != "gltf" && ext != "glb" {
-        bail!(
-            "{}: rigs are read from .gltf or .glb files",
-            rig_path.display()
-        );
-    }
-    let rig = gltf_load::load(rig_path)?;
+    let rig = chasles_skin::load(rig_path)?;
     let out = a.out.as_ref().ok_or_else(|| anyhow!("--out is required"))?;
     if a.all_frames {
         if !(a.fps > 0.0 && a.fps.is_finite() && a.fps <= 1000.0) {
@@ -172,7 +167,19 @@ pub fn run(a: SkinArgs) -> Result<()> {
         );
         return Ok(());
     }
+    if a.pose.is_some() && (a.anim.is_some() || a.time.is_some()) {
+        bail!("give either --pose or --anim/--time, not both");
+    }
     let (pose, when) = match (&a.anim, a.time) {
+        _ if a.pose.is_some() => {
+            let p = a.pose.as_ref().unwrap_or_else(|| unreachable!());
+            let text = std::fs::read_to_string(p)
+                .with_context(|| format!("cannot read {}", p.display()))?;
+            (
+                json_rig::parse_pose(&text, &rig, &p.display().to_string())?,
+                format!("the pose of {}", p.display()),
+            )
+        }
         (None, None) => (Pose::rest(&rig), "the rest pose".to_string()),
         (anim, t) => {
             let c = clip(&rig, anim)?;

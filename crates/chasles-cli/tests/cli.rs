@@ -894,3 +894,56 @@ fn skin_errors_are_one_line_and_leave_no_file() {
         assert!(!out.exists(), "{a:?} left a file");
     }
 }
+
+#[test]
+fn skin_json_rig_with_a_pose_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let rig = dir.path().join("strip.json");
+    std::fs::write(
+        &rig,
+        r#"{"positions": [[0,0,0],[1,0,0],[2,0,0],[0,1,0],[1,1,0],[2,1,0]],
+      "triangles": [[0,1,4],[0,4,3],[1,2,5],[1,5,4]],
+      "joints": [{"name": "a"}, {"name": "b", "parent": 0, "translation": [1,0,0]}],
+      "influences": [[[0,1]],[[0,0.5],[1,0.5]],[[1,1]],[[0,1]],[[0,0.5],[1,0.5]],[[1,1]]]}"#,
+    )
+    .unwrap();
+    let pose = dir.path().join("pose.json");
+    std::fs::write(
+        &pose,
+        r#"{"joints": {"b": {"rotation": [0.7071067811865476, 0, 0, 0.7071067811865476]}}}"#,
+    )
+    .unwrap();
+    let out = dir.path().join("out.json");
+    stdout(&chasles(&[
+        "skin",
+        "--rig",
+        rig.to_str().unwrap(),
+        "--pose",
+        pose.to_str().unwrap(),
+        "--method",
+        "dib",
+        "--out",
+        out.to_str().unwrap(),
+    ]));
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+    let p2: Vec<f64> = v["positions"][2]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect();
+    assert_close(&p2, &[1.0, 1.0, 0.0], 1e-6);
+    let o = chasles(&[
+        "skin",
+        "--rig",
+        rig.to_str().unwrap(),
+        "--pose",
+        pose.to_str().unwrap(),
+        "--time",
+        "1",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(String::from_utf8_lossy(&o.stderr).contains("not both"));
+}

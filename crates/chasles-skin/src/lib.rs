@@ -2,7 +2,7 @@
 //!
 //! The case study of Kavan et al. 2006, §6, on real rigged meshes: a [`rig::Rig`] (mesh,
 //! node hierarchy, skin, per-vertex influences, animations) loaded from glTF 2.0
-//! ([`gltf_load`]), posed ([`pose`]), and deformed by [`skinning`] with linear blend
+//! ([`gltf_load`]) or a plain JSON format ([`json_rig`]), posed ([`pose`]), and deformed by [`skinning`] with linear blend
 //! skinning, dual quaternion skinning and the other blends of `chasles::blend`. The
 //! candy-wrapper artifact is measured on a twisted cylinder built in code ([`cylinder`]).
 //! Deformed meshes are written as OBJ or PLY ([`writers`]).
@@ -14,6 +14,7 @@ pub mod cylinder;
 pub mod error;
 pub mod fast;
 pub mod gltf_load;
+pub mod json_rig;
 pub mod pose;
 pub mod rig;
 pub mod skinning;
@@ -21,6 +22,29 @@ pub mod synthetic;
 pub mod writers;
 
 pub use error::{Result, SkinError};
+
+/// Loads a rig from `.gltf`, `.glb` or `.json` (by extension).
+pub fn load(path: &std::path::Path) -> Result<Rig> {
+    match path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase)
+        .as_deref()
+    {
+        Some("gltf") | Some("glb") => gltf_load::load(path),
+        Some("json") => {
+            let text = std::fs::read_to_string(path).map_err(|source| SkinError::Io {
+                path: path.display().to_string(),
+                source,
+            })?;
+            json_rig::parse_rig(&text, &path.display().to_string())
+        }
+        _ => Err(SkinError::Invalid(format!(
+            "{}: rigs are read from .gltf, .glb or .json files",
+            path.display()
+        ))),
+    }
+}
 pub use pose::{joint_transforms, JointTransforms, Pose};
 pub use rig::{Influences, Mesh, Node, Rig, Trs};
 pub use skinning::{skin, skin_joints, Method, Skinned};

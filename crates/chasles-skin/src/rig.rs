@@ -238,9 +238,13 @@ impl Rig {
 }
 
 /// Unit normals of a triangle mesh, area-weighted; a vertex in no triangle gets +z.
+/// Triangles naming vertices out of range are skipped (validation reports them).
 pub fn compute_normals(positions: &[Vec3<f32>], triangles: &[[u32; 3]]) -> Vec<Vec3<f32>> {
     let mut n = vec![Vec3::zero(); positions.len()];
-    for t in triangles {
+    for t in triangles
+        .iter()
+        .filter(|t| t.iter().all(|i| (*i as usize) < positions.len()))
+    {
         let [a, b, c] = t.map(|i| positions[i as usize]);
         let f = (b - a).cross(c - a);
         for i in t {

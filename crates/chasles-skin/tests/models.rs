@@ -367,3 +367,125 @@ fn the_fast_path_agrees_with_the_reference() {
         "joint count checked"
     );
 }
+
+const STRIP: &str = r#"{"positions": [[0,0,0],[1,0,0],[2,0,0],[0,1,0],[1,1,0],[2,1,0]],
+ "triangles": [[0,1,4],[0,4,3],[1,2,5],[1,5,4]],
+ "joints": [{"name": "a"}, {"name": "b", "parent": 0, "translation": [1,0,0]}],
+ "influences": [[[0,1]],[[0,0.5],[1,0.5]],[[1,1]],[[0,1]],[[0,0.5],[1,0.5]],[[1,1]]]}"#;
+
+#[test]
+fn json_rigs_and_poses() {
+    use chasles_skin::json_rig::{parse_pose, parse_rig};
+    let rig = parse_rig(STRIP, "strip").unwrap();
+    assert_eq!(
+        rig.mesh.normals[0],
+        Vec3::new(0.0, 0.0, 1.0),
+        "normals computed from the triangles"
+    );
+    let h = std::f32::consts::FRAC_1_SQRT_2;
+    let pose = parse_pose(
+        &format!(r#"{{"joints": {{"b": {{"rotation": [{h}, 0, 0, {h}]}}}}}}"#),
+        &rig,
+        "pose",
+    )
+    .unwrap();
+    let s = skin(&rig, &pose, Method::Dqs).unwrap();
+    // Joint b at (1, 0, 0) turns 90° about z: (2, 0, 0) → (1, 1, 0); the half-weighted
+    // vertex (1, 1, 0) turns 45° about the joint.
+    assert!((s.positions[2] - Vec3::new(1.0, 1.0, 0.0)).norm() < 1e-6);
+    assert!((s.positions[4] - Vec3::new(1.0 - h, h, 0.0)).norm() < 1e-6);
+    let by_index = parse_pose(
+        &format!(r#"{{"joints": {{"1": {{"rotation": [{h}, 0, 0, {h}]}}}}}}"#),
+        &rig,
+        "pose",
+    )
+    .unwrap();
+    assert_eq!(by_index, pose);
+    let bad: &[(&str, &str)] = &[
+        (
+            r#"{"positions": [[0,0,0]], "triangles": [], "joints": [{"name": "a"}], "influences": [[[3, 1]]]}"#,
+            "joint index 3 out of range",
+        ),
+        (
+            r#"{"positions": [[0,0,0]], "triangles": [], "joints": [{"name": "a"}], "influences": [[[0, -1]]]}"#,
+            "negative",
+        ),
+        (
+            r#"{"positions": [[0,0,0]], "triangles": [], "joints": [{"name": "a"}], "influences": [[[0, 0]]]}"#,
+            "sum to zero",
+        ),
+        (
+            r#"{"positions": [[0,0]], "triangles": [], "joints": [], "influences": []}"#,
+            "positions[0]",
+        ),
+        (
+            r#"{"positions": [[0,0,0]], "triangles": [[0,0,5]], "joints": [{"name": "a"}], "influences": [[[0, 1]]]}"#,
+            "triangle 0",
+        ),
+        (
+            r#"{"positions": [[0,0,0]], "triangles": [], "joints": [{"name": "a", "rotation": [0,0,0,0]}], "influences": [[[0, 1]]]}"#,
+            "joints[0].rotation",
+        ),
+        (
+            r#"{"positions": [[0,0,0]], "triangles": [], "joints": [{"name": "a", "parent": 0}], "influences": [[[0, 1]]]}"#,
+            "parents must come before",
+        ),
+        (
+            r#"{"positions": [[0,0,0]], "triangles": [], "joints": [{"name": "a"}]}"#,
+            "missing field 'influences'",
+        ),
+        ("[1, 2", "not valid JSON"),
+    ];
+    for (text, needle) in bad {
+        let e = parse_rig(text, "r").unwrap_err().to_string();
+        assert!(e.contains(needle), "{text}: {e}");
+    }
+    assert!(parse_pose(r#"{"joints": {"knee": {}}}"#, &rig, "p")
+        .unwrap_err()
+        .to_string()
+        .contains("'knee'"));
+    assert!(
+        parse_pose(r#"{"joints": {"b": {"scale": [1, 2]}}}"#, &rig, "p")
+            .unwrap_err()
+            .to_string()
+            .contains("joints.b.scale")
+    );
+}
+
+#[test]
+fn mutated_files_never_panic() {
+    // Deterministic byte mutations of a .glb and a .gltf: loading and skinning either
+    // succeed or return an error; no panic.
+    let dir = tempfile::tempdir().unwrap();
+    let mut seed = 0x1234_5678_9abc_def0u64;
+    let mut next = || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        seed
+    };
+    for file in ["RiggedSimple.glb", "SimpleSkin.gltf"] {
+        let bytes = std::fs::read(data(file)).unwrap();
+        for round in 0..300 {
+            let mut b = bytes.clone();
+            for _ in 0..1 + next() % 8 {
+                let i = (next() as usize) % b.len();
+                b[i] = next() as u8;
+            }
+            let p = dir.path().join(format!("m{round}-{file}"));
+            std::fs::write(&p, &b).unwrap();
+            let r = std::panic::catch_unwind(|| {
+                if let Ok(rig) = gltf_load::load(&p) {
+                    for c in 0..rig.animations.len() {
+                        if let Ok(pose) = Pose::animated(&rig, c, 0.3) {
+                            for m in Method::ALL {
+                                let _ = skin(&rig, &pose, m);
+                            }
+                        }
+                    }
+                }
+            });
+            assert!(r.is_ok(), "{file}, mutation round {round}: panicked");
+        }
+    }
+}
