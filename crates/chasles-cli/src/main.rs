@@ -115,7 +115,7 @@ enum Command {
         #[arg(long)]
         claims: bool,
     },
-    /// Skin a rigged glTF mesh (lbs, dqs, dib, log, qlb), one pose or a whole clip (Kavan et al. 2006, §6).
+    /// Skin a rigged mesh (lbs, dqs, dib, log, qlb, sbs), one pose or a whole clip (Kavan et al. 2006, §6).
     ///
     /// Examples:
     ///   chasles skin --rig Fox.glb --anim Run --time 0.4 --method dqs --out fox.obj
@@ -135,7 +135,7 @@ enum Command {
         /// A JSON pose, {"joints": {name or index: {rotation, translation, scale}}}, instead of a clip.
         #[arg(long)]
         pose: Option<std::path::PathBuf>,
-        /// lbs, dqs, dib, log or qlb.
+        /// lbs, dqs, dib, log, qlb or sbs.
         #[arg(long, default_value = "dqs")]
         method: String,
         /// Output .obj, .ply or .json; with --all-frames, a folder for frame_NNNNN.obj files.

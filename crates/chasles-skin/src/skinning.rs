@@ -12,6 +12,13 @@
 //!   computed once per pose.
 //! * [`Method::Qlb`] — decomposed QLB about the joints (Hejl 2004): rotations by QLB,
 //!   translations blended linearly about the weighted bind-pose joint centre of the vertex.
+//! * [`Method::Sbs`] — spherical blend skinning (Kavan & Žára 2005): rotations by QLB about
+//!   a *rotation centre* per cluster of vertices that share the same joints — the point r
+//!   whose images under the cluster's joint transforms agree best, by least squares:
+//!   `min Σ_{a<b} ‖(R_a − R_b) r + t_a − t_b‖²`. The normal equations are solved with a
+//!   small Tikhonov term pulling r towards the cluster's weighted joint centre, where the
+//!   problem is rank-deficient (equal rotations; the paper uses the SVD's pseudo-inverse).
+//!   Clusters of one joint move rigidly.
 //!
 //! This is the reference path: plain per-vertex loops in f32, easy to check. Scaled joints
 //! (non-rigid `Cⱼ`) are exact in LBS only; the other methods use the nearest rotation (see
@@ -36,16 +43,19 @@ pub enum Method {
     Log,
     /// Decomposed quaternion linear blending about the joints (Hejl).
     Qlb,
+    /// Spherical blend skinning (Kavan & Žára 2005).
+    Sbs,
 }
 
 impl Method {
     /// All methods.
-    pub const ALL: [Method; 5] = [
+    pub const ALL: [Method; 6] = [
         Method::Lbs,
         Method::Dqs,
         Method::Dib,
         Method::Log,
         Method::Qlb,
+        Method::Sbs,
     ];
     /// The command-line name.
     pub fn name(self) -> &'static str {
@@ -55,6 +65,7 @@ impl Method {
             Method::Dib => "dib",
             Method::Log => "log",
             Method::Qlb => "qlb",
+            Method::Sbs => "sbs",
         }
     }
     /// The method of a command-line name.
@@ -120,6 +131,8 @@ pub fn skin_joints(rig: &Rig, jt: &JointTransforms, method: Method) -> Result<Sk
         .iter()
         .map(rigid_inverse_translation)
         .collect();
+    let mut sbs_centres: std::collections::HashMap<Vec<u16>, Vec3<f32>> =
+        std::collections::HashMap::new();
     for v in 0..n {
         let p = rig.mesh.positions[v];
         let nrm = rig.mesh.normals[v];
@@ -155,20 +168,34 @@ pub fn skin_joints(rig: &Rig, jt: &JointTransforms, method: Method) -> Result<Sk
                 positions.push(b.transform_point(p));
                 normals.push(unit(b.real.rotate(nrm), nrm));
             }
-            Method::Dib | Method::Qlb => {
+            Method::Dib | Method::Qlb | Method::Sbs => {
                 let (q, w): (Vec<DualQuat<f32>>, Vec<f32>) = rig
                     .influences
                     .of(v)
                     .map(|(j, w)| (jt.dual_quats[j], w))
                     .unzip();
-                let b = if method == Method::Dib {
-                    dib(&q, &w, 1e-5, 8)?.0
-                } else {
-                    let centre = rig
-                        .influences
+                let joint_centre = || {
+                    rig.influences
                         .of(v)
-                        .fold(Vec3::zero(), |c, (j, w)| c + centres[j] * w);
-                    qlb(&q, &w, centre)?
+                        .fold(Vec3::zero(), |c, (j, w)| c + centres[j] * w)
+                };
+                let b = match method {
+                    Method::Dib => dib(&q, &w, 1e-5, 8)?.0,
+                    Method::Qlb => qlb(&q, &w, joint_centre())?,
+                    _ => {
+                        let mut key: Vec<u16> =
+                            rig.influences.of(v).map(|(j, _)| j as u16).collect();
+                        key.sort_unstable();
+                        let c = match sbs_centres.get(&key) {
+                            Some(c) => *c,
+                            None => {
+                                let c = rotation_centre(&key, &jt.matrices, joint_centre());
+                                sbs_centres.insert(key, c);
+                                c
+                            }
+                        };
+                        qlb(&q, &w, c)?
+                    }
                 };
                 positions.push(b.transform_point(p));
                 normals.push(unit(b.real.rotate(nrm), nrm));
@@ -196,6 +223,38 @@ pub fn skin_joints(rig: &Rig, jt: &JointTransforms, method: Method) -> Result<Sk
         ));
     }
     Ok(Skinned { positions, normals })
+}
+
+/// The SBS rotation centre of a cluster: `min Σ_{a<b} ‖(R_a − R_b) r + t_a − t_b‖²`, with
+/// a Tikhonov pull towards `prior` (1e-6 of the trace) for the rank-deficient directions.
+fn rotation_centre(joints: &[u16], m: &[Mat4<f32>], prior: Vec3<f32>) -> Vec3<f32> {
+    let mut a = [[0f64; 3]; 3];
+    let mut b = [0f64; 3];
+    for (i, ja) in joints.iter().enumerate() {
+        for jb in &joints[i + 1..] {
+            let (ma, mb) = (&m[usize::from(*ja)], &m[usize::from(*jb)]);
+            let d: [[f64; 3]; 3] = core::array::from_fn(|r| {
+                core::array::from_fn(|c| f64::from(ma.m[r][c] - mb.m[r][c]))
+            });
+            let e: [f64; 3] = core::array::from_fn(|r| f64::from(ma.m[r][3] - mb.m[r][3]));
+            for r in 0..3 {
+                for c in 0..3 {
+                    a[r][c] += (0..3).map(|k| d[k][r] * d[k][c]).sum::<f64>();
+                }
+                b[r] -= (0..3).map(|k| d[k][r] * e[k]).sum::<f64>();
+            }
+        }
+    }
+    let lambda = 1e-6 * (a[0][0] + a[1][1] + a[2][2]) + 1e-12;
+    let p = prior.cast::<f64>().to_array();
+    for r in 0..3 {
+        a[r][r] += lambda;
+        b[r] += lambda * p[r];
+    }
+    match Mat3::from_rows(a).inverse() {
+        Some(inv) => inv.mul_vec(Vec3::from_array(b)).cast(),
+        None => prior,
+    }
 }
 
 /// The rigid matrix nearest to m: its 3×3 block replaced by the nearest rotation.
