@@ -28,6 +28,8 @@ pub struct SkinArgs {
     pub fps: f32,
     /// Print the candy-wrapper table instead.
     pub artifacts: bool,
+    /// Measure speed instead.
+    pub bench: bool,
 }
 
 fn method(name: &str) -> Result<Method> {
@@ -71,18 +73,20 @@ fn clip(rig: &Rig, anim: &Option<String>) -> Result<usize> {
     }
 }
 
-fn encode(rig: &Rig, s: &Skinned, path: &Path, comment: &str) -> Result<String> {
+fn encode(rig: &Rig, s: &Skinned, path: &Path, comment: &str) -> Result<Vec<u8>> {
     Ok(match extension(path).as_str() {
-        "obj" => writers::obj(&rig.mesh, s, comment),
-        "ply" => writers::ply(&rig.mesh, s, comment),
+        "obj" => writers::obj(&rig.mesh, s, comment).into_bytes(),
+        "ply" => writers::ply(&rig.mesh, s, comment).into_bytes(),
+        "glb" => writers::glb(&rig.mesh, s, comment),
         "json" => serde_json::json!({
             "comment": comment,
             "positions": s.positions.iter().map(|p| p.to_array()).collect::<Vec<_>>(),
             "normals": s.normals.iter().map(|p| p.to_array()).collect::<Vec<_>>(),
             "triangles": rig.mesh.triangles,
         })
-        .to_string(),
-        other => bail!("--out must end in .obj, .ply or .json (got '.{other}')"),
+        .to_string()
+        .into_bytes(),
+        other => bail!("--out must end in .obj, .ply, .glb or .json (got '.{other}')"),
     })
 }
 
@@ -124,8 +128,77 @@ pub fn artifacts_table() -> Result<String> {
     Ok(out)
 }
 
+/// Median seconds of `f` over `runs` runs after one warm-up.
+fn median_secs(runs: usize, mut f: impl FnMut() -> Result<()>) -> Result<f64> {
+    f()?;
+    let mut t = Vec::with_capacity(runs);
+    for _ in 0..runs {
+        let start = std::time::Instant::now();
+        f()?;
+        t.push(start.elapsed().as_secs_f64());
+    }
+    t.sort_by(f64::total_cmp);
+    Ok(t[runs / 2])
+}
+
+/// `chasles skin --bench`: vertices per second of the fast LBS and DQS on synthetic meshes
+/// (54 joints, 4 influences), one thread and all threads, against a memory copy of the 72
+/// bytes each vertex must move; medians of 7 runs.
+pub fn bench() -> Result<()> {
+    use chasles_skin::fast::{dqs, dual_quats8, lbs, matrices12};
+    use chasles_skin::synthetic;
+    println!("| vertices | method | threads | M vertices/s | share of the bandwidth bound |");
+    println!("|---|---|---|---|---|");
+    let mut ratios = Vec::new();
+    for n in [100_000usize, 1_000_000] {
+        let rig = synthetic::rig(n, 54, 7);
+        let jt = synthetic::joints(54, 7);
+        let (m12, d8) = (matrices12(&jt), dual_quats8(&jt));
+        let mut out = vec![[0f32; 6]; n];
+        let src = vec![1u8; n * 36];
+        let mut dst = vec![0u8; n * 36];
+        let copy = median_secs(7, || {
+            dst.copy_from_slice(std::hint::black_box(&src));
+            Ok(())
+        })?;
+        let bound = n as f64 / copy;
+        println!(
+            "| {n} | memcpy (72 B moved per vertex) | 1 | {:.1} | 1 |",
+            bound / 1e6
+        );
+        for parallel in [false, true] {
+            let threads = if parallel {
+                rayon::current_num_threads()
+            } else {
+                1
+            };
+            let l = n as f64 / median_secs(7, || Ok(lbs(&rig, &m12, &mut out, parallel)?))?;
+            let d = n as f64 / median_secs(7, || Ok(dqs(&rig, &d8, &mut out, parallel)?))?;
+            println!(
+                "| {n} | lbs | {threads} | {:.1} | {:.2} |",
+                l / 1e6,
+                l / bound
+            );
+            println!(
+                "| {n} | dqs | {threads} | {:.1} | {:.2} |",
+                d / 1e6,
+                d / bound
+            );
+            ratios.push((n, threads, l / d));
+        }
+    }
+    println!();
+    for (n, threads, r) in ratios {
+        println!("{n} vertices, {threads} thread(s): DQS costs {r:.2}× LBS");
+    }
+    Ok(())
+}
+
 /// Runs `chasles skin`.
 pub fn run(a: SkinArgs) -> Result<()> {
+    if a.bench {
+        return bench();
+    }
     if a.artifacts {
         print!("{}", artifacts_table()?);
         return Ok(());
@@ -155,7 +228,7 @@ pub fn run(a: SkinArgs) -> Result<()> {
             let s = skin(&rig, &Pose::animated(&rig, c, t)?, m)?;
             let file = out.join(format!("frame_{f:05}.obj"));
             let comment = format!("{} skinned with {} at t = {t} s", rig.name, m.name());
-            write_atomic(&file, encode(&rig, &s, &file, &comment)?.as_bytes())?;
+            write_atomic(&file, &encode(&rig, &s, &file, &comment)?)?;
             bar.inc(1);
         }
         bar.finish_and_clear();
@@ -192,8 +265,8 @@ pub fn run(a: SkinArgs) -> Result<()> {
     };
     let s = skin(&rig, &pose, m)?;
     let comment = format!("{} skinned with {} in {when}", rig.name, m.name());
-    let text = encode(&rig, &s, out, &comment)?;
-    write_atomic(out, text.as_bytes())?;
+    let bytes = encode(&rig, &s, out, &comment)?;
+    write_atomic(out, &bytes)?;
     println!(
         "{}: {} vertices, {} joints, skinned with {} in {when}; wrote {}",
         rig.name,

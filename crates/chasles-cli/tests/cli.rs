@@ -849,7 +849,7 @@ fn skin_errors_are_one_line_and_leave_no_file() {
                 "--out".into(),
                 dir.path().join("x.txt").to_str().unwrap().into(),
             ],
-            ".obj, .ply or .json",
+            ".obj, .ply, .glb or .json",
         ),
         (
             vec![

@@ -1,4 +1,4 @@
-//! Writing deformed meshes: Wavefront OBJ and ASCII PLY, with normals. These build the file
+//! Writing deformed meshes: Wavefront OBJ, ASCII PLY and binary glTF (`.glb`), with normals. These build the file
 //! text; writing it whole or not at all is the caller's job (the CLI writes through a
 //! temporary file and a rename).
 
@@ -42,5 +42,67 @@ pub fn ply(mesh: &Mesh, s: &Skinned, comment: &str) -> String {
     for t in &mesh.triangles {
         let _ = writeln!(out, "3 {} {} {}", t[0], t[1], t[2]);
     }
+    out
+}
+
+/// A binary glTF 2.0 (`.glb`) of the deformed mesh: one node, one mesh, POSITION (with
+/// the min/max the specification requires), NORMAL and u32 indices in one buffer.
+pub fn glb(mesh: &Mesh, s: &Skinned, comment: &str) -> Vec<u8> {
+    let n = s.positions.len();
+    let mut bin: Vec<u8> = Vec::with_capacity(n * 24 + mesh.triangles.len() * 12);
+    let (mut lo, mut hi) = ([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]);
+    for p in &s.positions {
+        for (k, v) in p.to_array().iter().enumerate() {
+            lo[k] = lo[k].min(*v);
+            hi[k] = hi[k].max(*v);
+            bin.extend_from_slice(&v.to_le_bytes());
+        }
+    }
+    if n == 0 {
+        (lo, hi) = ([0.0; 3], [0.0; 3]);
+    }
+    for v in s.normals.iter().flat_map(|p| p.to_array()) {
+        bin.extend_from_slice(&v.to_le_bytes());
+    }
+    for i in mesh.triangles.iter().flatten() {
+        bin.extend_from_slice(&i.to_le_bytes());
+    }
+    let (pos_len, idx_len) = (n * 12, mesh.triangles.len() * 12);
+    let json = serde_json::json!({
+        "asset": {"version": "2.0", "generator": "chasles", "extras": {"comment": comment}},
+        "scene": 0,
+        "scenes": [{"nodes": [0]}],
+        "nodes": [{"mesh": 0}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1}, "indices": 2}]}],
+        "buffers": [{"byteLength": bin.len()}],
+        "bufferViews": [
+            {"buffer": 0, "byteOffset": 0, "byteLength": pos_len, "target": 34962},
+            {"buffer": 0, "byteOffset": pos_len, "byteLength": pos_len, "target": 34962},
+            {"buffer": 0, "byteOffset": 2 * pos_len, "byteLength": idx_len, "target": 34963}
+        ],
+        "accessors": [
+            {"bufferView": 0, "componentType": 5126, "count": n, "type": "VEC3", "min": lo, "max": hi},
+            {"bufferView": 1, "componentType": 5126, "count": n, "type": "VEC3"},
+            {"bufferView": 2, "componentType": 5125, "count": mesh.triangles.len() * 3, "type": "SCALAR"}
+        ]
+    });
+    let mut j = json.to_string().into_bytes();
+    while j.len() % 4 != 0 {
+        j.push(b' ');
+    }
+    while bin.len() % 4 != 0 {
+        bin.push(0);
+    }
+    let total = 12 + 8 + j.len() + 8 + bin.len();
+    let mut out = Vec::with_capacity(total);
+    out.extend_from_slice(b"glTF");
+    out.extend_from_slice(&2u32.to_le_bytes());
+    out.extend_from_slice(&(total as u32).to_le_bytes());
+    out.extend_from_slice(&(j.len() as u32).to_le_bytes());
+    out.extend_from_slice(b"JSON");
+    out.extend_from_slice(&j);
+    out.extend_from_slice(&(bin.len() as u32).to_le_bytes());
+    out.extend_from_slice(b"BIN\0");
+    out.extend_from_slice(&bin);
     out
 }

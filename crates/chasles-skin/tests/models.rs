@@ -489,3 +489,35 @@ fn mutated_files_never_panic() {
         }
     }
 }
+
+#[test]
+fn writers_produce_what_they_promise() {
+    use chasles_skin::writers::{glb, obj, ply};
+    let rig = gltf_load::load(&data("CesiumMan.glb")).unwrap();
+    let pose = Pose::animated(&rig, 0, 0.5).unwrap();
+    let s = skin(&rig, &pose, Method::Dqs).unwrap();
+    let o = obj(&rig.mesh, &s, "test");
+    assert_eq!(o.lines().filter(|l| l.starts_with("v ")).count(), 3273);
+    assert_eq!(o.lines().filter(|l| l.starts_with("vn ")).count(), 3273);
+    assert_eq!(o.lines().filter(|l| l.starts_with("f ")).count(), 4672);
+    let p = ply(&rig.mesh, &s, "test");
+    assert!(p.contains("element vertex 3273") && p.contains("element face 4672"));
+    // The .glb parses with the gltf crate and holds the deformed positions.
+    let bytes = glb(&rig.mesh, &s, "test");
+    let g = gltf::Gltf::from_slice(&bytes).unwrap();
+    let blob = g.blob.clone().unwrap();
+    let prim = g
+        .document
+        .meshes()
+        .next()
+        .unwrap()
+        .primitives()
+        .next()
+        .unwrap();
+    let r = prim.reader(|_| Some(&blob[..]));
+    let pos: Vec<[f32; 3]> = r.read_positions().unwrap().collect();
+    assert_eq!(pos.len(), 3273);
+    assert_eq!(pos[100], s.positions[100].to_array());
+    assert_eq!(r.read_indices().unwrap().into_u32().count(), 4672 * 3);
+    assert_eq!(bytes.len() % 4, 0);
+}
