@@ -148,6 +148,7 @@ pub fn run(args: TourArgs) -> anyhow::Result<()> {
 
     interpolation()?;
     blending()?;
+    skinning()?;
 
     heading(&format!(
         "Identities over {} random inputs (seed {}): worst error, relative",
@@ -304,6 +305,76 @@ fn blending() -> anyhow::Result<()> {
         "  DIB updates for rotations within 30° (2–8 inputs): {:?} (index = updates)",
         h
     );
+    Ok(())
+}
+
+/// The folder of the shared glTF models, if present: $CHASLES_DATA, ./shared/data/gltf or
+/// ../shared/data/gltf.
+fn data_dir() -> Option<std::path::PathBuf> {
+    let mut c: Vec<std::path::PathBuf> = std::env::var_os("CHASLES_DATA")
+        .map(Into::into)
+        .into_iter()
+        .collect();
+    c.push("shared/data/gltf".into());
+    c.push("../shared/data/gltf".into());
+    c.into_iter().find(|p| p.join("CesiumMan.glb").is_file())
+}
+
+/// Kavan et al. 2006, §6: the candy wrapper and the real characters.
+fn skinning() -> anyhow::Result<()> {
+    use chasles_skin::cylinder::{self, Motion};
+    use chasles_skin::{gltf_load, joint_transforms, Method, Pose};
+    heading("Kavan et al. §6 / Figure 6: the candy wrapper on a two-bone cylinder");
+    let rig = cylinder::twisted_cylinder();
+    println!("  twist   LBS middle radius   DQS middle radius   (relative to rest)");
+    for deg in [0.0f32, 90.0, 135.0, 180.0] {
+        let l = cylinder::measure(&rig, Method::Lbs, Motion::Twist, deg.to_radians())?;
+        let d = cylinder::measure(&rig, Method::Dqs, Motion::Twist, deg.to_radians())?;
+        println!("  {deg:>4}°   {:<19.3} {:.3}", l.radius, d.radius);
+    }
+    let l = cylinder::measure(&rig, Method::Lbs, Motion::Bend, 150f32.to_radians())?;
+    let d = cylinder::measure(&rig, Method::Dqs, Motion::Bend, 150f32.to_radians())?;
+    println!(
+        "  bend 150°: LBS thins to {:.3} and loses {:.1} % volume; DQS keeps the radius and bulges {:.1} % out",
+        l.radius,
+        (1.0 - l.volume) * 100.0,
+        (d.bulge - 1.0) * 100.0
+    );
+    let Some(dir) = data_dir() else {
+        println!("  (the shared glTF models were not found: set CHASLES_DATA to their folder to see the real characters)");
+        return Ok(());
+    };
+    heading("Real characters: where linear blending loses volume (smallest det of the blended 3×3 over the clip)");
+    for (file, clip, credit) in [
+        ("CesiumMan.glb", "", "CesiumMan, CC-BY 4.0 with trademark limitations, © 2017 Cesium (Khronos glTF-Sample-Models)"),
+        ("Fox.glb", "Run", "Fox: mesh CC0 1.0 (PixelMannen), rigging and animation CC-BY 4.0 (@tomkranis)"),
+    ] {
+        let rig = gltf_load::load(&dir.join(file))?;
+        let c = rig.animations.iter().position(|a| a.name == clip).unwrap_or(0);
+        let mut worst = f32::MAX;
+        for k in 0..=40 {
+            let t = rig.animations[c].duration() * k as f32 / 40.0;
+            let jt = joint_transforms(&rig, &Pose::animated(&rig, c, t)?)?;
+            for v in 0..rig.mesh.positions.len() {
+                let mut a = chasles::Mat3::from_rows([[0.0f32; 3]; 3]);
+                for (j, w) in rig.influences.of(v) {
+                    let m = jt.matrices[j].linear_part();
+                    for (r, row) in a.m.iter_mut().enumerate() {
+                        for (col, e) in row.iter_mut().enumerate() {
+                            *e += m.m[r][col] * w;
+                        }
+                    }
+                }
+                worst = worst.min(a.determinant());
+            }
+        }
+        println!(
+            "  {file} ({} vertices, {} joints): LBS down to {worst:.2} of the local volume; DQS keeps 1 (rigid blends)",
+            rig.mesh.positions.len(),
+            rig.joints.len()
+        );
+        println!("    credit: {credit}");
+    }
     Ok(())
 }
 
