@@ -170,12 +170,42 @@ fn dqs_vertex<const K: usize>(v: &Vertex<K>, d: &[[f32; 8]]) -> Out {
 /// Vertices per parallel task.
 const CHUNK: usize = 4096;
 
-fn run<const K: usize, J: Sync>(
+/// A per-vertex kernel, as a type so that every loop is monomorphized and inlined.
+trait Kernel<const K: usize> {
+    type Joint: Sync;
+    fn vertex(v: &Vertex<K>, joints: &[Self::Joint]) -> Out;
+}
+
+struct LbsKernel;
+impl<const K: usize> Kernel<K> for LbsKernel {
+    type Joint = [f32; 12];
+    #[inline(always)]
+    fn vertex(v: &Vertex<K>, joints: &[[f32; 12]]) -> Out {
+        lbs_vertex(v, joints)
+    }
+}
+
+struct DqsKernel;
+impl<const K: usize> Kernel<K> for DqsKernel {
+    type Joint = [f32; 8];
+    #[inline(always)]
+    fn vertex(v: &Vertex<K>, joints: &[[f32; 8]]) -> Out {
+        dqs_vertex(v, joints)
+    }
+}
+
+#[inline(always)]
+fn chunk_plain<const K: usize, F: Kernel<K>>(o: &mut [Out], v: &[Vertex<K>], joints: &[F::Joint]) {
+    o.iter_mut()
+        .zip(v)
+        .for_each(|(o, v)| *o = F::vertex(v, joints));
+}
+
+fn run<const K: usize, F: Kernel<K>>(
     rig: &FastRig<K>,
-    joints: &[J],
+    joints: &[F::Joint],
     out: &mut [Out],
     parallel: bool,
-    f: fn(&Vertex<K>, &[J]) -> Out,
 ) -> Result<()> {
     if out.len() != rig.vertices.len() {
         return invalid(format!(
@@ -194,11 +224,11 @@ fn run<const K: usize, J: Sync>(
     if parallel {
         out.par_chunks_mut(CHUNK)
             .zip(rig.vertices.par_chunks(CHUNK))
-            .for_each(|(o, v)| o.iter_mut().zip(v).for_each(|(o, v)| *o = f(v, joints)));
+            .for_each(|(o, v)| chunk_plain::<K, F>(o, v, joints));
     } else {
-        out.iter_mut()
-            .zip(&rig.vertices)
-            .for_each(|(o, v)| *o = f(v, joints));
+        out.chunks_mut(CHUNK)
+            .zip(rig.vertices.chunks(CHUNK))
+            .for_each(|(o, v)| chunk_plain::<K, F>(o, v, joints));
     }
     Ok(())
 }
@@ -210,7 +240,7 @@ pub fn lbs<const K: usize>(
     out: &mut [Out],
     parallel: bool,
 ) -> Result<()> {
-    run(rig, m, out, parallel, lbs_vertex::<K>)
+    run::<K, LbsKernel>(rig, m, out, parallel)
 }
 
 /// Dual quaternion skinning into `out`, on all threads when `parallel`.
@@ -220,5 +250,5 @@ pub fn dqs<const K: usize>(
     out: &mut [Out],
     parallel: bool,
 ) -> Result<()> {
-    run(rig, d, out, parallel, dqs_vertex::<K>)
+    run::<K, DqsKernel>(rig, d, out, parallel)
 }
