@@ -128,13 +128,13 @@ fn bench(c: &mut Criterion) {
             });
         }
         g.bench_function("glam lbs (Affine3A), 1 thread", |b| {
-            b.iter(|| glam_lbs(&rig.vertices, &aff, black_box(&mut out)))
+            b.iter(|| glam_lbs(rig.vertices(), &aff, black_box(&mut out)))
         });
         g.bench_function("glam dqs (careful), 1 thread", |b| {
-            b.iter(|| careful_glam_dqs(&rig.vertices, &gq, black_box(&mut out)))
+            b.iter(|| careful_glam_dqs(rig.vertices(), &gq, black_box(&mut out)))
         });
         g.bench_function("nalgebra dqs (obvious), 1 thread", |b| {
-            b.iter(|| nalgebra_dqs(&rig.vertices, &na, black_box(&mut out)))
+            b.iter(|| nalgebra_dqs(rig.vertices(), &na, black_box(&mut out)))
         });
         // Bandwidth bound: memcpy of 36 bytes per vertex reads 36 and writes 36 — the 72
         // bytes each skinned vertex must move (48 read, 24 written).

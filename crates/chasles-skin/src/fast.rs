@@ -32,13 +32,15 @@ pub struct Vertex<const K: usize> {
     pub w: [f32; K],
 }
 
-/// A rig laid out for the fast path.
+#[cfg(target_arch = "x86_64")]
+mod avx2;
+
+/// A rig laid out for the fast path. Its joint indices are checked on construction (the
+/// SIMD kernels rely on it), so the fields are private.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FastRig<const K: usize> {
-    /// The vertices.
-    pub vertices: Vec<Vertex<K>>,
-    /// Number of joints.
-    pub joints: usize,
+    vertices: Vec<Vertex<K>>,
+    joints: usize,
 }
 
 /// Output: position and normal per vertex.
@@ -72,10 +74,32 @@ impl<const K: usize> FastRig<K> {
                 }
             })
             .collect();
-        Ok(FastRig {
-            vertices,
-            joints: rig.joints.len(),
-        })
+        Self::from_vertices(vertices, rig.joints.len())
+    }
+
+    /// A rig from laid-out vertices; an error if a joint index is not below `joints`.
+    pub fn from_vertices(vertices: Vec<Vertex<K>>, joints: usize) -> Result<Self> {
+        if let Some((i, v)) = vertices
+            .iter()
+            .enumerate()
+            .find(|(_, v)| v.j.iter().any(|j| usize::from(*j) >= joints))
+        {
+            return invalid(format!(
+                "vertex {i}: joint index out of range in {:?} ({joints} joints)",
+                v.j
+            ));
+        }
+        Ok(FastRig { vertices, joints })
+    }
+
+    /// The vertices.
+    pub fn vertices(&self) -> &[Vertex<K>] {
+        &self.vertices
+    }
+
+    /// The number of joints.
+    pub fn joints(&self) -> usize {
+        self.joints
     }
 }
 
@@ -174,6 +198,13 @@ const CHUNK: usize = 4096;
 trait Kernel<const K: usize> {
     type Joint: Sync;
     fn vertex(v: &Vertex<K>, joints: &[Self::Joint]) -> Out;
+    /// A chunk of vertices (joint indices already checked against `joints`).
+    #[inline(always)]
+    fn chunk(o: &mut [Out], v: &[Vertex<K>], joints: &[Self::Joint]) {
+        o.iter_mut()
+            .zip(v)
+            .for_each(|(o, v)| *o = Self::vertex(v, joints));
+    }
 }
 
 struct LbsKernel;
@@ -192,13 +223,24 @@ impl<const K: usize> Kernel<K> for DqsKernel {
     fn vertex(v: &Vertex<K>, joints: &[[f32; 8]]) -> Out {
         dqs_vertex(v, joints)
     }
-}
-
-#[inline(always)]
-fn chunk_plain<const K: usize, F: Kernel<K>>(o: &mut [Out], v: &[Vertex<K>], joints: &[F::Joint]) {
-    o.iter_mut()
-        .zip(v)
-        .for_each(|(o, v)| *o = F::vertex(v, joints));
+    fn chunk(o: &mut [Out], v: &[Vertex<K>], joints: &[[f32; 8]]) {
+        let mut done = 0;
+        #[cfg(target_arch = "x86_64")]
+        if K == 4 && std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma") {
+            // SAFETY: K == 4, so `Vertex<K>` is `Vertex<4>`; the joint indices were checked
+            // against the joint count when the FastRig was built and `run` checked that
+            // `joints` has that many entries; `o` is as long as `v`; the features are
+            // present.
+            done = unsafe {
+                let v4 = &*(v as *const [Vertex<K>] as *const [Vertex<4>]);
+                avx2::dqs(v4, joints, o)
+            };
+        }
+        o[done..]
+            .iter_mut()
+            .zip(&v[done..])
+            .for_each(|(o, v)| *o = dqs_vertex(v, joints));
+    }
 }
 
 fn run<const K: usize, F: Kernel<K>>(
@@ -224,11 +266,11 @@ fn run<const K: usize, F: Kernel<K>>(
     if parallel {
         out.par_chunks_mut(CHUNK)
             .zip(rig.vertices.par_chunks(CHUNK))
-            .for_each(|(o, v)| chunk_plain::<K, F>(o, v, joints));
+            .for_each(|(o, v)| F::chunk(o, v, joints));
     } else {
         out.chunks_mut(CHUNK)
             .zip(rig.vertices.chunks(CHUNK))
-            .for_each(|(o, v)| chunk_plain::<K, F>(o, v, joints));
+            .for_each(|(o, v)| F::chunk(o, v, joints));
     }
     Ok(())
 }

@@ -58,7 +58,8 @@ pub fn rig(n: usize, joints: usize, seed: u64) -> FastRig<4> {
             }
         })
         .collect();
-    FastRig { vertices, joints }
+    FastRig::from_vertices(vertices, joints)
+        .unwrap_or_else(|_| unreachable!("indices are drawn below `joints`"))
 }
 
 /// Random rigid joint transforms within 60° of the identity.
