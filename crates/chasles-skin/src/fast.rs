@@ -1,4 +1,6 @@
 //! The fast path for LBS and DQS: a compact vertex layout, fixed influence counts (4 or 8),
+//! eight-vertex AVX2+FMA kernels chosen at run time (for 4 influences; elsewhere, and for
+//! the last few vertices, the scalar kernels),
 //! joint transforms as flat arrays (12 floats per matrix, 8 per dual quaternion — the
 //! register saving Kavan et al. 2006 note in §6), one pass per vertex, and rayon over
 //! chunks of vertices. It agrees with [`crate::skinning`]'s reference path to 1e-5
@@ -213,6 +215,21 @@ impl<const K: usize> Kernel<K> for LbsKernel {
     #[inline(always)]
     fn vertex(v: &Vertex<K>, joints: &[[f32; 12]]) -> Out {
         lbs_vertex(v, joints)
+    }
+    fn chunk(o: &mut [Out], v: &[Vertex<K>], joints: &[[f32; 12]]) {
+        let mut done = 0;
+        #[cfg(target_arch = "x86_64")]
+        if K == 4 && std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma") {
+            // SAFETY: as for the DQS kernel below.
+            done = unsafe {
+                let v4 = &*(v as *const [Vertex<K>] as *const [Vertex<4>]);
+                avx2::lbs(v4, joints, o)
+            };
+        }
+        o[done..]
+            .iter_mut()
+            .zip(&v[done..])
+            .for_each(|(o, v)| *o = lbs_vertex(v, joints));
     }
 }
 

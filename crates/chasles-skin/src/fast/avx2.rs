@@ -154,3 +154,103 @@ pub unsafe fn dqs(v: &[Vertex<4>], d: &[[f32; 8]], o: &mut [Out]) -> usize {
     }
     blocks * 8
 }
+
+/// LBS for the first `v.len() / 8 * 8` vertices, in the order of operations of
+/// [`super::lbs_vertex`]; returns how many were done.
+///
+/// # Safety
+/// As for [`dqs`], with `m` the joints' 3×4 matrices.
+#[target_feature(enable = "avx2,fma")]
+pub unsafe fn lbs(v: &[Vertex<4>], m: &[[f32; 12]], o: &mut [Out]) -> usize {
+    let vb = v.as_ptr() as *const f32;
+    let mb = m.as_ptr() as *const f32;
+    let lane = _mm256_setr_epi32(
+        0,
+        STRIDE,
+        2 * STRIDE,
+        3 * STRIDE,
+        4 * STRIDE,
+        5 * STRIDE,
+        6 * STRIDE,
+        7 * STRIDE,
+    );
+    let lo16 = _mm256_set1_epi32(0xFFFF);
+    let zero = _mm256_setzero_ps();
+    let twelve = _mm256_set1_epi32(12);
+    macro_rules! gv {
+        ($vi:expr, $off:expr) => {
+            _mm256_i32gather_ps::<4>(vb, _mm256_add_epi32($vi, _mm256_set1_epi32($off)))
+        };
+    }
+    let blocks = v.len() / 8;
+    for blk in 0..blocks {
+        let i = blk * 8;
+        let vi = _mm256_add_epi32(_mm256_set1_epi32(i as i32 * STRIDE), lane);
+        let j01 = _mm256_i32gather_epi32::<4>(
+            vb as *const i32,
+            _mm256_add_epi32(vi, _mm256_set1_epi32(6)),
+        );
+        let j23 = _mm256_i32gather_epi32::<4>(
+            vb as *const i32,
+            _mm256_add_epi32(vi, _mm256_set1_epi32(7)),
+        );
+        let js = [
+            _mm256_and_si256(j01, lo16),
+            _mm256_srli_epi32::<16>(j01),
+            _mm256_and_si256(j23, lo16),
+            _mm256_srli_epi32::<16>(j23),
+        ];
+        let ws = [gv!(vi, 8), gv!(vi, 9), gv!(vi, 10), gv!(vi, 11)];
+        let mut a = [zero; 12];
+        for k in 0..4 {
+            let base = _mm256_mullo_epi32(js[k], twelve);
+            for (c, ac) in a.iter_mut().enumerate() {
+                let g = _mm256_i32gather_ps::<4>(
+                    mb,
+                    _mm256_add_epi32(base, _mm256_set1_epi32(c as i32)),
+                );
+                *ac = _mm256_add_ps(*ac, _mm256_mul_ps(ws[k], g));
+            }
+        }
+        let (x, y, z) = (gv!(vi, 0), gv!(vi, 1), gv!(vi, 2));
+        let (nx, ny, nz) = (gv!(vi, 3), gv!(vi, 4), gv!(vi, 5));
+        let mul = |p, q| _mm256_mul_ps(p, q);
+        let add = |p, q| _mm256_add_ps(p, q);
+        let sub = |p, q| _mm256_sub_ps(p, q);
+        let px = add(add(add(mul(a[0], x), mul(a[1], y)), mul(a[2], z)), a[3]);
+        let py = add(add(add(mul(a[4], x), mul(a[5], y)), mul(a[6], z)), a[7]);
+        let pz = add(add(add(mul(a[8], x), mul(a[9], y)), mul(a[10], z)), a[11]);
+        let c00 = sub(mul(a[5], a[10]), mul(a[6], a[9]));
+        let c01 = sub(mul(a[6], a[8]), mul(a[4], a[10]));
+        let c02 = sub(mul(a[4], a[9]), mul(a[5], a[8]));
+        let c10 = sub(mul(a[2], a[9]), mul(a[1], a[10]));
+        let c11 = sub(mul(a[0], a[10]), mul(a[2], a[8]));
+        let c12 = sub(mul(a[1], a[8]), mul(a[0], a[9]));
+        let c20 = sub(mul(a[1], a[6]), mul(a[2], a[5]));
+        let c21 = sub(mul(a[2], a[4]), mul(a[0], a[6]));
+        let c22 = sub(mul(a[0], a[5]), mul(a[1], a[4]));
+        let mx = add(add(mul(c00, nx), mul(c01, ny)), mul(c02, nz));
+        let my = add(add(mul(c10, nx), mul(c11, ny)), mul(c12, nz));
+        let mz = add(add(mul(c20, nx), mul(c21, ny)), mul(c22, nz));
+        let l = _mm256_sqrt_ps(add(add(mul(mx, mx), mul(my, my)), mul(mz, mz)));
+        let ok = _mm256_cmp_ps::<_CMP_GT_OQ>(l, zero);
+        let mx = _mm256_blendv_ps(nx, _mm256_div_ps(mx, l), ok);
+        let my = _mm256_blendv_ps(ny, _mm256_div_ps(my, l), ok);
+        let mz = _mm256_blendv_ps(nz, _mm256_div_ps(mz, l), ok);
+        let mut lanes = [[0f32; 8]; 6];
+        for (dst, src) in lanes.iter_mut().zip([px, py, pz, mx, my, mz]) {
+            _mm256_storeu_ps(dst.as_mut_ptr(), src);
+        }
+        for l in 0..8 {
+            o[i + l] = [
+                lanes[0][l],
+                lanes[1][l],
+                lanes[2][l],
+                lanes[3][l],
+                lanes[4][l],
+                lanes[5][l],
+            ];
+        }
+    }
+    blocks * 8
+}
