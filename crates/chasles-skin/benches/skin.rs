@@ -150,5 +150,34 @@ fn bench(c: &mut Criterion) {
     }
 }
 
-criterion_group!(benches, bench);
+/// Kavan et al.'s Figure 1 comparison on a real character: every method on CesiumMan
+/// (3273 vertices, 19 joints) mid-walk, reference path, one thread; the fast DQS beside it.
+fn figure_1(c: &mut Criterion) {
+    use chasles_skin::{gltf_load, joint_transforms, skin, Method, Pose};
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../../shared/data/gltf/CesiumMan.glb");
+    let Ok(rig) = gltf_load::load(&path) else {
+        eprintln!("CesiumMan.glb not found next to the checkout: skipping the Figure 1 comparison");
+        return;
+    };
+    let pose = Pose::animated(&rig, 0, 0.8).unwrap();
+    let mut g = c.benchmark_group("CesiumMan, 3273 vertices, 1 thread");
+    g.throughput(Throughput::Elements(rig.mesh.positions.len() as u64));
+    for m in Method::ALL {
+        g.bench_function(format!("{} (reference)", m.name()), |b| {
+            b.iter(|| skin(&rig, &pose, m).unwrap())
+        });
+    }
+    let fast = chasles_skin::fast::FastRig::<4>::new(&rig).unwrap();
+    let mut out = vec![[0f32; 6]; rig.mesh.positions.len()];
+    g.bench_function("dqs (fast, with the pose)", |b| {
+        b.iter(|| {
+            let jt = joint_transforms(&rig, &pose).unwrap();
+            dqs(&fast, &dual_quats8(&jt), &mut out, false).unwrap()
+        })
+    });
+    g.finish();
+}
+
+criterion_group!(benches, bench, figure_1);
 criterion_main!(benches);
