@@ -197,50 +197,19 @@ fn dqs_vertex<const K: usize>(v: &Vertex<K>, d: &[[f32; 8]]) -> Out {
 const CHUNK: usize = 4096;
 
 /// A per-vertex kernel, as a type so that every loop is monomorphized and inlined.
+/// The 8-vertex SIMD kernel of a method, if this processor has one: it skins a prefix of
+/// whole blocks and returns how many vertices it did.
+type SimdKernel<J> = unsafe fn(&[Vertex<4>], &[J], &mut [Out]) -> usize;
+
 trait Kernel<const K: usize> {
     type Joint: Sync;
     fn vertex(v: &Vertex<K>, joints: &[Self::Joint]) -> Out;
-    /// A chunk of vertices (joint indices already checked against `joints`).
-    #[inline(always)]
+    /// The AVX2+FMA kernel for 4 influences (x86-64 only).
+    #[cfg(target_arch = "x86_64")]
+    const AVX2: SimdKernel<Self::Joint>;
+    /// A chunk of vertices (joint indices already checked against `joints`): the SIMD kernel
+    /// where the processor and K allow, the scalar kernel for the rest.
     fn chunk(o: &mut [Out], v: &[Vertex<K>], joints: &[Self::Joint]) {
-        o.iter_mut()
-            .zip(v)
-            .for_each(|(o, v)| *o = Self::vertex(v, joints));
-    }
-}
-
-struct LbsKernel;
-impl<const K: usize> Kernel<K> for LbsKernel {
-    type Joint = [f32; 12];
-    #[inline(always)]
-    fn vertex(v: &Vertex<K>, joints: &[[f32; 12]]) -> Out {
-        lbs_vertex(v, joints)
-    }
-    fn chunk(o: &mut [Out], v: &[Vertex<K>], joints: &[[f32; 12]]) {
-        let mut done = 0;
-        #[cfg(target_arch = "x86_64")]
-        if K == 4 && std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma") {
-            // SAFETY: as for the DQS kernel below.
-            done = unsafe {
-                let v4 = &*(v as *const [Vertex<K>] as *const [Vertex<4>]);
-                avx2::lbs(v4, joints, o)
-            };
-        }
-        o[done..]
-            .iter_mut()
-            .zip(&v[done..])
-            .for_each(|(o, v)| *o = lbs_vertex(v, joints));
-    }
-}
-
-struct DqsKernel;
-impl<const K: usize> Kernel<K> for DqsKernel {
-    type Joint = [f32; 8];
-    #[inline(always)]
-    fn vertex(v: &Vertex<K>, joints: &[[f32; 8]]) -> Out {
-        dqs_vertex(v, joints)
-    }
-    fn chunk(o: &mut [Out], v: &[Vertex<K>], joints: &[[f32; 8]]) {
         let mut done = 0;
         #[cfg(target_arch = "x86_64")]
         if K == 4 && std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma") {
@@ -250,13 +219,35 @@ impl<const K: usize> Kernel<K> for DqsKernel {
             // present.
             done = unsafe {
                 let v4 = &*(v as *const [Vertex<K>] as *const [Vertex<4>]);
-                avx2::dqs(v4, joints, o)
+                Self::AVX2(v4, joints, o)
             };
         }
         o[done..]
             .iter_mut()
             .zip(&v[done..])
-            .for_each(|(o, v)| *o = dqs_vertex(v, joints));
+            .for_each(|(o, v)| *o = Self::vertex(v, joints));
+    }
+}
+
+struct LbsKernel;
+impl<const K: usize> Kernel<K> for LbsKernel {
+    type Joint = [f32; 12];
+    #[cfg(target_arch = "x86_64")]
+    const AVX2: SimdKernel<[f32; 12]> = avx2::lbs;
+    #[inline(always)]
+    fn vertex(v: &Vertex<K>, joints: &[[f32; 12]]) -> Out {
+        lbs_vertex(v, joints)
+    }
+}
+
+struct DqsKernel;
+impl<const K: usize> Kernel<K> for DqsKernel {
+    type Joint = [f32; 8];
+    #[cfg(target_arch = "x86_64")]
+    const AVX2: SimdKernel<[f32; 8]> = avx2::dqs;
+    #[inline(always)]
+    fn vertex(v: &Vertex<K>, joints: &[[f32; 8]]) -> Out {
+        dqs_vertex(v, joints)
     }
 }
 

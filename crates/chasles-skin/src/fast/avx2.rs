@@ -10,15 +10,19 @@ use std::arch::x86_64::*;
 /// words of u16 pairs, weights 8–11).
 const STRIDE: i32 = 12;
 
-/// DQS for the first `v.len() / 8 * 8` vertices; returns how many were done.
-///
-/// # Safety
-/// The processor must have AVX2 and FMA, every joint index in `v` must be below
-/// `d.len()`, and `o.len() >= v.len()`.
+/// Eight vertices' fields in lanes: position, normal, joint indices, weights.
+struct Block {
+    p: [__m256; 3],
+    n: [__m256; 3],
+    j: [__m256i; 4],
+    w: [__m256; 4],
+}
+
+/// Gathers vertices `i … i + 7`.
+#[inline]
 #[target_feature(enable = "avx2,fma")]
-pub unsafe fn dqs(v: &[Vertex<4>], d: &[[f32; 8]], o: &mut [Out]) -> usize {
+unsafe fn load(v: &[Vertex<4>], i: usize) -> Block {
     let vb = v.as_ptr() as *const f32;
-    let db = d.as_ptr() as *const f32;
     let lane = _mm256_setr_epi32(
         0,
         STRIDE,
@@ -29,16 +33,57 @@ pub unsafe fn dqs(v: &[Vertex<4>], d: &[[f32; 8]], o: &mut [Out]) -> usize {
         6 * STRIDE,
         7 * STRIDE,
     );
+    let vi = _mm256_add_epi32(_mm256_set1_epi32(i as i32 * STRIDE), lane);
+    let at = |off: i32| _mm256_add_epi32(vi, _mm256_set1_epi32(off));
+    let g = |off: i32| _mm256_i32gather_ps::<4>(vb, at(off));
     let lo16 = _mm256_set1_epi32(0xFFFF);
+    let j01 = _mm256_i32gather_epi32::<4>(vb as *const i32, at(6));
+    let j23 = _mm256_i32gather_epi32::<4>(vb as *const i32, at(7));
+    Block {
+        p: [g(0), g(1), g(2)],
+        n: [g(3), g(4), g(5)],
+        j: [
+            _mm256_and_si256(j01, lo16),
+            _mm256_srli_epi32::<16>(j01),
+            _mm256_and_si256(j23, lo16),
+            _mm256_srli_epi32::<16>(j23),
+        ],
+        w: [g(8), g(9), g(10), g(11)],
+    }
+}
+
+/// Writes eight vertices' results (six lane vectors) to `o[i … i + 7]`.
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn store(o: &mut [Out], i: usize, r: [__m256; 6]) {
+    let mut lanes = [[0f32; 8]; 6];
+    for (dst, src) in lanes.iter_mut().zip(r) {
+        _mm256_storeu_ps(dst.as_mut_ptr(), src);
+    }
+    for l in 0..8 {
+        o[i + l] = [
+            lanes[0][l],
+            lanes[1][l],
+            lanes[2][l],
+            lanes[3][l],
+            lanes[4][l],
+            lanes[5][l],
+        ];
+    }
+}
+
+/// DQS for the first `v.len() / 8 * 8` vertices; returns how many were done.
+///
+/// # Safety
+/// The processor must have AVX2 and FMA, every joint index in `v` must be below
+/// `d.len()`, and `o.len() >= v.len()`.
+#[target_feature(enable = "avx2,fma")]
+pub unsafe fn dqs(v: &[Vertex<4>], d: &[[f32; 8]], o: &mut [Out]) -> usize {
+    let db = d.as_ptr() as *const f32;
     let zero = _mm256_setzero_ps();
     let sign = _mm256_set1_ps(-0.0);
     let one = _mm256_set1_ps(1.0);
     let two = _mm256_set1_ps(2.0);
-    macro_rules! gv {
-        ($vi:expr, $off:expr) => {
-            _mm256_i32gather_ps::<4>(vb, _mm256_add_epi32($vi, _mm256_set1_epi32($off)))
-        };
-    }
     macro_rules! gd {
         ($base:expr, $c:expr) => {
             _mm256_i32gather_ps::<4>(db, _mm256_add_epi32($base, _mm256_set1_epi32($c)))
@@ -47,24 +92,12 @@ pub unsafe fn dqs(v: &[Vertex<4>], d: &[[f32; 8]], o: &mut [Out]) -> usize {
     let blocks = v.len() / 8;
     for blk in 0..blocks {
         let i = blk * 8;
-        let vi = _mm256_add_epi32(_mm256_set1_epi32(i as i32 * STRIDE), lane);
-        let (px, py, pz) = (gv!(vi, 0), gv!(vi, 1), gv!(vi, 2));
-        let (nx, ny, nz) = (gv!(vi, 3), gv!(vi, 4), gv!(vi, 5));
-        let j01 = _mm256_i32gather_epi32::<4>(
-            vb as *const i32,
-            _mm256_add_epi32(vi, _mm256_set1_epi32(6)),
-        );
-        let j23 = _mm256_i32gather_epi32::<4>(
-            vb as *const i32,
-            _mm256_add_epi32(vi, _mm256_set1_epi32(7)),
-        );
-        let js = [
-            _mm256_and_si256(j01, lo16),
-            _mm256_srli_epi32::<16>(j01),
-            _mm256_and_si256(j23, lo16),
-            _mm256_srli_epi32::<16>(j23),
-        ];
-        let ws = [gv!(vi, 8), gv!(vi, 9), gv!(vi, 10), gv!(vi, 11)];
+        let Block {
+            p: [px, py, pz],
+            n: [nx, ny, nz],
+            j: js,
+            w: ws,
+        } = load(v, i);
         let base0 = _mm256_slli_epi32::<3>(js[0]);
         let p = [gd!(base0, 0), gd!(base0, 1), gd!(base0, 2), gd!(base0, 3)];
         let mut b = [zero; 8];
@@ -137,20 +170,7 @@ pub unsafe fn dqs(v: &[Vertex<4>], d: &[[f32; 8]], o: &mut [Out]) -> usize {
         let mx = add(nx, mul(two, sub(mul(y0, sz), mul(z0, sy))));
         let my = add(ny, mul(two, sub(mul(z0, sx), mul(x0, sz))));
         let mz = add(nz, mul(two, sub(mul(x0, sy), mul(y0, sx))));
-        let mut lanes = [[0f32; 8]; 6];
-        for (dst, src) in lanes.iter_mut().zip([qx, qy, qz, mx, my, mz]) {
-            _mm256_storeu_ps(dst.as_mut_ptr(), src);
-        }
-        for l in 0..8 {
-            o[i + l] = [
-                lanes[0][l],
-                lanes[1][l],
-                lanes[2][l],
-                lanes[3][l],
-                lanes[4][l],
-                lanes[5][l],
-            ];
-        }
+        store(o, i, [qx, qy, qz, mx, my, mz]);
     }
     blocks * 8
 }
@@ -162,45 +182,18 @@ pub unsafe fn dqs(v: &[Vertex<4>], d: &[[f32; 8]], o: &mut [Out]) -> usize {
 /// As for [`dqs`], with `m` the joints' 3×4 matrices.
 #[target_feature(enable = "avx2,fma")]
 pub unsafe fn lbs(v: &[Vertex<4>], m: &[[f32; 12]], o: &mut [Out]) -> usize {
-    let vb = v.as_ptr() as *const f32;
     let mb = m.as_ptr() as *const f32;
-    let lane = _mm256_setr_epi32(
-        0,
-        STRIDE,
-        2 * STRIDE,
-        3 * STRIDE,
-        4 * STRIDE,
-        5 * STRIDE,
-        6 * STRIDE,
-        7 * STRIDE,
-    );
-    let lo16 = _mm256_set1_epi32(0xFFFF);
     let zero = _mm256_setzero_ps();
     let twelve = _mm256_set1_epi32(12);
-    macro_rules! gv {
-        ($vi:expr, $off:expr) => {
-            _mm256_i32gather_ps::<4>(vb, _mm256_add_epi32($vi, _mm256_set1_epi32($off)))
-        };
-    }
     let blocks = v.len() / 8;
     for blk in 0..blocks {
         let i = blk * 8;
-        let vi = _mm256_add_epi32(_mm256_set1_epi32(i as i32 * STRIDE), lane);
-        let j01 = _mm256_i32gather_epi32::<4>(
-            vb as *const i32,
-            _mm256_add_epi32(vi, _mm256_set1_epi32(6)),
-        );
-        let j23 = _mm256_i32gather_epi32::<4>(
-            vb as *const i32,
-            _mm256_add_epi32(vi, _mm256_set1_epi32(7)),
-        );
-        let js = [
-            _mm256_and_si256(j01, lo16),
-            _mm256_srli_epi32::<16>(j01),
-            _mm256_and_si256(j23, lo16),
-            _mm256_srli_epi32::<16>(j23),
-        ];
-        let ws = [gv!(vi, 8), gv!(vi, 9), gv!(vi, 10), gv!(vi, 11)];
+        let Block {
+            p: [x, y, z],
+            n: [nx, ny, nz],
+            j: js,
+            w: ws,
+        } = load(v, i);
         let mut a = [zero; 12];
         for k in 0..4 {
             let base = _mm256_mullo_epi32(js[k], twelve);
@@ -212,8 +205,6 @@ pub unsafe fn lbs(v: &[Vertex<4>], m: &[[f32; 12]], o: &mut [Out]) -> usize {
                 *ac = _mm256_add_ps(*ac, _mm256_mul_ps(ws[k], g));
             }
         }
-        let (x, y, z) = (gv!(vi, 0), gv!(vi, 1), gv!(vi, 2));
-        let (nx, ny, nz) = (gv!(vi, 3), gv!(vi, 4), gv!(vi, 5));
         let mul = |p, q| _mm256_mul_ps(p, q);
         let add = |p, q| _mm256_add_ps(p, q);
         let sub = |p, q| _mm256_sub_ps(p, q);
@@ -237,20 +228,7 @@ pub unsafe fn lbs(v: &[Vertex<4>], m: &[[f32; 12]], o: &mut [Out]) -> usize {
         let mx = _mm256_blendv_ps(nx, _mm256_div_ps(mx, l), ok);
         let my = _mm256_blendv_ps(ny, _mm256_div_ps(my, l), ok);
         let mz = _mm256_blendv_ps(nz, _mm256_div_ps(mz, l), ok);
-        let mut lanes = [[0f32; 8]; 6];
-        for (dst, src) in lanes.iter_mut().zip([px, py, pz, mx, my, mz]) {
-            _mm256_storeu_ps(dst.as_mut_ptr(), src);
-        }
-        for l in 0..8 {
-            o[i + l] = [
-                lanes[0][l],
-                lanes[1][l],
-                lanes[2][l],
-                lanes[3][l],
-                lanes[4][l],
-                lanes[5][l],
-            ];
-        }
+        store(o, i, [px, py, pz, mx, my, mz]);
     }
     blocks * 8
 }
