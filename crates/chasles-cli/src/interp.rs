@@ -47,6 +47,10 @@ pub struct InterpArgs {
     pub key_weight: Option<f64>,
     /// Override of the Spring constant-velocity weight c_w.
     pub velocity_weight: Option<f64>,
+    /// Write the angular-velocity graph here (.svg).
+    pub plot: Option<PathBuf>,
+    /// Write the sphere plot here (.png).
+    pub sphere: Option<PathBuf>,
 }
 
 enum Plan {
@@ -220,7 +224,51 @@ pub fn run(args: InterpArgs) -> Result<()> {
             bail!("--out must end in .csv or .json, got {}", out.display());
         }
     }
+    for (p, ext) in [(&args.plot, "svg"), (&args.sphere, "png")] {
+        if let Some(p) = p {
+            if extension(p) != ext {
+                bail!("{} must end in .{ext}", p.display());
+            }
+        }
+    }
     let run = compute(&args)?;
+    if let Some(p) = &args.plot {
+        let keys: Vec<usize> = run
+            .frames
+            .iter()
+            .enumerate()
+            .filter_map(|(i, f)| f.key.map(|_| i))
+            .collect();
+        let title = format!(
+            "{} through {}: angular velocity (Dam et al. eq. 5.1)",
+            args.method, args.keys
+        );
+        write_atomic(
+            p,
+            chasles_viz::graph::velocity_svg(&run.velocity, &keys, &title).as_bytes(),
+        )?;
+        eprintln!("wrote {}", p.display());
+    }
+    if let Some(p) = &args.sphere {
+        use chasles_viz::sphere::{fixed_coordinate, render, Mark};
+        let q: Vec<Quat<f64>> = run.frames.iter().map(|f| f.q).collect();
+        let pts: Vec<(Quat<f64>, Mark)> = run
+            .frames
+            .iter()
+            .map(|f| {
+                (
+                    f.q,
+                    match f.key {
+                        Some(0) => Mark::FirstKey,
+                        Some(_) => Mark::Key,
+                        None => Mark::Frame,
+                    },
+                )
+            })
+            .collect();
+        write_atomic(p, &render(&pts, fixed_coordinate(&q), 600).png())?;
+        eprintln!("wrote {}", p.display());
+    }
     match &args.out {
         Some(out) => {
             let text = if extension(out) == "json" {

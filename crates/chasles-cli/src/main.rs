@@ -80,6 +80,12 @@ enum Command {
         /// Spring methods: weight c_w of the constant-velocity penalty (eq. 6.41).
         #[arg(long, allow_negative_numbers = true)]
         velocity_weight: Option<f64>,
+        /// Also write the angular-velocity graph (§5.2) as SVG.
+        #[arg(long)]
+        plot: Option<std::path::PathBuf>,
+        /// Also write the sphere plot of the curve (§5.3) as PNG.
+        #[arg(long)]
+        sphere: Option<std::path::PathBuf>,
     },
     /// Blend rigid transformations: lin, dec, log, log-iter, qlb, sclerp, dlb, dib (Kavan et al. 2006).
     ///
@@ -266,6 +272,8 @@ fn main() {
             keep_signs,
             key_weight,
             velocity_weight,
+            plot,
+            sphere,
         } => interp::run(interp::InterpArgs {
             method,
             keys,
@@ -278,6 +286,8 @@ fn main() {
             keep_signs,
             key_weight,
             velocity_weight,
+            plot,
+            sphere,
         })
         .map(|_| 0),
         Command::Convert {

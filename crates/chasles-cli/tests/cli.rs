@@ -947,3 +947,37 @@ fn skin_json_rig_with_a_pose_file() {
     ]);
     assert!(String::from_utf8_lossy(&o.stderr).contains("not both"));
 }
+
+#[test]
+fn interp_writes_the_velocity_graph_and_the_sphere_plot() {
+    let dir = tempfile::tempdir().unwrap();
+    let (svg, png) = (dir.path().join("v.svg"), dir.path().join("s.png"));
+    let o = chasles(&[
+        "interp",
+        "--method",
+        "squad",
+        "--keys",
+        "builtin:cusp",
+        "--frames",
+        "80",
+        "--out",
+        dir.path().join("c.csv").to_str().unwrap(),
+        "--plot",
+        svg.to_str().unwrap(),
+        "--sphere",
+        png.to_str().unwrap(),
+    ]);
+    stdout(&o);
+    assert!(std::fs::read_to_string(&svg).unwrap().starts_with("<svg"));
+    assert!(std::fs::read(&png).unwrap().starts_with(b"\x89PNG"));
+    let bad = chasles(&[
+        "interp",
+        "--method",
+        "slerp",
+        "--keys",
+        "builtin:cusp",
+        "--plot",
+        dir.path().join("v.png").to_str().unwrap(),
+    ]);
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("must end in .svg"));
+}
