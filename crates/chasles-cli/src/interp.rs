@@ -51,6 +51,8 @@ pub struct InterpArgs {
     pub plot: Option<PathBuf>,
     /// Write the sphere plot here (.png).
     pub sphere: Option<PathBuf>,
+    /// Write the animated R (§5.1) here (.gif).
+    pub gif: Option<PathBuf>,
 }
 
 enum Plan {
@@ -224,7 +226,12 @@ pub fn run(args: InterpArgs) -> Result<()> {
             bail!("--out must end in .csv or .json, got {}", out.display());
         }
     }
-    for (p, ext) in [(&args.plot, "svg"), (&args.sphere, "png")] {
+    if let Some(p) = &args.plot {
+        if !matches!(extension(p).as_str(), "svg" | "png") {
+            bail!("--plot {} must end in .svg or .png", p.display());
+        }
+    }
+    for (p, ext) in [(&args.sphere, "png"), (&args.gif, "gif")] {
         if let Some(p) = p {
             if extension(p) != ext {
                 bail!("{} must end in .{ext}", p.display());
@@ -243,10 +250,13 @@ pub fn run(args: InterpArgs) -> Result<()> {
             "{} through {}: angular velocity (Dam et al. eq. 5.1)",
             args.method, args.keys
         );
-        write_atomic(
-            p,
-            chasles_viz::graph::velocity_svg(&run.velocity, &keys, &title).as_bytes(),
-        )?;
+        if extension(p) == "png" {
+            let img = chasles_viz::graph::velocity_png(&run.velocity, &keys, 900, 420);
+            write_atomic(p, &img.png())?;
+        } else {
+            let svg = chasles_viz::graph::velocity_svg(&run.velocity, &keys, &title);
+            write_atomic(p, svg.as_bytes())?;
+        }
         eprintln!("wrote {}", p.display());
     }
     if let Some(p) = &args.sphere {
@@ -268,6 +278,17 @@ pub fn run(args: InterpArgs) -> Result<()> {
             .collect();
         write_atomic(p, &render(&pts, fixed_coordinate(&q), 600).png())?;
         eprintln!("wrote {}", p.display());
+    }
+    if let Some(p) = &args.gif {
+        // The frames as rotations: a non-unit frame (raw Lerp) is shown by its rotation.
+        let q: Vec<Quat<f64>> = run
+            .frames
+            .iter()
+            .map(|f| f.q.normalize().unwrap_or(Quat::identity()))
+            .collect();
+        let frames = chasles_viz::letter::animate(&q, 240);
+        write_atomic(p, &chasles_viz::gif(&frames, 4)?)?;
+        eprintln!("wrote {} ({} frames)", p.display(), frames.len());
     }
     match &args.out {
         Some(out) => {

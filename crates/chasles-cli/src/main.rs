@@ -12,7 +12,9 @@ mod convert;
 mod interp;
 mod keyfile;
 mod output;
+mod pictures;
 mod properties;
+mod report;
 mod repr;
 mod skin;
 mod tour;
@@ -41,6 +43,9 @@ enum Command {
         /// Seed of the random inputs.
         #[arg(long, default_value_t = 1998)]
         seed: u64,
+        /// Folder for the report (index.html and its pictures).
+        #[arg(long, default_value = "report")]
+        out: std::path::PathBuf,
     },
     /// Interpolate key frames: LinEuler, LinMat, Lerp, Slerp, Squad, Spring (Dam et al. 1998).
     ///
@@ -80,12 +85,15 @@ enum Command {
         /// Spring methods: weight c_w of the constant-velocity penalty (eq. 6.41).
         #[arg(long, allow_negative_numbers = true)]
         velocity_weight: Option<f64>,
-        /// Also write the angular-velocity graph (§5.2) as SVG.
+        /// Also write the angular-velocity graph (§5.2), as SVG or PNG by the extension.
         #[arg(long)]
         plot: Option<std::path::PathBuf>,
         /// Also write the sphere plot of the curve (§5.3) as PNG.
         #[arg(long)]
         sphere: Option<std::path::PathBuf>,
+        /// Also write the direct visualisation (§5.1): an extruded R turned by every frame, as an animated GIF.
+        #[arg(long)]
+        gif: Option<std::path::PathBuf>,
     },
     /// Blend rigid transformations: lin, dec, log, log-iter, qlb, sclerp, dlb, dib (Kavan et al. 2006).
     ///
@@ -159,6 +167,12 @@ enum Command {
         /// Measure LBS and DQS speed on synthetic meshes of 10^5 and 10^6 vertices.
         #[arg(long)]
         bench: bool,
+        /// Also write the pose skinned by every method, side by side, as PNG (with --artifacts: the cylinder twisted 180°).
+        #[arg(long)]
+        render: Option<std::path::PathBuf>,
+        /// Also write an animated GIF of LBS beside DQS: the clip at --fps (with --artifacts: the twist sweep).
+        #[arg(long)]
+        gif: Option<std::path::PathBuf>,
     },
     /// Convert one rotation or rigid motion between representations.
     ///
@@ -222,7 +236,9 @@ fn main() {
         }
     };
     let result = match cli.command {
-        Command::Tour { samples, seed } => tour::run(tour::TourArgs { samples, seed }).map(|_| 0),
+        Command::Tour { samples, seed, out } => {
+            tour::run(tour::TourArgs { samples, seed, out }).map(|_| 0)
+        }
         Command::Skin {
             rig,
             anim,
@@ -234,6 +250,8 @@ fn main() {
             fps,
             artifacts,
             bench,
+            render,
+            gif,
         } => skin::run(skin::SkinArgs {
             rig,
             anim,
@@ -245,6 +263,8 @@ fn main() {
             fps,
             artifacts,
             bench,
+            render,
+            gif,
         })
         .map(|_| 0),
         Command::Blend { method, input } => blend::run(&method, &input).map(|_| 0),
@@ -274,6 +294,7 @@ fn main() {
             velocity_weight,
             plot,
             sphere,
+            gif,
         } => interp::run(interp::InterpArgs {
             method,
             keys,
@@ -288,6 +309,7 @@ fn main() {
             velocity_weight,
             plot,
             sphere,
+            gif,
         })
         .map(|_| 0),
         Command::Convert {

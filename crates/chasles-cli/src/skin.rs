@@ -2,6 +2,7 @@
 //! or a whole clip, and the candy-wrapper table (`--artifacts`).
 
 use crate::output::{extension, write_atomic};
+use crate::pictures;
 use anyhow::{anyhow, bail, Context, Result};
 use chasles_skin::cylinder::{self, Motion};
 use chasles_skin::{json_rig, skin, writers, Method, Pose, Rig, Skinned};
@@ -30,6 +31,10 @@ pub struct SkinArgs {
     pub artifacts: bool,
     /// Measure speed instead.
     pub bench: bool,
+    /// Write every method side by side here (.png).
+    pub render: Option<PathBuf>,
+    /// Write LBS beside DQS as an animation here (.gif).
+    pub gif: Option<PathBuf>,
 }
 
 fn method(name: &str) -> Result<Method> {
@@ -199,8 +204,32 @@ pub fn run(a: SkinArgs) -> Result<()> {
     if a.bench {
         return bench();
     }
+    for (p, ext) in [(&a.render, "png"), (&a.gif, "gif")] {
+        if let Some(p) = p {
+            if extension(p) != ext {
+                bail!("{} must end in .{ext}", p.display());
+            }
+        }
+    }
     if a.artifacts {
         print!("{}", artifacts_table()?);
+        let rig = cylinder::twisted_cylinder();
+        if let Some(p) = &a.render {
+            let pose = cylinder::pose(&rig, Motion::Twist, std::f32::consts::PI);
+            write_atomic(
+                p,
+                &pictures::methods_side_by_side(&rig, &pose, &Method::ALL)?.png(),
+            )?;
+            println!(
+                "wrote {} (the cylinder twisted 180°, every method)",
+                p.display()
+            );
+        }
+        if let Some(p) = &a.gif {
+            let frames = pictures::twist_sweep(25)?;
+            write_atomic(p, &chasles_viz::gif(&frames, 6)?)?;
+            println!("wrote {} (twist 0°→180°→0°, LBS beside DQS)", p.display());
+        }
         return Ok(());
     }
     let m = method(&a.method)?;
@@ -209,7 +238,42 @@ pub fn run(a: SkinArgs) -> Result<()> {
         .as_ref()
         .ok_or_else(|| anyhow!("--rig FILE is required (or --artifacts)"))?;
     let rig = chasles_skin::load(rig_path)?;
-    let out = a.out.as_ref().ok_or_else(|| anyhow!("--out is required"))?;
+    if let Some(p) = &a.gif {
+        if a.all_frames || a.pose.is_some() || a.time.is_some() {
+            bail!("--gif plays a whole clip: give --anim (or none for the first), not --pose, --time or --all-frames");
+        }
+        if !(a.fps > 0.0 && a.fps <= 50.0) {
+            bail!("--gif needs --fps in (0, 50], got {}", a.fps);
+        }
+        let c = clip(&rig, &a.anim)?;
+        let frames = pictures::clip_frames(&rig, c, a.fps)?;
+        write_atomic(
+            p,
+            &chasles_viz::gif(&frames, (100.0 / a.fps).round() as u16)?,
+        )?;
+        println!(
+            "wrote {} ({} frames, LBS beside DQS)",
+            p.display(),
+            frames.len()
+        );
+        if a.out.is_none() && a.render.is_none() {
+            return Ok(());
+        }
+    }
+    if a.render.is_some() && a.out.is_none() && !a.all_frames {
+        let pose = chosen_pose(&rig, &a)?.0;
+        let p = a.render.as_ref().unwrap_or_else(|| unreachable!());
+        write_atomic(
+            p,
+            &pictures::methods_side_by_side(&rig, &pose, &Method::ALL)?.png(),
+        )?;
+        println!("wrote {} (every method side by side)", p.display());
+        return Ok(());
+    }
+    let out = a
+        .out
+        .as_ref()
+        .ok_or_else(|| anyhow!("--out is required (or --render/--gif)"))?;
     if a.all_frames {
         if !(a.fps > 0.0 && a.fps.is_finite() && a.fps <= 1000.0) {
             bail!("--fps must be in (0, 1000], got {}", a.fps);
@@ -240,29 +304,14 @@ pub fn run(a: SkinArgs) -> Result<()> {
         );
         return Ok(());
     }
-    if a.pose.is_some() && (a.anim.is_some() || a.time.is_some()) {
-        bail!("give either --pose or --anim/--time, not both");
+    let (pose, when) = chosen_pose(&rig, &a)?;
+    if let Some(p) = &a.render {
+        write_atomic(
+            p,
+            &pictures::methods_side_by_side(&rig, &pose, &Method::ALL)?.png(),
+        )?;
+        println!("wrote {} (every method side by side)", p.display());
     }
-    let (pose, when) = match (&a.anim, a.time) {
-        _ if a.pose.is_some() => {
-            let p = a.pose.as_ref().unwrap_or_else(|| unreachable!());
-            let text = std::fs::read_to_string(p)
-                .with_context(|| format!("cannot read {}", p.display()))?;
-            (
-                json_rig::parse_pose(&text, &rig, &p.display().to_string())?,
-                format!("the pose of {}", p.display()),
-            )
-        }
-        (None, None) => (Pose::rest(&rig), "the rest pose".to_string()),
-        (anim, t) => {
-            let c = clip(&rig, anim)?;
-            let t = t.unwrap_or(0.0);
-            (
-                Pose::animated(&rig, c, t)?,
-                format!("animation {c} at t = {t} s"),
-            )
-        }
-    };
     let s = skin(&rig, &pose, m)?;
     let comment = format!("{} skinned with {} in {when}", rig.name, m.name());
     let bytes = encode(&rig, &s, out, &comment)?;
@@ -276,4 +325,31 @@ pub fn run(a: SkinArgs) -> Result<()> {
         out.display()
     );
     Ok(())
+}
+
+/// The pose asked for: `--pose FILE`, `--anim/--time`, or the rest pose; and words for it.
+fn chosen_pose(rig: &Rig, a: &SkinArgs) -> Result<(Pose, String)> {
+    if a.pose.is_some() && (a.anim.is_some() || a.time.is_some()) {
+        bail!("give either --pose or --anim/--time, not both");
+    }
+    Ok(match (&a.anim, a.time) {
+        _ if a.pose.is_some() => {
+            let p = a.pose.as_ref().unwrap_or_else(|| unreachable!());
+            let text = std::fs::read_to_string(p)
+                .with_context(|| format!("cannot read {}", p.display()))?;
+            (
+                json_rig::parse_pose(&text, rig, &p.display().to_string())?,
+                format!("the pose of {}", p.display()),
+            )
+        }
+        (None, None) => (Pose::rest(rig), "the rest pose".to_string()),
+        (anim, t) => {
+            let c = clip(rig, anim)?;
+            let t = t.unwrap_or(0.0);
+            (
+                Pose::animated(rig, c, t)?,
+                format!("animation {c} at t = {t} s"),
+            )
+        }
+    })
 }

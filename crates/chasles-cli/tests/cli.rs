@@ -322,9 +322,110 @@ fn non_unit_quaternion_is_normalized_with_a_note() {
     assert!(String::from_utf8_lossy(&o.stderr).contains("normalized"));
 }
 
+/// A PNG's width, height and RGB bytes.
+fn decode_png(bytes: &[u8]) -> (usize, usize, Vec<u8>) {
+    let mut r = png::Decoder::new(std::io::Cursor::new(bytes))
+        .read_info()
+        .expect("png");
+    let mut buf = vec![0; r.output_buffer_size().expect("size")];
+    let info = r.next_frame(&mut buf).expect("png frame");
+    buf.truncate(info.buffer_size());
+    (info.width as usize, info.height as usize, buf)
+}
+
+/// Every picture `index.html` refers to, with the check that it is a valid file of its
+/// kind (PNG and GIF decoded in full; SVG a complete document with drawn content).
+fn check_pictures(dir: &std::path::Path) -> usize {
+    let html = std::fs::read_to_string(dir.join("index.html")).expect("index.html");
+    let mut images = 0;
+    for part in html.split("<img src=\"").skip(1) {
+        let name = &part[..part.find('"').expect("closing quote")];
+        let bytes = std::fs::read(dir.join(name)).unwrap_or_else(|_| panic!("{name} missing"));
+        match name.rsplit('.').next() {
+            Some("png") => {
+                let mut r = png::Decoder::new(std::io::Cursor::new(&bytes))
+                    .read_info()
+                    .unwrap_or_else(|e| panic!("{name}: {e}"));
+                let mut buf = vec![0; r.output_buffer_size().expect("size")];
+                let info = r
+                    .next_frame(&mut buf)
+                    .unwrap_or_else(|e| panic!("{name}: {e}"));
+                assert!(info.width >= 100 && info.height >= 100, "{name} too small");
+                // Not blank: over 1 % of the pixels differ from the corner (background).
+                let px: Vec<&[u8]> = buf[..info.buffer_size()].chunks(3).collect();
+                let drawn = px.iter().filter(|c| **c != px[0]).count();
+                assert!(drawn * 100 > px.len(), "{name} looks blank");
+            }
+            Some("gif") => {
+                let mut opts = gif::DecodeOptions::new();
+                opts.set_color_output(gif::ColorOutput::RGBA);
+                let mut d = opts
+                    .read_info(std::io::Cursor::new(&bytes))
+                    .unwrap_or_else(|e| panic!("{name}: {e}"));
+                let mut frames = 0;
+                while d
+                    .read_next_frame()
+                    .unwrap_or_else(|e| panic!("{name}: {e}"))
+                    .is_some()
+                {
+                    frames += 1;
+                }
+                assert!(frames >= 10, "{name}: {frames} frames");
+            }
+            Some("svg") => {
+                let t = String::from_utf8(bytes).expect("utf-8");
+                assert!(
+                    t.starts_with("<svg xmlns=\"http://www.w3.org/2000/svg\""),
+                    "{name}"
+                );
+                assert!(t.trim_end().ends_with("</svg>"), "{name} incomplete");
+                assert!(t.contains("<polyline"), "{name} draws no curve");
+            }
+            other => panic!("{name}: unexpected kind {other:?}"),
+        }
+        images += 1;
+    }
+    images
+}
+
+/// The tour's report: valid pictures, and every claim row with a number and a verdict.
+fn check_report(dir: &std::path::Path) -> usize {
+    let images = check_pictures(dir);
+    let html = std::fs::read_to_string(dir.join("index.html")).expect("index.html");
+    let rows: Vec<&str> = html.split("<tr class=\"claim\">").skip(1).collect();
+    assert!(rows.len() >= 15, "only {} claims", rows.len());
+    for r in &rows {
+        let measured = r
+            .split("<td class=\"measured\">")
+            .nth(1)
+            .expect("measured cell");
+        let measured = &measured[..measured.find("</td>").expect("cell end")];
+        assert!(
+            measured.chars().any(|c| c.is_ascii_digit()),
+            "no number in: {measured}"
+        );
+        assert!(
+            r.contains("class=\"yes\"") || r.contains("class=\"no\""),
+            "no verdict"
+        );
+    }
+    images
+}
+
 #[test]
-fn tour_prints_computed_numbers() {
-    let out = stdout(&chasles(&["tour", "--samples", "200"]));
+fn tour_prints_computed_numbers_and_writes_the_report() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let report = dir.path().join("report");
+    let o = chasles(&[
+        "tour",
+        "--samples",
+        "200",
+        "--out",
+        report.to_str().expect("utf-8 path"),
+    ]);
+    let out = stdout(&o);
+    assert!(out.contains("report: "), "no report line");
+    assert!(check_report(&report) >= 15, "too few pictures");
     for section in [
         "App. B.4",
         "gimbal lock",
@@ -895,18 +996,17 @@ fn skin_errors_are_one_line_and_leave_no_file() {
     }
 }
 
+/// A two-joint strip of four triangles in the plain JSON rig format.
+const STRIP_JSON: &str = r#"{"positions": [[0,0,0],[1,0,0],[2,0,0],[0,1,0],[1,1,0],[2,1,0]],
+      "triangles": [[0,1,4],[0,4,3],[1,2,5],[1,5,4]],
+      "joints": [{"name": "a"}, {"name": "b", "parent": 0, "translation": [1,0,0]}],
+      "influences": [[[0,1]],[[0,0.5],[1,0.5]],[[1,1]],[[0,1]],[[0,0.5],[1,0.5]],[[1,1]]]}"#;
+
 #[test]
 fn skin_json_rig_with_a_pose_file() {
     let dir = tempfile::tempdir().unwrap();
     let rig = dir.path().join("strip.json");
-    std::fs::write(
-        &rig,
-        r#"{"positions": [[0,0,0],[1,0,0],[2,0,0],[0,1,0],[1,1,0],[2,1,0]],
-      "triangles": [[0,1,4],[0,4,3],[1,2,5],[1,5,4]],
-      "joints": [{"name": "a"}, {"name": "b", "parent": 0, "translation": [1,0,0]}],
-      "influences": [[[0,1]],[[0,0.5],[1,0.5]],[[1,1]],[[0,1]],[[0,0.5],[1,0.5]],[[1,1]]]}"#,
-    )
-    .unwrap();
+    std::fs::write(&rig, STRIP_JSON).unwrap();
     let pose = dir.path().join("pose.json");
     std::fs::write(
         &pose,
@@ -951,7 +1051,7 @@ fn skin_json_rig_with_a_pose_file() {
 #[test]
 fn interp_writes_the_velocity_graph_and_the_sphere_plot() {
     let dir = tempfile::tempdir().unwrap();
-    let (svg, png) = (dir.path().join("v.svg"), dir.path().join("s.png"));
+    let p = |n: &str| dir.path().join(n).to_str().unwrap().to_string();
     let o = chasles(&[
         "interp",
         "--method",
@@ -961,23 +1061,99 @@ fn interp_writes_the_velocity_graph_and_the_sphere_plot() {
         "--frames",
         "80",
         "--out",
-        dir.path().join("c.csv").to_str().unwrap(),
+        &p("c.csv"),
         "--plot",
-        svg.to_str().unwrap(),
+        &p("v.svg"),
         "--sphere",
-        png.to_str().unwrap(),
+        &p("s.png"),
     ]);
     stdout(&o);
-    assert!(std::fs::read_to_string(&svg).unwrap().starts_with("<svg"));
-    assert!(std::fs::read(&png).unwrap().starts_with(b"\x89PNG"));
-    let bad = chasles(&[
+    let o = chasles(&[
         "interp",
         "--method",
         "slerp",
         "--keys",
         "builtin:cusp",
+        "--frames",
+        "30",
+        "--out",
+        &p("d.csv"),
         "--plot",
-        dir.path().join("v.png").to_str().unwrap(),
+        &p("v.png"),
+        "--gif",
+        &p("r.gif"),
     ]);
-    assert!(String::from_utf8_lossy(&bad.stderr).contains("must end in .svg"));
+    stdout(&o);
+    std::fs::create_dir(dir.path().join("report")).unwrap();
+    let html =
+        "<img src=\"../v.svg\"><img src=\"../s.png\"><img src=\"../v.png\"><img src=\"../r.gif\">";
+    std::fs::write(dir.path().join("report/index.html"), html).unwrap();
+    assert_eq!(check_pictures(&dir.path().join("report")), 4);
+    for (flag, name, msg) in [
+        ("--plot", "v.txt", "must end in .svg or .png"),
+        ("--sphere", "s.svg", "must end in .png"),
+        ("--gif", "r.png", "must end in .gif"),
+    ] {
+        let bad = chasles(&[
+            "interp",
+            "--method",
+            "slerp",
+            "--keys",
+            "builtin:cusp",
+            flag,
+            &p(name),
+        ]);
+        assert!(String::from_utf8_lossy(&bad.stderr).contains(msg), "{flag}");
+        assert!(!dir.path().join(name).exists(), "{name} written");
+    }
+}
+
+#[test]
+fn skin_renders_every_method_and_the_twist_sweep() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = |n: &str| dir.path().join(n).to_str().unwrap().to_string();
+    let o = chasles(&[
+        "skin",
+        "--artifacts",
+        "--render",
+        &p("twist.png"),
+        "--gif",
+        &p("twist.gif"),
+    ]);
+    let out = stdout(&o);
+    assert!(out.contains("wrote") && out.contains("twist.gif"));
+    std::fs::create_dir(dir.path().join("r")).unwrap();
+    std::fs::write(
+        dir.path().join("r/index.html"),
+        "<img src=\"../twist.png\"><img src=\"../twist.gif\">",
+    )
+    .unwrap();
+    assert_eq!(check_pictures(&dir.path().join("r")), 2);
+    // Six panels side by side, each 300 wide; in the LBS panel the middle of the cylinder
+    // has collapsed, in the DQS panel the middle column crosses the cylinder's full width.
+    let img = decode_png(&std::fs::read(p("twist.png")).unwrap());
+    assert_eq!((img.0, img.1), (6 * 300, 170));
+    let drawn = |x0: usize| {
+        (0..img.1)
+            .filter(|y| {
+                let k = (y * img.0 + x0) * 3;
+                let c = &img.2[k..k + 3];
+                c.iter().any(|v| *v < 200) || (c[0] > 225 && c[2] < 240)
+            })
+            .count()
+    };
+    let (lbs, dqs) = (drawn(150), drawn(300 + 150));
+    assert!(lbs * 4 < dqs, "LBS middle {lbs} px, DQS middle {dqs} px");
+    // A rigged file: every method side by side, without --out.
+    let rig = dir.path().join("rig.json");
+    std::fs::write(&rig, STRIP_JSON).unwrap();
+    let r = rig.to_str().unwrap();
+    stdout(&chasles(&["skin", "--rig", r, "--render", &p("strip.png")]));
+    let img = decode_png(&std::fs::read(p("strip.png")).unwrap());
+    assert_eq!((img.0, img.1), (6 * 260, 320));
+    let bad = chasles(&["skin", "--rig", r, "--render", &p("x.jpg")]);
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("must end in .png"));
+    let bad = chasles(&["skin", "--rig", r, "--gif", &p("x.gif")]);
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("has no animations"));
+    assert!(!dir.path().join("x.gif").exists());
 }

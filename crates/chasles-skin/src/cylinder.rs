@@ -19,6 +19,8 @@ use crate::rig::{compute_normals, Influences, Mesh, Node, Rig, Trs};
 use crate::skinning::{skin, Method};
 use chasles::{Mat4, Quat, Vec3};
 
+/// The rig's name.
+pub const NAME: &str = "twisted cylinder";
 /// Rings along the cylinder.
 pub const RINGS: usize = 81;
 /// Vertices per ring.
@@ -64,7 +66,7 @@ pub fn twisted_cylinder() -> Rig {
     let normals = compute_normals(&positions, &triangles);
     let influences = Influences::from_lists(&lists, 2).unwrap_or_default();
     Rig {
-        name: "twisted cylinder".into(),
+        name: NAME.into(),
         mesh: Mesh {
             positions,
             normals,

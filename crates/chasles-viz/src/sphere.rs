@@ -7,6 +7,7 @@
 //! like LinEuler's or raw Lerp's) shows through dimmed while frames on the surface sit on
 //! it. The view looks at the curve's side of the sphere.
 
+use crate::image::Image;
 use chasles::{Quat, Vec3};
 
 /// What a plotted point is.
@@ -18,15 +19,6 @@ pub enum Mark {
     Key,
     /// An interpolated frame (small).
     Frame,
-}
-
-/// An RGB image.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Image {
-    /// Width and height in pixels.
-    pub size: usize,
-    /// Row-major RGB bytes.
-    pub rgb: Vec<u8>,
 }
 
 /// The coordinate of `[w, x, y, z]` that varies least over the points (the fixed one).
@@ -143,21 +135,9 @@ pub fn render(points: &[(Quat<f64>, Mark)], fixed: usize, size: usize) -> Image 
             rgb.extend(col.map(|x| x.clamp(0.0, 255.0) as u8));
         }
     }
-    Image { size, rgb }
-}
-
-impl Image {
-    /// PNG bytes.
-    pub fn png(&self) -> Vec<u8> {
-        let mut out = Vec::new();
-        {
-            let mut enc = png::Encoder::new(&mut out, self.size as u32, self.size as u32);
-            enc.set_color(png::ColorType::Rgb);
-            enc.set_depth(png::BitDepth::Eight);
-            if let Ok(mut w) = enc.write_header() {
-                let _ = w.write_image_data(&self.rgb);
-            }
-        }
-        out
+    Image {
+        width: size,
+        height: size,
+        rgb,
     }
 }

@@ -44,7 +44,10 @@ pub struct DlbVsScLerp {
     pub axis: f64,
 }
 
-fn differences(theta: f64, t: f64) -> Result<(f64, f64)> {
+/// DLB against ScLERP between the identity and a screw motion turning `theta` about z
+/// with unit slide, at parameter `t`: the rotation-angle difference (radians) and the
+/// slide difference (a fraction of the total slide).
+pub fn dlb_sclerp_difference(theta: f64, t: f64) -> Result<(f64, f64)> {
     let q = DualQuat::from_screw(&Screw {
         axis: Vec3::new(0.0, 0.0, 1.0),
         moment: Vec3::zero(),
@@ -82,7 +85,7 @@ pub fn dlb_vs_sclerp(samples: usize, seed: u64) -> Result<DlbVsScLerp> {
             }
             for k in 0..=nh {
                 let t = lo_t + (hi_t - lo_t) * k as f64 / nh as f64;
-                let (da, dt) = differences(th, t)?;
+                let (da, dt) = dlb_sclerp_difference(th, t)?;
                 if da > ba.0 {
                     *ba = (da, (th, t));
                 }
