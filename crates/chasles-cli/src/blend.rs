@@ -7,14 +7,18 @@
 //! "translation": [x,y,z]}`, `{"matrix": [[r00,r01,r02,t0],…,[0,0,0,1]]}` (row-major) or
 //! `{"dq": [8 numbers]}`. Output: a JSON array, one object per case in order, with
 //! `rotation`, `translation`, `matrix`, `dq`, `rigid` and, for dec, log-iter and dib,
-//! `iterations`.
+//! `iterations`. `--plot`, `--render` and `--gif` draw the first case
+//! ([`crate::blend_pictures`]).
 
+use crate::blend_pictures;
+use crate::output::{extension, write_atomic};
 use crate::repr::motion_from_json;
 use anyhow::{anyhow, bail, Context, Result};
 use chasles::blend::{blend_dual_quats, Method, Options};
 use chasles::{DualQuat, Vec3};
 use serde_json::{json, Map, Value};
 use std::io::Read;
+use std::path::PathBuf;
 
 fn number(o: &Map<String, Value>, name: &str) -> Result<Option<f64>> {
     match o.get(name) {
@@ -116,8 +120,9 @@ fn case(v: &Value, method: Method) -> Result<Case> {
     Ok((x, w, opt))
 }
 
-/// Blends every case of `input` (JSON text) with `method`, returning the output array.
-pub fn blend_json(method: Method, input: &str) -> Result<Value> {
+/// Blends every case of `input` (JSON text) with `method`, returning the output array and
+/// the first case as read.
+fn blend_all(method: Method, input: &str) -> Result<(Value, Option<Case>)> {
     let v: Value =
         serde_json::from_str(input).map_err(|e| anyhow!("input is not valid JSON: {e}"))?;
     let cases: Vec<&Value> = match &v {
@@ -125,9 +130,15 @@ pub fn blend_json(method: Method, input: &str) -> Result<Value> {
         other => vec![other],
     };
     let mut out = Vec::with_capacity(cases.len());
+    let mut first = None;
     for (i, c) in cases.iter().enumerate() {
-        let result =
-            case(c, method).and_then(|(x, w, opt)| Ok(blend_dual_quats(method, &x, &w, &opt)?));
+        let result = case(c, method).and_then(|(x, w, opt)| {
+            let b = blend_dual_quats(method, &x, &w, &opt)?;
+            if first.is_none() {
+                first = Some((x, w, opt));
+            }
+            Ok(b)
+        });
         let b = result.with_context(|| format!("case {i}"))?;
         let mut o = json!({
             "rotation": b.dq.real.to_array(),
@@ -141,11 +152,19 @@ pub fn blend_json(method: Method, input: &str) -> Result<Value> {
         }
         out.push(o);
     }
-    Ok(Value::Array(out))
+    Ok((Value::Array(out), first))
 }
 
-/// Runs `chasles blend`.
-pub fn run(method: &str, input: &str) -> Result<()> {
+/// Runs `chasles blend`; `pictures` are the `--plot` (SVG), `--render` (PNG) and `--gif`
+/// (GIF) paths, drawn for the first case (see [`crate::blend_pictures`]).
+pub fn run(method: &str, input: &str, pictures: [Option<PathBuf>; 3]) -> Result<()> {
+    for (p, ext) in pictures.iter().zip(["svg", "png", "gif"]) {
+        if let Some(p) = p {
+            if extension(p) != ext {
+                bail!("{} must end in .{ext}", p.display());
+            }
+        }
+    }
     let m = Method::from_name(method).ok_or_else(|| {
         let names: Vec<&str> = Method::ALL.iter().map(|m| m.name()).collect();
         anyhow!(
@@ -162,7 +181,29 @@ pub fn run(method: &str, input: &str) -> Result<()> {
     } else {
         std::fs::read_to_string(input).with_context(|| format!("cannot read {input}"))?
     };
-    let out = blend_json(m, &text)?;
+    let (out, first) = blend_all(m, &text)?;
     println!("{}", serde_json::to_string_pretty(&out)?);
+    if pictures.iter().any(Option::is_some) {
+        let (x, w, opt) = first.ok_or_else(|| anyhow!("no cases to draw"))?;
+        let c = blend_pictures::Case {
+            x: &x,
+            w: &w,
+            opt: &opt,
+        };
+        let [plot, render, gif] = &pictures;
+        if let Some(p) = plot {
+            write_atomic(p, blend_pictures::plot(&c)?.as_bytes())?;
+            eprintln!("wrote {}", p.display());
+        }
+        if let Some(p) = render {
+            write_atomic(p, &blend_pictures::render(&c)?.png())?;
+            eprintln!("wrote {}", p.display());
+        }
+        if let Some(p) = gif {
+            let frames = blend_pictures::animate(&c, m, 40)?;
+            write_atomic(p, &chasles_viz::gif(&frames, 5)?)?;
+            eprintln!("wrote {}", p.display());
+        }
+    }
     Ok(())
 }

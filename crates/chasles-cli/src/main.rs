@@ -8,6 +8,7 @@
 //!   measured Table 1 (Kavan et al. 2006).
 
 mod blend;
+mod blend_pictures;
 mod convert;
 mod interp;
 mod keyfile;
@@ -113,6 +114,15 @@ enum Command {
         /// JSON file, or - for stdin.
         #[arg(long)]
         input: String,
+        /// Also plot every method's rotation along the path of weights (first case), SVG.
+        #[arg(long)]
+        plot: Option<std::path::PathBuf>,
+        /// Also draw the inputs and every method's blend as letters R (first case), PNG.
+        #[arg(long)]
+        render: Option<std::path::PathBuf>,
+        /// Also animate the blend along the path of weights with --method (first case), GIF.
+        #[arg(long)]
+        gif: Option<std::path::PathBuf>,
     },
     /// Measure Kavan et al.'s Table 1 on random inputs, with exact FLOP counts (and --claims).
     Properties {
@@ -267,7 +277,13 @@ fn main() {
             gif,
         })
         .map(|_| 0),
-        Command::Blend { method, input } => blend::run(&method, &input).map(|_| 0),
+        Command::Blend {
+            method,
+            input,
+            plot,
+            render,
+            gif,
+        } => blend::run(&method, &input, [plot, render, gif]).map(|_| 0),
         Command::Properties {
             samples,
             seed,

@@ -379,7 +379,12 @@ fn check_pictures(dir: &std::path::Path) -> usize {
                     "{name}"
                 );
                 assert!(t.trim_end().ends_with("</svg>"), "{name} incomplete");
-                assert!(t.contains("<polyline"), "{name} draws no curve");
+                assert!(
+                    ["<polyline", "class=\"bar\"", "class=\"cell\""]
+                        .iter()
+                        .any(|k| t.contains(k)),
+                    "{name} draws nothing"
+                );
             }
             other => panic!("{name}: unexpected kind {other:?}"),
         }
@@ -1156,4 +1161,71 @@ fn skin_renders_every_method_and_the_twist_sweep() {
     let bad = chasles(&["skin", "--rig", r, "--gif", &p("x.gif")]);
     assert!(String::from_utf8_lossy(&bad.stderr).contains("has no animations"));
     assert!(!dir.path().join("x.gif").exists());
+}
+
+#[test]
+fn blend_draws_the_path_of_weights_and_every_method() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = |n: &str| dir.path().join(n).to_str().unwrap().to_string();
+    let two = r#"{"transforms": [{"rotation": [1,0,0,0]},
+        {"rotation": [0,0,0,1], "translation": [3,0,0]}], "weights": [0.5, 0.5]}"#;
+    let o = with_stdin(
+        &[
+            "blend",
+            "--method",
+            "dlb",
+            "--input",
+            "-",
+            "--plot",
+            &p("two.svg"),
+            "--render",
+            &p("two.png"),
+            "--gif",
+            &p("two.gif"),
+        ],
+        two,
+    );
+    stdout(&o);
+    std::fs::create_dir(dir.path().join("r")).unwrap();
+    std::fs::write(
+        dir.path().join("r/index.html"),
+        r#"<img src="../two.svg"><img src="../two.png"><img src="../two.gif">"#,
+    )
+    .unwrap();
+    assert_eq!(check_pictures(&dir.path().join("r")), 3);
+    let svg = std::fs::read_to_string(p("two.svg")).unwrap();
+    assert_eq!(svg.matches("class=\"series\"").count(), 8, "every method");
+    assert_eq!(decode_png(&std::fs::read(p("two.png")).unwrap()).0, 8 * 260);
+    // Three transforms: ScLERP does not apply and is left out.
+    let three = r#"{"transforms": [{"rotation": [1,0,0,0]}, {"rotation": [0,1,0,0]},
+        {"rotation": [0,0,1,0], "translation": [0,2,0]}], "weights": [0.3, 0.3, 0.4]}"#;
+    stdout(&with_stdin(
+        &[
+            "blend",
+            "--method",
+            "dib",
+            "--input",
+            "-",
+            "--plot",
+            &p("three.svg"),
+        ],
+        three,
+    ));
+    let svg = std::fs::read_to_string(p("three.svg")).unwrap();
+    assert_eq!(svg.matches("class=\"series\"").count(), 7);
+    assert!(!svg.contains(">sclerp<"));
+    let bad = with_stdin(
+        &[
+            "blend",
+            "--method",
+            "dib",
+            "--input",
+            "-",
+            "--render",
+            &p("x.svg"),
+        ],
+        three,
+    );
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("must end in .png"));
+    assert!(!dir.path().join("x.svg").exists());
 }

@@ -8,13 +8,16 @@
 //! Figures 5.1–5.3); [`letter`] turns an extruded R by every frame and [`raster`] draws it
 //! into an animated GIF, the direct visualisation of §5.1; [`panels`] draws one mesh posed
 //! by several skinning methods side by side (Kavan et al. §6, Figure 1); [`plot`] draws the
-//! measured claims as line plots (Kavan et al. §4, Figure 7). [`image`] holds the pictures
+//! measured claims as line plots (Kavan et al. §4, Figure 7), [`grid`] Table 1's measured
+//! deviations and [`bars`] DIB's iteration counts. [`image`] holds the pictures
 //! and writes PNG and GIF; [`font`] labels them.
 
 #![warn(missing_docs)]
 
+pub mod bars;
 pub mod font;
 pub mod graph;
+pub mod grid;
 pub mod image;
 pub mod letter;
 pub mod panels;

@@ -190,3 +190,41 @@ fn velocity_png_marks_keys() {
     let blue = img.rgb.chunks(3).filter(|c| c == &[31, 95, 191]).count();
     assert!(blue > 300, "the curve: {blue}");
 }
+
+#[test]
+fn grid_and_bars() {
+    use chasles_viz::bars::bars_svg;
+    use chasles_viz::grid::{grid_svg, GridCell};
+    let c = |value: f64, holds: bool, agrees: bool| GridCell {
+        value,
+        holds,
+        agrees,
+    };
+    let s = grid_svg(
+        &["a", "b"],
+        &["p", "q"],
+        &[
+            vec![c(1e-15, true, true), c(0.3, false, false)],
+            vec![c(0.0, false, true), c(f64::NAN, false, true)],
+        ],
+        "t",
+    );
+    assert_eq!(s.matches("class=\"cell\"").count(), 4);
+    assert!(
+        s.contains(">1e-15<") && s.contains(">3e-1<") && s.contains(">no<") && s.contains(">—<")
+    );
+    assert_eq!(
+        s.matches("stroke=\"black\" stroke-width=\"3\"").count(),
+        1,
+        "one disagreement framed"
+    );
+    let b = bars_svg(
+        &["0".into(), "1".into(), "2".into()],
+        &[0, 64, 136],
+        "dib",
+        "updates",
+    );
+    assert_eq!(b.matches("class=\"bar\"").count(), 3);
+    assert!(b.contains(">136<"));
+    assert!(bars_svg(&[], &[], "empty", "x").ends_with("</svg>\n"));
+}
