@@ -53,6 +53,8 @@ pub struct InterpArgs {
     pub sphere: Option<PathBuf>,
     /// Write the animated R (§5.1) here (.gif).
     pub gif: Option<PathBuf>,
+    /// Write a film strip of the R at evenly spread frames here (.png).
+    pub render: Option<PathBuf>,
 }
 
 enum Plan {
@@ -231,7 +233,11 @@ pub fn run(args: InterpArgs) -> Result<()> {
             bail!("--plot {} must end in .svg or .png", p.display());
         }
     }
-    for (p, ext) in [(&args.sphere, "png"), (&args.gif, "gif")] {
+    for (p, ext) in [
+        (&args.sphere, "png"),
+        (&args.gif, "gif"),
+        (&args.render, "png"),
+    ] {
         if let Some(p) = p {
             if extension(p) != ext {
                 bail!("{} must end in .{ext}", p.display());
@@ -279,16 +285,20 @@ pub fn run(args: InterpArgs) -> Result<()> {
         write_atomic(p, &render(&pts, fixed_coordinate(&q), 600).png())?;
         eprintln!("wrote {}", p.display());
     }
+    // The frames as rotations: a non-unit frame (raw Lerp) is shown by its rotation.
+    let turned: Vec<Quat<f64>> = run
+        .frames
+        .iter()
+        .map(|f| f.q.normalize().unwrap_or(Quat::identity()))
+        .collect();
     if let Some(p) = &args.gif {
-        // The frames as rotations: a non-unit frame (raw Lerp) is shown by its rotation.
-        let q: Vec<Quat<f64>> = run
-            .frames
-            .iter()
-            .map(|f| f.q.normalize().unwrap_or(Quat::identity()))
-            .collect();
-        let frames = chasles_viz::letter::animate(&q, 240);
+        let frames = chasles_viz::letter::animate(&turned, 240);
         write_atomic(p, &chasles_viz::gif(&frames, 4)?)?;
         eprintln!("wrote {} ({} frames)", p.display(), frames.len());
+    }
+    if let Some(p) = &args.render {
+        write_atomic(p, &chasles_viz::letter::strip(&turned, 8, 180).png())?;
+        eprintln!("wrote {}", p.display());
     }
     match &args.out {
         Some(out) => {

@@ -95,6 +95,9 @@ enum Command {
         /// Also write the direct visualisation (§5.1): an extruded R turned by every frame, as an animated GIF.
         #[arg(long)]
         gif: Option<std::path::PathBuf>,
+        /// Also write the R at eight evenly spread frames as a film strip, PNG.
+        #[arg(long)]
+        render: Option<std::path::PathBuf>,
     },
     /// Blend rigid transformations: lin, dec, log, log-iter, qlb, sclerp, dlb, dib (Kavan et al. 2006).
     ///
@@ -183,6 +186,9 @@ enum Command {
         /// Also write an animated GIF of LBS beside DQS: the clip at --fps (with --artifacts: the twist sweep).
         #[arg(long)]
         gif: Option<std::path::PathBuf>,
+        /// Also write a line plot, SVG: LBS's smallest local volume over the clip (with --artifacts: middle radius against twist, every method).
+        #[arg(long)]
+        plot: Option<std::path::PathBuf>,
     },
     /// Convert one rotation or rigid motion between representations.
     ///
@@ -262,6 +268,7 @@ fn main() {
             bench,
             render,
             gif,
+            plot,
         } => skin::run(skin::SkinArgs {
             rig,
             anim,
@@ -275,6 +282,7 @@ fn main() {
             bench,
             render,
             gif,
+            plot,
         })
         .map(|_| 0),
         Command::Blend {
@@ -311,6 +319,7 @@ fn main() {
             plot,
             sphere,
             gif,
+            render,
         } => interp::run(interp::InterpArgs {
             method,
             keys,
@@ -326,6 +335,7 @@ fn main() {
             plot,
             sphere,
             gif,
+            render,
         })
         .map(|_| 0),
         Command::Convert {

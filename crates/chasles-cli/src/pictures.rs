@@ -1,7 +1,9 @@
 //! The skinning pictures (Kavan et al. 2006, §6, Figures 1 and 6): one pose skinned by
 //! every method side by side, and animations — the candy-wrapper twist sweep of the
 //! two-bone cylinder, or a character's clip — with linear and dual-quaternion skinning
-//! next to each other. Shared by `chasles skin --render/--gif` and the tour.
+//! next to each other — and line plots of the candy wrapper (radius against twist) and of
+//! LBS's volume loss over a clip. Shared by `chasles skin --render/--gif/--plot` and the
+//! tour.
 
 use anyhow::Result;
 use chasles::Vec3;
@@ -97,4 +99,83 @@ pub fn clip_frames(rig: &Rig, clip: usize, fps: f32) -> Result<Vec<Image>> {
             methods_side_by_side(rig, &pose, &[Method::Lbs, Method::Dqs])
         })
         .collect()
+}
+
+/// Line colours for the six skinning methods, in [`Method::ALL`] order.
+const METHOD_COLOURS: [&str; 6] = [
+    "#c0392b", "#1f5fbf", "#27ae60", "#8e44ad", "#e67e22", "#16a085",
+];
+
+/// The middle cross-section's radius against the twist angle, every method, with LBS's
+/// closed form cos(θ/2) (weights ½, ½ at the middle) dashed.
+pub fn twist_plot() -> Result<String> {
+    use chasles_viz::plot::{lines_svg, Series};
+    let rig = cylinder::twisted_cylinder();
+    let angles: Vec<f32> = (0..=36).map(|k| 5.0 * k as f32).collect();
+    let mut series = Vec::new();
+    for (m, colour) in Method::ALL.iter().zip(METHOD_COLOURS) {
+        let pts = angles
+            .iter()
+            .map(|deg| {
+                let a = cylinder::measure(&rig, *m, Motion::Twist, deg.to_radians())?;
+                Ok((f64::from(*deg), f64::from(a.radius)))
+            })
+            .collect::<Result<Vec<_>>>()?;
+        series.push(Series {
+            name: m.name(),
+            colour,
+            dashed: false,
+            points: pts,
+        });
+    }
+    series.push(Series {
+        name: "cos(θ/2)",
+        colour: "#000000",
+        dashed: true,
+        points: angles
+            .iter()
+            .map(|d| (f64::from(*d), (f64::from(*d).to_radians() / 2.0).cos()))
+            .collect(),
+    });
+    Ok(lines_svg(
+        &series,
+        "The candy wrapper: middle radius of the twisted cylinder",
+        "twist (degrees)",
+        "radius / rest radius",
+    ))
+}
+
+/// LBS's smallest determinant of the blended 3×3 over clip `clip` (41 times), with the 1
+/// that rigid blends keep dashed.
+pub fn volume_plot(rig: &Rig, clip: usize) -> Result<String> {
+    use chasles_viz::plot::{lines_svg, Series};
+    let over = chasles_skin::volume::lbs_volume_over_clip(rig, clip, 40)?;
+    let lbs: Vec<(f64, f64)> = over
+        .iter()
+        .map(|(t, d)| (f64::from(*t), f64::from(*d)))
+        .collect();
+    let rigid = lbs.iter().map(|(t, _)| (*t, 1.0)).collect();
+    let series = [
+        Series {
+            name: "lbs",
+            colour: METHOD_COLOURS[0],
+            dashed: false,
+            points: lbs,
+        },
+        Series {
+            name: "dqs, dib",
+            colour: METHOD_COLOURS[1],
+            dashed: true,
+            points: rigid,
+        },
+    ];
+    Ok(lines_svg(
+        &series,
+        &format!(
+            "{}: smallest local volume (det of the blended 3×3)",
+            rig.name
+        ),
+        "time in the clip (s)",
+        "det",
+    ))
 }

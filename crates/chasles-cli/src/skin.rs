@@ -35,6 +35,8 @@ pub struct SkinArgs {
     pub render: Option<PathBuf>,
     /// Write LBS beside DQS as an animation here (.gif).
     pub gif: Option<PathBuf>,
+    /// Write a line plot here (.svg): radius against twist, or LBS's volume over the clip.
+    pub plot: Option<PathBuf>,
 }
 
 fn method(name: &str) -> Result<Method> {
@@ -204,7 +206,7 @@ pub fn run(a: SkinArgs) -> Result<()> {
     if a.bench {
         return bench();
     }
-    for (p, ext) in [(&a.render, "png"), (&a.gif, "gif")] {
+    for (p, ext) in [(&a.render, "png"), (&a.gif, "gif"), (&a.plot, "svg")] {
         if let Some(p) = p {
             if extension(p) != ext {
                 bail!("{} must end in .{ext}", p.display());
@@ -230,6 +232,13 @@ pub fn run(a: SkinArgs) -> Result<()> {
             write_atomic(p, &chasles_viz::gif(&frames, 6)?)?;
             println!("wrote {} (twist 0°→180°→0°, LBS beside DQS)", p.display());
         }
+        if let Some(p) = &a.plot {
+            write_atomic(p, pictures::twist_plot()?.as_bytes())?;
+            println!(
+                "wrote {} (middle radius against twist, every method)",
+                p.display()
+            );
+        }
         return Ok(());
     }
     let m = method(&a.method)?;
@@ -238,6 +247,17 @@ pub fn run(a: SkinArgs) -> Result<()> {
         .as_ref()
         .ok_or_else(|| anyhow!("--rig FILE is required (or --artifacts)"))?;
     let rig = chasles_skin::load(rig_path)?;
+    if let Some(p) = &a.plot {
+        let c = clip(&rig, &a.anim)?;
+        write_atomic(p, pictures::volume_plot(&rig, c)?.as_bytes())?;
+        println!(
+            "wrote {} (LBS's smallest local volume over the clip)",
+            p.display()
+        );
+        if a.out.is_none() && a.render.is_none() && a.gif.is_none() {
+            return Ok(());
+        }
+    }
     if let Some(p) = &a.gif {
         if a.all_frames || a.pose.is_some() || a.time.is_some() {
             bail!("--gif plays a whole clip: give --anim (or none for the first), not --pose, --time or --all-frames");

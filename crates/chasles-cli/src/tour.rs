@@ -701,7 +701,7 @@ fn data_dir() -> Option<std::path::PathBuf> {
 fn skinning(rep: &mut Report) -> anyhow::Result<()> {
     use crate::pictures;
     use chasles_skin::cylinder::{self, Motion};
-    use chasles_skin::{gltf_load, joint_transforms, Method, Pose};
+    use chasles_skin::{gltf_load, Method, Pose};
     stage("skinning: the candy wrapper");
     heading("Kavan et al. §6 / Figure 6: the candy wrapper on a two-bone cylinder");
     rep.section("Kavan et al. §6, Figures 1 and 6: skinning a two-bone cylinder");
@@ -722,6 +722,11 @@ fn skinning(rep: &mut Report) -> anyhow::Result<()> {
         ),
         at180.0 < 0.05 && (at180.1 - 1.0).abs() < 0.02,
     );
+    rep.figure(
+        "twist-radius.svg",
+        pictures::twist_plot()?.as_bytes(),
+        "The middle radius against the twist angle for every method: LBS follows cos(θ/2) (dashed; the blended matrix there is (I + Rx(θ))/2) down to 0 at 180°, every rigid method keeps 1",
+    )?;
     let pose = cylinder::pose(&rig, Motion::Twist, std::f32::consts::PI);
     rep.figure(
         "cylinder-twist.png",
@@ -769,27 +774,11 @@ fn skinning(rep: &mut Report) -> anyhow::Result<()> {
     ] {
         let rig = gltf_load::load(&dir.join(file))?;
         let c = rig.animations.iter().position(|a| a.name == clip).unwrap_or(0);
-        let mut worst = f32::MAX;
-        let mut worst_t = 0.0;
-        for k in 0..=40 {
-            let t = rig.animations[c].duration() * k as f32 / 40.0;
-            let jt = joint_transforms(&rig, &Pose::animated(&rig, c, t)?)?;
-            for v in 0..rig.mesh.positions.len() {
-                let mut a = chasles::Mat3::from_rows([[0.0f32; 3]; 3]);
-                for (j, w) in rig.influences.of(v) {
-                    let m = jt.matrices[j].linear_part();
-                    for (r, row) in a.m.iter_mut().enumerate() {
-                        for (col, e) in row.iter_mut().enumerate() {
-                            *e += m.m[r][col] * w;
-                        }
-                    }
-                }
-                if a.determinant() < worst {
-                    worst = a.determinant();
-                    worst_t = t;
-                }
-            }
-        }
+        let over = chasles_skin::volume::lbs_volume_over_clip(&rig, c, 40)?;
+        let (worst_t, worst) = over
+            .iter()
+            .copied()
+            .fold((0.0, f32::INFINITY), |a, b| if b.1 < a.1 { b } else { a });
         println!(
             "  {file} ({} vertices, {} joints): LBS down to {worst:.2} of the local volume; DQS keeps 1 (rigid blends)",
             rig.mesh.positions.len(),
@@ -801,8 +790,13 @@ fn skinning(rep: &mut Report) -> anyhow::Result<()> {
             format!("{file}: smallest det of LBS's blended 3×3 over the clip {worst:.2} (DQS: 1)"),
             worst < 0.95,
         );
-        let pose = Pose::animated(&rig, c, worst_t)?;
         let name = file.trim_end_matches(".glb").to_lowercase();
+        rep.figure(
+            &format!("{name}-volume.svg"),
+            pictures::volume_plot(&rig, c)?.as_bytes(),
+            &format!("{file}: LBS's smallest local volume at 41 times of its clip; rigid blends keep 1"),
+        )?;
+        let pose = Pose::animated(&rig, c, worst_t)?;
         rep.figure(
             &format!("{name}.png"),
             &pictures::methods_side_by_side(&rig, &pose, &Method::ALL)?.png(),

@@ -1087,13 +1087,17 @@ fn interp_writes_the_velocity_graph_and_the_sphere_plot() {
         &p("v.png"),
         "--gif",
         &p("r.gif"),
+        "--render",
+        &p("strip.png"),
     ]);
     stdout(&o);
     std::fs::create_dir(dir.path().join("report")).unwrap();
-    let html =
-        "<img src=\"../v.svg\"><img src=\"../s.png\"><img src=\"../v.png\"><img src=\"../r.gif\">";
+    let html = "<img src=\"../v.svg\"><img src=\"../s.png\"><img src=\"../v.png\"><img src=\"../r.gif\"><img src=\"../strip.png\">";
     std::fs::write(dir.path().join("report/index.html"), html).unwrap();
-    assert_eq!(check_pictures(&dir.path().join("report")), 4);
+    assert_eq!(check_pictures(&dir.path().join("report")), 5);
+    // Eight frames of 180 pixels in the strip.
+    let strip = decode_png(&std::fs::read(p("strip.png")).unwrap());
+    assert_eq!((strip.0, strip.1), (8 * 180, 180));
     for (flag, name, msg) in [
         ("--plot", "v.txt", "must end in .svg or .png"),
         ("--sphere", "s.svg", "must end in .png"),
@@ -1124,8 +1128,16 @@ fn skin_renders_every_method_and_the_twist_sweep() {
         &p("twist.png"),
         "--gif",
         &p("twist.gif"),
+        "--plot",
+        &p("radius.svg"),
     ]);
     let out = stdout(&o);
+    let svg = std::fs::read_to_string(p("radius.svg")).unwrap();
+    assert_eq!(
+        svg.matches("class=\"series\"").count(),
+        7,
+        "six methods and cos(θ/2)"
+    );
     assert!(out.contains("wrote") && out.contains("twist.gif"));
     std::fs::create_dir(dir.path().join("r")).unwrap();
     std::fs::write(

@@ -19,6 +19,7 @@ pub mod pose;
 pub mod rig;
 pub mod skinning;
 pub mod synthetic;
+pub mod volume;
 pub mod writers;
 
 pub use error::{Result, SkinError};

@@ -40,10 +40,9 @@ pub fn letter_r(depth: f64) -> (Vec<Vec3<f64>>, Vec<[u32; 3]>) {
     (v, t)
 }
 
-/// The direct visualisation: one picture per frame of the R turned by that frame's
-/// rotation, seen from a fixed viewpoint slightly above and to the right, `size` pixels
-/// square, with the frame number written in the corner.
-pub fn animate(frames: &[chasles::Quat<f64>], size: usize) -> Vec<crate::Image> {
+/// The R turned by `q`, seen from a fixed viewpoint slightly above and to the right,
+/// `size` pixels square, `label` written in the corner.
+fn draw(q: chasles::Quat<f64>, label: &str, size: usize) -> crate::Image {
     use crate::raster::{rotated, Canvas, View};
     let (v, t) = letter_r(1.2);
     let radius = v.iter().map(|p| p.norm()).fold(0.0, f64::max);
@@ -53,14 +52,36 @@ pub fn animate(frames: &[chasles::Quat<f64>], size: usize) -> Vec<crate::Image> 
         Vec3::zero(),
         0.46 * size as f64 / radius,
     );
+    let mut c = Canvas::new(size, size, [246, 246, 242]);
+    c.mesh(&view, &rotated(q, &v), &t, |_| [200, 45, 45]);
+    c.text(4, 4, 2, label, [90, 90, 90]);
+    c.finish()
+}
+
+/// The direct visualisation: one picture per frame of the R turned by that frame's
+/// rotation, `size` pixels square, with the frame number written in the corner.
+pub fn animate(frames: &[chasles::Quat<f64>], size: usize) -> Vec<crate::Image> {
     frames
         .iter()
         .enumerate()
-        .map(|(i, q)| {
-            let mut c = Canvas::new(size, size, [246, 246, 242]);
-            c.mesh(&view, &rotated(*q, &v), &t, |_| [200, 45, 45]);
-            c.text(4, 4, 2, &format!("{i}"), [90, 90, 90]);
-            c.finish()
-        })
+        .map(|(i, q)| draw(*q, &i.to_string(), size))
         .collect()
+}
+
+/// A film strip: the R at `count` frames evenly spread over `frames` (always the first and
+/// the last), `size` pixels each, left to right, each labelled with its frame number.
+pub fn strip(frames: &[chasles::Quat<f64>], count: usize, size: usize) -> crate::Image {
+    let n = frames.len();
+    let count = count.clamp(1, n.max(1));
+    let picked: Vec<crate::Image> = (0..count)
+        .filter_map(|k| {
+            let i = if count == 1 {
+                0
+            } else {
+                k * n.saturating_sub(1) / (count - 1)
+            };
+            frames.get(i).map(|q| draw(*q, &i.to_string(), size))
+        })
+        .collect();
+    crate::Image::side_by_side(&picked)
 }
