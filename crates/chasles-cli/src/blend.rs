@@ -155,10 +155,11 @@ fn blend_all(method: Method, input: &str) -> Result<(Value, Option<Case>)> {
     Ok((Value::Array(out), first))
 }
 
-/// Runs `chasles blend`; `pictures` are the `--plot` (SVG), `--render` (PNG) and `--gif`
-/// (GIF) paths, drawn for the first case (see [`crate::blend_pictures`]).
-pub fn run(method: &str, input: &str, pictures: [Option<PathBuf>; 3]) -> Result<()> {
-    for (p, ext) in pictures.iter().zip(["svg", "png", "gif"]) {
+/// Runs `chasles blend`; `pictures` are the `--plot` (SVG), `--render` (PNG), `--gif`
+/// (GIF) and `--sphere` (PNG) paths, drawn for the first case (see
+/// [`crate::blend_pictures`]).
+pub fn run(method: &str, input: &str, pictures: [Option<PathBuf>; 4]) -> Result<()> {
+    for (p, ext) in pictures.iter().zip(["svg", "png", "gif", "png"]) {
         if let Some(p) = p {
             if extension(p) != ext {
                 bail!("{} must end in .{ext}", p.display());
@@ -190,7 +191,7 @@ pub fn run(method: &str, input: &str, pictures: [Option<PathBuf>; 3]) -> Result<
             w: &w,
             opt: &opt,
         };
-        let [plot, render, gif] = &pictures;
+        let [plot, render, gif, sphere] = &pictures;
         if let Some(p) = plot {
             write_atomic(p, blend_pictures::plot(&c)?.as_bytes())?;
             eprintln!("wrote {}", p.display());
@@ -202,6 +203,10 @@ pub fn run(method: &str, input: &str, pictures: [Option<PathBuf>; 3]) -> Result<
         if let Some(p) = gif {
             let frames = blend_pictures::animate(&c, m, 40)?;
             write_atomic(p, &chasles_viz::gif(&frames, 5)?)?;
+            eprintln!("wrote {}", p.display());
+        }
+        if let Some(p) = sphere {
+            write_atomic(p, &blend_pictures::sphere(&c, m)?.png())?;
             eprintln!("wrote {}", p.display());
         }
     }

@@ -5,7 +5,9 @@
 //! transform along the path (a straight line is constant angular speed — ScLERP's, and
 //! what DLB approximates); `--render` draws the inputs as grey letters R and each method's
 //! blend in colour, side by side (Lin's matrix drawn as it is, so its shrinking shows);
-//! `--gif` moves the R along the path for the chosen method.
+//! `--gif` moves the R along the path for the chosen method; `--sphere` plots the chosen
+//! method's rotations along the path on the unit sphere (Dam et al. §5.3), the inputs as
+//! keys.
 
 use anyhow::Result;
 use chasles::blend::{blend_dual_quats, Blended, Method, Options};
@@ -176,4 +178,27 @@ pub fn animate(case: &Case, method: Method, frames: usize) -> Result<Vec<Image>>
             c.finish()
         })
         .collect())
+}
+
+/// The chosen method's rotations along the path (small) and the inputs' rotations (keys,
+/// the first larger) on the unit sphere, one coordinate left out.
+pub fn sphere(case: &Case, method: Method) -> Result<Image> {
+    use chasles_viz::sphere::{fixed_coordinate, render, Mark};
+    let mut pts: Vec<(chasles::Quat<f64>, Mark)> = Vec::new();
+    let q0 = case.x[0].real;
+    for (i, d) in case.x.iter().enumerate() {
+        // Each input on q0's side, as the blends choose.
+        let q = if d.real.dot(q0) < 0.0 {
+            -d.real
+        } else {
+            d.real
+        };
+        pts.push((q, if i == 0 { Mark::FirstKey } else { Mark::Key }));
+    }
+    for k in 0..=100 {
+        let q = case.blend(method, k as f64 / 100.0)?.dq.real;
+        pts.push((if q.dot(q0) < 0.0 { -q } else { q }, Mark::Frame));
+    }
+    let all: Vec<chasles::Quat<f64>> = pts.iter().map(|p| p.0).collect();
+    Ok(render(&pts, fixed_coordinate(&all), 500))
 }

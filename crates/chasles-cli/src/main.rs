@@ -126,6 +126,9 @@ enum Command {
         /// Also animate the blend along the path of weights with --method (first case), GIF.
         #[arg(long)]
         gif: Option<std::path::PathBuf>,
+        /// Also plot --method's rotations along the path on the unit sphere (first case), PNG.
+        #[arg(long)]
+        sphere: Option<std::path::PathBuf>,
     },
     /// Measure Kavan et al.'s Table 1 on random inputs, with exact FLOP counts (and --claims).
     Properties {
@@ -291,7 +294,8 @@ fn main() {
             plot,
             render,
             gif,
-        } => blend::run(&method, &input, [plot, render, gif]).map(|_| 0),
+            sphere,
+        } => blend::run(&method, &input, [plot, render, gif, sphere]).map(|_| 0),
         Command::Properties {
             samples,
             seed,

@@ -71,6 +71,48 @@ pub fn methods_side_by_side(rig: &Rig, pose: &Pose, methods: &[Method]) -> Resul
     ))
 }
 
+/// A close-up of `pose` around the vertex where LBS keeps the least volume: every method
+/// of `methods` side by side, the view fitted to the rest-pose neighbourhood (a fifth of
+/// the mesh's size around) of that vertex as each method places it.
+pub fn methods_closeup(rig: &Rig, pose: &Pose, methods: &[Method]) -> Result<Image> {
+    let (worst, _) = chasles_skin::volume::lbs_worst_vertex(rig, pose)?;
+    let rest = &rig.mesh.positions;
+    let (lo, hi) = rest.iter().fold(
+        ([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]),
+        |(lo, hi), p| {
+            let a = p.to_array();
+            (
+                [lo[0].min(a[0]), lo[1].min(a[1]), lo[2].min(a[2])],
+                [hi[0].max(a[0]), hi[1].max(a[1]), hi[2].max(a[2])],
+            )
+        },
+    );
+    let size = (0..3).map(|i| hi[i] - lo[i]).fold(0.0f32, f32::max);
+    let near: Vec<usize> = (0..rest.len())
+        .filter(|v| (rest[*v] - rest[worst]).norm() < size * 0.2)
+        .collect();
+    let mut panels = Vec::new();
+    let mut focus = Vec::new();
+    for m in methods {
+        let s = skin(rig, pose, *m)?;
+        focus.extend(near.iter().map(|v| s.positions[*v].cast::<f64>()));
+        panels.push(Panel {
+            label: m.name(),
+            positions: s.positions.iter().map(|p| p.cast::<f64>()).collect(),
+        });
+    }
+    let (from, up, (w, h)) = view_of(rig);
+    Ok(chasles_viz::panels::side_by_side_fitted(
+        &panels,
+        &rig.mesh.triangles,
+        &colour_of(rig),
+        &focus,
+        from,
+        up,
+        (w, h),
+    ))
+}
+
 /// Frames of LBS beside DQS: the cylinder twisted from 0° to 180° and back
 /// (`frames` steps each way).
 pub fn twist_sweep(frames: usize) -> Result<Vec<Image>> {

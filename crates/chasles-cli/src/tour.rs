@@ -802,6 +802,11 @@ fn skinning(rep: &mut Report) -> anyhow::Result<()> {
             &pictures::methods_side_by_side(&rig, &pose, &Method::ALL)?.png(),
             &format!("{file} at t = {worst_t:.2} s of its clip, where LBS loses the most volume, skinned by every method. Credit: {credit}"),
         )?;
+        rep.figure(
+            &format!("{name}-closeup.png"),
+            &pictures::methods_closeup(&rig, &pose, &Method::ALL)?.png(),
+            &format!("{file}, the same pose, close up around the vertex where LBS keeps the least volume ({worst:.2}): LBS pinches, the rigid blends keep the limb's thickness"),
+        )?;
     }
     Ok(())
 }

@@ -1194,6 +1194,8 @@ fn blend_draws_the_path_of_weights_and_every_method() {
             &p("two.png"),
             "--gif",
             &p("two.gif"),
+            "--sphere",
+            &p("sphere.png"),
         ],
         two,
     );
@@ -1201,10 +1203,10 @@ fn blend_draws_the_path_of_weights_and_every_method() {
     std::fs::create_dir(dir.path().join("r")).unwrap();
     std::fs::write(
         dir.path().join("r/index.html"),
-        r#"<img src="../two.svg"><img src="../two.png"><img src="../two.gif">"#,
+        r#"<img src="../two.svg"><img src="../two.png"><img src="../two.gif"><img src="../sphere.png">"#,
     )
     .unwrap();
-    assert_eq!(check_pictures(&dir.path().join("r")), 3);
+    assert_eq!(check_pictures(&dir.path().join("r")), 4);
     let svg = std::fs::read_to_string(p("two.svg")).unwrap();
     assert_eq!(svg.matches("class=\"series\"").count(), 8, "every method");
     assert_eq!(decode_png(&std::fs::read(p("two.png")).unwrap()).0, 8 * 260);

@@ -6,23 +6,37 @@
 use crate::{joint_transforms, Pose, Result, Rig};
 use chasles::Mat3;
 
-/// The smallest determinant of LBS's blended 3×3 over the vertices of `rig` in `pose`.
-pub fn lbs_min_determinant(rig: &Rig, pose: &Pose) -> Result<f32> {
+/// The determinant of LBS's blended 3×3 at every vertex of `rig` in `pose`.
+pub fn lbs_determinants(rig: &Rig, pose: &Pose) -> Result<Vec<f32>> {
     let jt = joint_transforms(rig, pose)?;
-    let mut worst = f32::INFINITY;
-    for v in 0..rig.mesh.positions.len() {
-        let mut a = Mat3::from_rows([[0.0f32; 3]; 3]);
-        for (j, w) in rig.influences.of(v) {
-            let m = jt.matrices[j].linear_part();
-            for (row, mrow) in a.m.iter_mut().zip(m.m.iter()) {
-                for (e, x) in row.iter_mut().zip(mrow) {
-                    *e += x * w;
+    Ok((0..rig.mesh.positions.len())
+        .map(|v| {
+            let mut a = Mat3::from_rows([[0.0f32; 3]; 3]);
+            for (j, w) in rig.influences.of(v) {
+                let m = jt.matrices[j].linear_part();
+                for (row, mrow) in a.m.iter_mut().zip(m.m.iter()) {
+                    for (e, x) in row.iter_mut().zip(mrow) {
+                        *e += x * w;
+                    }
                 }
             }
-        }
-        worst = worst.min(a.determinant());
-    }
-    Ok(worst)
+            a.determinant()
+        })
+        .collect())
+}
+
+/// The vertex where LBS keeps the least volume in `pose`, and that determinant
+/// (`(0, +∞)` for a mesh without vertices).
+pub fn lbs_worst_vertex(rig: &Rig, pose: &Pose) -> Result<(usize, f32)> {
+    Ok(lbs_determinants(rig, pose)?
+        .into_iter()
+        .enumerate()
+        .fold((0, f32::INFINITY), |a, b| if b.1 < a.1 { b } else { a }))
+}
+
+/// The smallest determinant of LBS's blended 3×3 over the vertices of `rig` in `pose`.
+pub fn lbs_min_determinant(rig: &Rig, pose: &Pose) -> Result<f32> {
+    Ok(lbs_worst_vertex(rig, pose)?.1)
 }
 
 /// [`lbs_min_determinant`] at `samples + 1` evenly spaced times of clip `clip`, as

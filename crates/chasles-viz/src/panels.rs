@@ -29,7 +29,21 @@ pub fn side_by_side(
         .iter()
         .flat_map(|p| p.positions.iter().copied())
         .collect();
-    let view = View::fit(&all, from, up, width, height, 0.08);
+    side_by_side_fitted(panels, triangles, colour, &all, from, up, (width, height))
+}
+
+/// As [`side_by_side`], the view fitted to `focus` (points of interest, e.g. one joint's
+/// neighbourhood) rather than to everything: a close-up; what falls outside is cut off.
+pub fn side_by_side_fitted(
+    panels: &[Panel],
+    triangles: &[[u32; 3]],
+    colour: &dyn Fn(usize) -> [u8; 3],
+    focus: &[Vec3<f64>],
+    from: Vec3<f64>,
+    up: Vec3<f64>,
+    (width, height): (usize, usize),
+) -> Image {
+    let view = View::fit(focus, from, up, width, height, 0.08);
     let images: Vec<Image> = panels
         .iter()
         .map(|p| {
