@@ -132,15 +132,7 @@ pub fn render(case: &Case) -> Result<Image> {
     let view = view_for(&all, size);
     let panels: Vec<Image> = blends
         .iter()
-        .map(|(m, pts)| {
-            let mut c = Canvas::new(size, size, [250, 250, 250]);
-            for inp in &inputs {
-                c.mesh(&view, inp, &t, |_| [185, 185, 185]);
-            }
-            c.mesh(&view, pts, &t, |_| [200, 45, 45]);
-            c.text(6, 6, 3, m.name(), [40, 40, 40]);
-            c.finish()
-        })
+        .map(|(m, pts)| scene(&view, size, &inputs, pts, &t, m.name()))
         .collect();
     Ok(Image::side_by_side(&panels))
 }
@@ -168,16 +160,26 @@ pub fn animate(case: &Case, method: Method, frames: usize) -> Result<Vec<Image>>
     let view = view_for(&all, size);
     Ok(path
         .iter()
-        .map(|pts| {
-            let mut c = Canvas::new(size, size, [250, 250, 250]);
-            for inp in &inputs {
-                c.mesh(&view, inp, &t, |_| [185, 185, 185]);
-            }
-            c.mesh(&view, pts, &t, |_| [200, 45, 45]);
-            c.text(6, 6, 3, method.name(), [40, 40, 40]);
-            c.finish()
-        })
+        .map(|pts| scene(&view, size, &inputs, pts, &t, method.name()))
         .collect())
+}
+
+/// One picture: the input letters in grey, the blended one in red, labelled.
+fn scene(
+    view: &View,
+    size: usize,
+    inputs: &[Vec<Vec3<f64>>],
+    blended: &[Vec3<f64>],
+    triangles: &[[u32; 3]],
+    label: &str,
+) -> Image {
+    let mut c = Canvas::new(size, size, [250, 250, 250]);
+    for inp in inputs {
+        c.mesh(view, inp, triangles, |_| [185, 185, 185]);
+    }
+    c.mesh(view, blended, triangles, |_| [200, 45, 45]);
+    c.text(6, 6, 3, label, [40, 40, 40]);
+    c.finish()
 }
 
 /// The chosen method's rotations along the path (small) and the inputs' rotations (keys,

@@ -1,6 +1,7 @@
 //! A bar chart of counts, for DIB's iteration counts (Kavan et al. 2006, §5: "typically 1
 //! to 4 iterations"): one bar per label, its count written above it.
 
+use crate::svg::{esc, open};
 use std::fmt::Write;
 
 /// An SVG bar chart (640 × 300) of `counts` under `labels`.
@@ -9,23 +10,7 @@ pub fn bars_svg(labels: &[String], counts: &[usize], title: &str, x_label: &str)
     let n = labels.len().min(counts.len()).max(1);
     let max = counts.iter().copied().max().unwrap_or(0).max(1) as f64;
     let bw = (w - left - right) / n as f64;
-    let mut s = String::new();
-    let _ = writeln!(
-        s,
-        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}" font-family="sans-serif" font-size="12">"#
-    );
-    let _ = writeln!(s, r#"<rect width="{w}" height="{h}" fill="white"/>"#);
-    let esc = |t: &str| {
-        t.replace('&', "&amp;")
-            .replace('<', "&lt;")
-            .replace('>', "&gt;")
-    };
-    let _ = writeln!(
-        s,
-        r#"<text x="{}" y="22" text-anchor="middle" font-size="15">{}</text>"#,
-        w / 2.0,
-        esc(title)
-    );
+    let mut s = open(w, h, title, w / 2.0);
     for (i, (l, c)) in labels.iter().zip(counts).enumerate() {
         let bh = (h - top - bottom) * *c as f64 / max;
         let x = left + bw * i as f64;

@@ -35,21 +35,7 @@ pub fn velocity_svg(velocity: &[f64], keys: &[usize], title: &str) -> String {
     let (shown, lo, hi) = shown_and_range(velocity);
     let x = |i: usize| left + (w - left - right) * i as f64 / (n.max(2) - 1) as f64;
     let y = |v: f64| top + (h - top - bottom) * (1.0 - (v - lo) / (hi - lo));
-    let mut s = String::new();
-    let _ = writeln!(
-        s,
-        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}" font-family="sans-serif" font-size="12">"#
-    );
-    let _ = writeln!(s, r#"<rect width="{w}" height="{h}" fill="white"/>"#);
-    let esc = title
-        .replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;");
-    let _ = writeln!(
-        s,
-        r#"<text x="{}" y="24" text-anchor="middle" font-size="15">{esc}</text>"#,
-        w / 2.0
-    );
+    let mut s = crate::svg::open(w, h, title, w / 2.0);
     // Axes and ticks.
     let _ = writeln!(
         s,

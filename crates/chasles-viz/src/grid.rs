@@ -4,6 +4,7 @@
 //! to the tolerance; a black frame marks a cell that disagrees with the paper. A cell of
 //! exactly 0 is a yes/no property and is written so.
 
+use crate::svg::{esc, open};
 use std::fmt::Write;
 
 /// One cell: the worst deviation, whether it holds, whether it agrees with the paper.
@@ -17,29 +18,12 @@ pub struct GridCell {
     pub agrees: bool,
 }
 
-fn esc(s: &str) -> String {
-    s.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-}
-
 /// An SVG grid of `cells[row][column]` with the given labels and title.
 pub fn grid_svg(rows: &[&str], columns: &[&str], cells: &[Vec<GridCell>], title: &str) -> String {
     let (cw, ch, left, top) = (112.0, 30.0, 90.0, 70.0);
     let w = left + cw * columns.len() as f64 + 10.0;
     let h = top + ch * rows.len() as f64 + 30.0;
-    let mut s = String::new();
-    let _ = writeln!(
-        s,
-        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}" font-family="sans-serif" font-size="12">"#
-    );
-    let _ = writeln!(s, r#"<rect width="{w}" height="{h}" fill="white"/>"#);
-    let _ = writeln!(
-        s,
-        r#"<text x="{}" y="22" text-anchor="middle" font-size="15">{}</text>"#,
-        w / 2.0,
-        esc(title)
-    );
+    let mut s = open(w, h, title, w / 2.0);
     for (j, c) in columns.iter().enumerate() {
         let _ = writeln!(
             s,

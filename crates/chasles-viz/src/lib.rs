@@ -24,5 +24,6 @@ pub mod panels;
 pub mod plot;
 pub mod raster;
 pub mod sphere;
+mod svg;
 
 pub use image::{gif, EncodeError, Image};

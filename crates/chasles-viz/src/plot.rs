@@ -2,6 +2,7 @@
 //! several named series of (x, y) points on shared axes, as a self-contained SVG with a
 //! legend. Non-finite points are left out.
 
+use crate::svg::{esc, open};
 use std::fmt::Write;
 
 /// One curve: its legend, colour (CSS) and points.
@@ -14,12 +15,6 @@ pub struct Series<'a> {
     pub dashed: bool,
     /// The points, in x order.
     pub points: Vec<(f64, f64)>,
-}
-
-fn esc(s: &str) -> String {
-    s.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
 }
 
 /// An SVG (720 × 340) of `series` with a title and axis labels. The y range starts at 0
@@ -58,18 +53,7 @@ pub fn lines_svg(series: &[Series], title: &str, x_label: &str, y_label: &str) -
     let y1 = y1 + (y1 - y0) * 0.05;
     let x = |v: f64| left + (w - left - right) * (v - x0) / (x1 - x0);
     let y = |v: f64| top + (h - top - bottom) * (1.0 - (v - y0) / (y1 - y0));
-    let mut s = String::new();
-    let _ = writeln!(
-        s,
-        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}" font-family="sans-serif" font-size="12">"#
-    );
-    let _ = writeln!(s, r#"<rect width="{w}" height="{h}" fill="white"/>"#);
-    let _ = writeln!(
-        s,
-        r#"<text x="{}" y="24" text-anchor="middle" font-size="15">{}</text>"#,
-        (left + w - right) / 2.0,
-        esc(title)
-    );
+    let mut s = open(w, h, title, (left + w - right) / 2.0);
     for k in 0..=4 {
         let v = y0 + (y1 - y0) * k as f64 / 4.0;
         let _ = writeln!(
