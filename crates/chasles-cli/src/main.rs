@@ -192,6 +192,9 @@ enum Command {
         /// Also write a line plot, SVG: LBS's smallest local volume over the clip (with --artifacts: middle radius against twist, every method).
         #[arg(long)]
         plot: Option<std::path::PathBuf>,
+        /// Also write the clip's most-turning joint rotation on the unit sphere (Dam et al. §5.3), PNG.
+        #[arg(long)]
+        sphere: Option<std::path::PathBuf>,
     },
     /// Convert one rotation or rigid motion between representations.
     ///
@@ -272,6 +275,7 @@ fn main() {
             render,
             gif,
             plot,
+            sphere,
         } => skin::run(skin::SkinArgs {
             rig,
             anim,
@@ -286,6 +290,7 @@ fn main() {
             render,
             gif,
             plot,
+            sphere,
         })
         .map(|_| 0),
         Command::Blend {

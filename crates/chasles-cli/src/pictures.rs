@@ -221,3 +221,57 @@ pub fn volume_plot(rig: &Rig, clip: usize) -> Result<String> {
         "det",
     ))
 }
+
+/// The clip's most-turning rotation channel (the largest angle between any of its keys and
+/// its first) on the unit sphere (Dam et al. §5.3): its key rotations as keys, 200 samples
+/// of the clip as frames. Returns the picture and the node's name.
+pub fn rotation_sphere(rig: &Rig, clip: usize) -> Result<(Image, String)> {
+    use chasles::Quat;
+    use chasles_skin::animation::Path;
+    use chasles_viz::sphere::{fixed_coordinate, render, Mark};
+    let a = rig
+        .animations
+        .get(clip)
+        .ok_or_else(|| anyhow::anyhow!("{}: no animation {clip}", rig.name))?;
+    let q_at = |c: &chasles_skin::animation::Channel, t: f32| {
+        let v = c.sample(t).map(f64::from);
+        Quat::new(v[0], v[1], v[2], v[3])
+            .normalize()
+            .unwrap_or(Quat::identity())
+    };
+    let turn = |c: &chasles_skin::animation::Channel| {
+        let q0 = q_at(c, c.times[0]);
+        c.times
+            .iter()
+            .map(|t| q0.angle_to(q_at(c, *t)).unwrap_or(0.0))
+            .fold(0.0f64, f64::max)
+    };
+    let channel = a
+        .channels
+        .iter()
+        .filter(|c| c.path == Path::Rotation && !c.times.is_empty())
+        .max_by(|x, y| turn(x).total_cmp(&turn(y)))
+        .ok_or_else(|| anyhow::anyhow!("{}: clip {clip} turns no joint", rig.name))?;
+    let (t0, t1) = (channel.times[0], channel.times[channel.times.len() - 1]);
+    // Chain the hemispheres so the curve is continuous (q and −q are one rotation).
+    let near = |prev: Quat<f64>, q: Quat<f64>| if prev.dot(q) < 0.0 { -q } else { q };
+    let mut pts: Vec<(Quat<f64>, Mark)> = Vec::new();
+    let mut prev = q_at(channel, t0);
+    for k in 0..=200 {
+        let t = t0 + (t1 - t0) * k as f32 / 200.0;
+        prev = near(prev, q_at(channel, t));
+        pts.push((prev, Mark::Frame));
+    }
+    let mut prev = q_at(channel, t0);
+    for (i, t) in channel.times.iter().enumerate() {
+        let m = if i == 0 { Mark::FirstKey } else { Mark::Key };
+        prev = near(prev, q_at(channel, *t));
+        pts.push((prev, m));
+    }
+    let all: Vec<Quat<f64>> = pts.iter().map(|p| p.0).collect();
+    let name = rig
+        .nodes
+        .get(channel.node)
+        .map_or_else(|| format!("node {}", channel.node), |n| n.name.clone());
+    Ok((render(&pts, fixed_coordinate(&all), 500), name))
+}

@@ -37,6 +37,8 @@ pub struct SkinArgs {
     pub gif: Option<PathBuf>,
     /// Write a line plot here (.svg): radius against twist, or LBS's volume over the clip.
     pub plot: Option<PathBuf>,
+    /// Write the clip's most-turning joint rotation on the unit sphere here (.png).
+    pub sphere: Option<PathBuf>,
 }
 
 fn method(name: &str) -> Result<Method> {
@@ -206,7 +208,12 @@ pub fn run(a: SkinArgs) -> Result<()> {
     if a.bench {
         return bench();
     }
-    for (p, ext) in [(&a.render, "png"), (&a.gif, "gif"), (&a.plot, "svg")] {
+    for (p, ext) in [
+        (&a.render, "png"),
+        (&a.gif, "gif"),
+        (&a.plot, "svg"),
+        (&a.sphere, "png"),
+    ] {
         if let Some(p) = p {
             if extension(p) != ext {
                 bail!("{} must end in .{ext}", p.display());
@@ -254,9 +261,22 @@ pub fn run(a: SkinArgs) -> Result<()> {
             "wrote {} (LBS's smallest local volume over the clip)",
             p.display()
         );
-        if a.out.is_none() && a.render.is_none() && a.gif.is_none() {
-            return Ok(());
-        }
+    }
+    if let Some(p) = &a.sphere {
+        let c = clip(&rig, &a.anim)?;
+        let (img, joint) = pictures::rotation_sphere(&rig, c)?;
+        write_atomic(p, &img.png())?;
+        println!(
+            "wrote {} (the rotation of {joint} over the clip)",
+            p.display()
+        );
+    }
+    if (a.plot.is_some() || a.sphere.is_some())
+        && a.out.is_none()
+        && a.render.is_none()
+        && a.gif.is_none()
+    {
+        return Ok(());
     }
     if let Some(p) = &a.gif {
         if a.all_frames || a.pose.is_some() || a.time.is_some() {

@@ -796,6 +796,12 @@ fn skinning(rep: &mut Report) -> anyhow::Result<()> {
             pictures::volume_plot(&rig, c)?.as_bytes(),
             &format!("{file}: LBS's smallest local volume at 41 times of its clip; rigid blends keep 1"),
         )?;
+        let (sphere, joint) = pictures::rotation_sphere(&rig, c)?;
+        rep.figure(
+            &format!("{name}-sphere.png"),
+            &sphere.png(),
+            &format!("{file}: the rotation of {joint}, the joint that turns most in the clip, on the unit sphere (§5.3's plot on real data): its keys and the sampled curve"),
+        )?;
         let pose = Pose::animated(&rig, c, worst_t)?;
         rep.figure(
             &format!("{name}.png"),

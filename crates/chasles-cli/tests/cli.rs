@@ -1243,3 +1243,47 @@ fn blend_draws_the_path_of_weights_and_every_method() {
     assert!(String::from_utf8_lossy(&bad.stderr).contains("must end in .png"));
     assert!(!dir.path().join("x.svg").exists());
 }
+
+#[test]
+fn skin_pictures_of_a_real_clip() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = |n: &str| dir.path().join(n).to_str().unwrap().to_string();
+    let o = chasles(&[
+        "skin",
+        "--rig",
+        &gltf("CesiumMan.glb"),
+        "--plot",
+        &p("volume.svg"),
+        "--sphere",
+        &p("knee.png"),
+        "--render",
+        &p("all.png"),
+        "--time",
+        "0.5",
+    ]);
+    let out = stdout(&o);
+    assert!(out.contains("the rotation of leg_joint_"), "{out}");
+    // LBS's smallest volume over the walk reaches 0.47 (the plot's lowest point).
+    let svg = std::fs::read_to_string(p("volume.svg")).unwrap();
+    assert_eq!(svg.matches("class=\"series\"").count(), 2);
+    std::fs::create_dir(dir.path().join("r")).unwrap();
+    std::fs::write(
+        dir.path().join("r/index.html"),
+        r#"<img src="../volume.svg"><img src="../knee.png"><img src="../all.png">"#,
+    )
+    .unwrap();
+    assert_eq!(check_pictures(&dir.path().join("r")), 3);
+    assert_eq!(decode_png(&std::fs::read(p("all.png")).unwrap()).0, 6 * 260);
+    // A clip is needed for the sphere.
+    let rig = dir.path().join("strip.json");
+    std::fs::write(&rig, STRIP_JSON).unwrap();
+    let bad = chasles(&[
+        "skin",
+        "--rig",
+        rig.to_str().unwrap(),
+        "--sphere",
+        &p("s.png"),
+    ]);
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("has no animations"));
+    assert!(!dir.path().join("s.png").exists());
+}
