@@ -14,6 +14,8 @@ pub mod cylinder;
 pub mod error;
 pub mod fast;
 pub mod gltf_load;
+#[cfg(feature = "gpu")]
+pub mod gpu;
 pub mod json_rig;
 pub mod pose;
 pub mod rig;

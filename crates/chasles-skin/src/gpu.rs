@@ -1,0 +1,320 @@
+//! Skinning on the GPU (Kavan et al. 2006, §6: "DLB … can be easily implemented on the
+//! GPU"): WGSL compute shaders for linear blend skinning and dual quaternion skinning
+//! (with the antipodality fix against each vertex's heaviest influence), run through wgpu
+//! without a window. The mesh stays on the GPU; per frame only the joint transforms go up —
+//! 12 floats a joint for LBS (three rows of the matrix), 8 for DQS (the dual quaternion),
+//! as the paper notes — and the skinned positions and normals come back.
+//!
+//! Up to four influences per vertex (glTF's usual `JOINTS_0`); a rig with more is refused
+//! with [`GpuError::TooManyInfluences`]. Any Vulkan, Metal, DX12 or GL adapter works,
+//! software ones included (Mesa's lavapipe), so the tests run on machines without a GPU.
+
+use crate::{JointTransforms, Method, Rig, Skinned};
+use chasles::Vec3;
+use wgpu::util::DeviceExt;
+
+/// Why the GPU path cannot run.
+#[derive(Debug, thiserror::Error)]
+pub enum GpuError {
+    /// No adapter: no GPU and no software driver.
+    #[error("no GPU adapter: {0}")]
+    NoAdapter(String),
+    /// The device could not be opened or rejected the work.
+    #[error("GPU device: {0}")]
+    Device(String),
+    /// A method with no GPU shader yet.
+    #[error("{0} has no GPU path (lbs and dqs do)")]
+    Unsupported(&'static str),
+    /// A vertex with more influences than the shaders take.
+    #[error("vertex {vertex} has {count} influences; the GPU path takes at most 4")]
+    TooManyInfluences {
+        /// The vertex.
+        vertex: usize,
+        /// Its influences.
+        count: usize,
+    },
+    /// Transforms for another rig.
+    #[error("{given} joint transforms for a rig of {joints} joints")]
+    JointCount {
+        /// Transforms given.
+        given: usize,
+        /// Joints of the rig.
+        joints: usize,
+    },
+    /// The shader produced non-finite positions (e.g. DQS weights cancelling out).
+    #[error("the GPU produced a non-finite position at vertex {0}")]
+    NonFinite(usize),
+}
+
+const WORKGROUP: u32 = 64;
+
+/// A rig uploaded to a GPU, ready to skin pose after pose.
+pub struct GpuSkinner {
+    device: wgpu::Device,
+    queue: wgpu::Queue,
+    lbs: wgpu::ComputePipeline,
+    dqs: wgpu::ComputePipeline,
+    bind_group: wgpu::BindGroup,
+    matrices: wgpu::Buffer,
+    dual_quats: wgpu::Buffer,
+    skinned: wgpu::Buffer,
+    readback: wgpu::Buffer,
+    vertices: u32,
+    joints: usize,
+    groups: (u32, u32),
+    adapter: String,
+}
+
+/// One vertex as the shader reads it: position, normal, 4 joints (heaviest first), weights.
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct GpuVertex {
+    p: [f32; 4],
+    n: [f32; 4],
+    j: [u32; 4],
+    w: [f32; 4],
+}
+
+fn storage(binding: u32, read_only: bool) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Storage { read_only },
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        count: None,
+    }
+}
+
+impl GpuSkinner {
+    /// Opens the default adapter (a high-performance one when there is a choice) and
+    /// uploads `rig`'s mesh and influences.
+    pub fn new(rig: &Rig) -> Result<Self, GpuError> {
+        let instance = wgpu::Instance::new(&wgpu::InstanceDescriptor::default());
+        let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
+            power_preference: wgpu::PowerPreference::HighPerformance,
+            ..Default::default()
+        }))
+        .map_err(|e| GpuError::NoAdapter(e.to_string()))?;
+        let info = adapter.get_info();
+        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+            label: Some("chasles skinning"),
+            required_limits: adapter.limits(),
+            ..Default::default()
+        }))
+        .map_err(|e| GpuError::Device(e.to_string()))?;
+        let n = rig.mesh.positions.len();
+        let mut verts = Vec::with_capacity(n);
+        for v in 0..n {
+            let mut inf: Vec<(usize, f32)> = rig.influences.of(v).collect();
+            if inf.len() > 4 {
+                return Err(GpuError::TooManyInfluences {
+                    vertex: v,
+                    count: inf.len(),
+                });
+            }
+            // Heaviest first (DQS's pivot), the earliest on ties as on the CPU.
+            if let Some(h) = (0..inf.len()).reduce(|a, b| if inf[b].1 > inf[a].1 { b } else { a }) {
+                inf.swap(0, h);
+            }
+            let (mut j, mut w) = ([0u32; 4], [0f32; 4]);
+            for (k, (jj, ww)) in inf.iter().enumerate() {
+                j[k] = *jj as u32;
+                w[k] = *ww;
+            }
+            let (p, nn) = (rig.mesh.positions[v], rig.mesh.normals[v]);
+            verts.push(GpuVertex {
+                p: [p.x, p.y, p.z, 1.0],
+                n: [nn.x, nn.y, nn.z, 0.0],
+                j,
+                w,
+            });
+        }
+        let joints = rig.joints.len().max(1);
+        let usage = wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST;
+        let vertex_buf = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("vertices"),
+            contents: bytemuck::cast_slice(&verts),
+            usage: wgpu::BufferUsages::STORAGE,
+        });
+        let buffer = |label, size: usize, usage| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size: size.max(16) as u64,
+                usage,
+                mapped_at_creation: false,
+            })
+        };
+        let matrices = buffer("matrices", joints * 48, usage);
+        let dual_quats = buffer("dual quaternions", joints * 32, usage);
+        let out_size = n * 32;
+        let skinned = buffer(
+            "skinned",
+            out_size,
+            wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+        );
+        let readback = buffer(
+            "readback",
+            out_size,
+            wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+        );
+        let groups_needed = (n as u32).div_ceil(WORKGROUP).max(1);
+        let max = device.limits().max_compute_workgroups_per_dimension.max(1);
+        let groups = (groups_needed.min(max), groups_needed.div_ceil(max));
+        let params: [u32; 4] = [n as u32, groups.0 * WORKGROUP, 0, 0];
+        let params_buf = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("params"),
+            contents: bytemuck::cast_slice(&params),
+            usage: wgpu::BufferUsages::UNIFORM,
+        });
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("skinning"),
+            entries: &[
+                storage(0, true),
+                storage(1, true),
+                storage(2, true),
+                storage(3, false),
+                wgpu::BindGroupLayoutEntry {
+                    binding: 4,
+                    visibility: wgpu::ShaderStages::COMPUTE,
+                    ty: wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Uniform,
+                        has_dynamic_offset: false,
+                        min_binding_size: None,
+                    },
+                    count: None,
+                },
+            ],
+        });
+        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("skinning"),
+            layout: &layout,
+            entries: &[&vertex_buf, &matrices, &dual_quats, &skinned, &params_buf]
+                .iter()
+                .enumerate()
+                .map(|(i, b)| wgpu::BindGroupEntry {
+                    binding: i as u32,
+                    resource: b.as_entire_binding(),
+                })
+                .collect::<Vec<_>>(),
+        });
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("skinning"),
+            bind_group_layouts: &[&layout],
+            push_constant_ranges: &[],
+        });
+        let module = device.create_shader_module(wgpu::include_wgsl!("gpu/skin.wgsl"));
+        let pipeline = |entry: &str| {
+            device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some(entry),
+                layout: Some(&pipeline_layout),
+                module: &module,
+                entry_point: Some(entry),
+                compilation_options: Default::default(),
+                cache: None,
+            })
+        };
+        let (lbs, dqs) = (pipeline("lbs"), pipeline("dqs"));
+        Ok(GpuSkinner {
+            device,
+            queue,
+            lbs,
+            dqs,
+            bind_group,
+            matrices,
+            dual_quats,
+            skinned,
+            readback,
+            vertices: n as u32,
+            joints: rig.joints.len(),
+            groups,
+            adapter: format!("{} ({:?}, {:?})", info.name, info.device_type, info.backend),
+        })
+    }
+
+    /// The adapter's name, type and backend.
+    pub fn adapter(&self) -> &str {
+        &self.adapter
+    }
+
+    /// Uploads the joint transforms `method` needs and runs its shader, leaving the result
+    /// on the GPU (see [`GpuSkinner::read`]).
+    pub fn dispatch(&self, jt: &JointTransforms, method: Method) -> Result<(), GpuError> {
+        if jt.matrices.len() != self.joints || jt.dual_quats.len() != self.joints {
+            return Err(GpuError::JointCount {
+                given: jt.matrices.len(),
+                joints: self.joints,
+            });
+        }
+        let pipeline = match method {
+            Method::Lbs => {
+                let rows: Vec<f32> = jt.matrices.iter().flat_map(|m| m.m[..3].concat()).collect();
+                self.queue
+                    .write_buffer(&self.matrices, 0, bytemuck::cast_slice(&rows));
+                &self.lbs
+            }
+            Method::Dqs => {
+                let dq: Vec<f32> = jt.dual_quats.iter().flat_map(|d| d.to_array()).collect();
+                self.queue
+                    .write_buffer(&self.dual_quats, 0, bytemuck::cast_slice(&dq));
+                &self.dqs
+            }
+            other => return Err(GpuError::Unsupported(other.name())),
+        };
+        let mut encoder = self.device.create_command_encoder(&Default::default());
+        {
+            let mut pass = encoder.begin_compute_pass(&Default::default());
+            pass.set_pipeline(pipeline);
+            pass.set_bind_group(0, &self.bind_group, &[]);
+            pass.dispatch_workgroups(self.groups.0, self.groups.1, 1);
+        }
+        self.queue.submit([encoder.finish()]);
+        Ok(())
+    }
+
+    /// Waits for the last dispatch and brings the skinned positions and normals back.
+    pub fn read(&self) -> Result<Skinned, GpuError> {
+        let size = u64::from(self.vertices) * 32;
+        let mut encoder = self.device.create_command_encoder(&Default::default());
+        if size > 0 {
+            encoder.copy_buffer_to_buffer(&self.skinned, 0, &self.readback, 0, size);
+        }
+        self.queue.submit([encoder.finish()]);
+        let slice = self.readback.slice(..size.max(16));
+        let (tx, rx) = std::sync::mpsc::channel();
+        slice.map_async(wgpu::MapMode::Read, move |r| {
+            let _ = tx.send(r);
+        });
+        self.device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map_err(|e| GpuError::Device(e.to_string()))?;
+        rx.recv()
+            .map_err(|e| GpuError::Device(e.to_string()))?
+            .map_err(|e| GpuError::Device(e.to_string()))?;
+        let out = {
+            let data = slice.get_mapped_range();
+            let f: &[f32] = bytemuck::cast_slice(&data);
+            let n = self.vertices as usize;
+            let mut positions = Vec::with_capacity(n);
+            let mut normals = Vec::with_capacity(n);
+            for v in f.chunks_exact(8).take(n) {
+                positions.push(Vec3::new(v[0], v[1], v[2]));
+                normals.push(Vec3::new(v[4], v[5], v[6]));
+            }
+            Skinned { positions, normals }
+        };
+        self.readback.unmap();
+        if let Some(v) = out.positions.iter().position(|p| !p.is_finite()) {
+            return Err(GpuError::NonFinite(v));
+        }
+        Ok(out)
+    }
+
+    /// [`GpuSkinner::dispatch`] then [`GpuSkinner::read`].
+    pub fn skin(&self, jt: &JointTransforms, method: Method) -> Result<Skinned, GpuError> {
+        self.dispatch(jt, method)?;
+        self.read()
+    }
+}
