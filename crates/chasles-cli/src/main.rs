@@ -10,6 +10,7 @@
 mod blend;
 mod blend_pictures;
 mod convert;
+mod device;
 mod interp;
 mod keyfile;
 mod output;
@@ -195,6 +196,9 @@ enum Command {
         /// Also write the clip's most-turning joint rotation on the unit sphere (Dam et al. §5.3), PNG.
         #[arg(long)]
         sphere: Option<std::path::PathBuf>,
+        /// Where to skin: cpu, gpu (any adapter, lavapipe included) or auto (a hardware GPU for lbs/dqs when there is one).
+        #[arg(long, value_enum, default_value_t = device::Device::Auto)]
+        device: device::Device,
     },
     /// Convert one rotation or rigid motion between representations.
     ///
@@ -276,6 +280,7 @@ fn main() {
             gif,
             plot,
             sphere,
+            device,
         } => skin::run(skin::SkinArgs {
             rig,
             anim,
@@ -291,6 +296,7 @@ fn main() {
             gif,
             plot,
             sphere,
+            device,
         })
         .map(|_| 0),
         Command::Blend {

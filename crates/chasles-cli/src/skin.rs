@@ -5,7 +5,7 @@ use crate::output::{extension, write_atomic};
 use crate::pictures;
 use anyhow::{anyhow, bail, Context, Result};
 use chasles_skin::cylinder::{self, Motion};
-use chasles_skin::{json_rig, skin, writers, Method, Pose, Rig, Skinned};
+use chasles_skin::{json_rig, writers, Method, Pose, Rig, Skinned};
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::{Path, PathBuf};
 
@@ -39,6 +39,8 @@ pub struct SkinArgs {
     pub plot: Option<PathBuf>,
     /// Write the clip's most-turning joint rotation on the unit sphere here (.png).
     pub sphere: Option<PathBuf>,
+    /// Where to skin.
+    pub device: crate::device::Device,
 }
 
 fn method(name: &str) -> Result<Method> {
@@ -322,6 +324,7 @@ pub fn run(a: SkinArgs) -> Result<()> {
         let duration = rig.animations[c].duration();
         let frames = (duration * a.fps).floor() as usize + 1;
         std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
+        let engine = crate::device::Engine::new(a.device, &rig, m)?;
         let bar = ProgressBar::new(frames as u64);
         bar.set_style(
             ProgressStyle::with_template("skinning [{bar:30}] {pos}/{len} frames")
@@ -329,7 +332,7 @@ pub fn run(a: SkinArgs) -> Result<()> {
         );
         for f in 0..frames {
             let t = f as f32 / a.fps;
-            let s = skin(&rig, &Pose::animated(&rig, c, t)?, m)?;
+            let s = engine.skin(&rig, &Pose::animated(&rig, c, t)?, m)?;
             let file = out.join(format!("frame_{f:05}.obj"));
             let comment = format!("{} skinned with {} at t = {t} s", rig.name, m.name());
             write_atomic(&file, &encode(&rig, &s, &file, &comment)?)?;
@@ -352,16 +355,18 @@ pub fn run(a: SkinArgs) -> Result<()> {
         )?;
         println!("wrote {} (every method side by side)", p.display());
     }
-    let s = skin(&rig, &pose, m)?;
+    let engine = crate::device::Engine::new(a.device, &rig, m)?;
+    let s = engine.skin(&rig, &pose, m)?;
     let comment = format!("{} skinned with {} in {when}", rig.name, m.name());
     let bytes = encode(&rig, &s, out, &comment)?;
     write_atomic(out, &bytes)?;
     println!(
-        "{}: {} vertices, {} joints, skinned with {} in {when}; wrote {}",
+        "{}: {} vertices, {} joints, skinned with {} in {when} on {}; wrote {}",
         rig.name,
         rig.mesh.positions.len(),
         rig.joints.len(),
         m.name(),
+        engine.describe(),
         out.display()
     );
     Ok(())

@@ -1287,3 +1287,70 @@ fn skin_pictures_of_a_real_clip() {
     assert!(String::from_utf8_lossy(&bad.stderr).contains("has no animations"));
     assert!(!dir.path().join("s.png").exists());
 }
+
+#[test]
+fn skin_on_the_gpu_matches_the_cpu() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = |device: &str| {
+        let out = dir.path().join(format!("{device}.json"));
+        let o = chasles(&[
+            "skin",
+            "--rig",
+            &gltf("CesiumMan.glb"),
+            "--time",
+            "0.7",
+            "--method",
+            "dqs",
+            "--device",
+            device,
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        (o, out)
+    };
+    let (cpu, cpu_out) = run("cpu");
+    assert!(stdout(&cpu).contains("on the CPU"));
+    let (gpu, gpu_out) = run("gpu");
+    let err = String::from_utf8_lossy(&gpu.stderr);
+    if err.contains("no GPU adapter") {
+        eprintln!("skipping: {err}");
+        return;
+    }
+    assert!(stdout(&gpu).contains("on the GPU ("));
+    let read = |p: &std::path::Path| -> Vec<f64> {
+        let v: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(p).unwrap()).unwrap();
+        v["positions"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .flat_map(|p| p.as_array().unwrap().iter().map(|x| x.as_f64().unwrap()))
+            .collect()
+    };
+    let (a, b) = (read(&cpu_out), read(&gpu_out));
+    assert_eq!(a.len(), 3273 * 3);
+    let worst = a
+        .iter()
+        .zip(&b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max);
+    assert!(worst < 1e-4, "GPU vs CPU {worst:e}");
+    // Methods without a shader are refused on --device gpu, with the reason.
+    let (dib, _) = {
+        let out = dir.path().join("dib.json");
+        let o = chasles(&[
+            "skin",
+            "--rig",
+            &gltf("CesiumMan.glb"),
+            "--method",
+            "dib",
+            "--device",
+            "gpu",
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        (o, out)
+    };
+    assert!(String::from_utf8_lossy(&dib.stderr).contains("dib has no GPU path"));
+    assert!(!dir.path().join("dib.json").exists());
+}

@@ -63,6 +63,7 @@ pub struct GpuSkinner {
     joints: usize,
     groups: (u32, u32),
     adapter: String,
+    software: bool,
 }
 
 /// One vertex as the shader reads it: position, normal, 4 joints (heaviest first), weights.
@@ -231,12 +232,19 @@ impl GpuSkinner {
             joints: rig.joints.len(),
             groups,
             adapter: format!("{} ({:?}, {:?})", info.name, info.device_type, info.backend),
+            software: info.device_type == wgpu::DeviceType::Cpu,
         })
     }
 
     /// The adapter's name, type and backend.
     pub fn adapter(&self) -> &str {
         &self.adapter
+    }
+
+    /// Whether the adapter is a software rasterizer on the CPU (lavapipe, llvmpipe, WARP):
+    /// correct, but no faster than the CPU path.
+    pub fn is_software(&self) -> bool {
+        self.software
     }
 
     /// Uploads the joint transforms `method` needs and runs its shader, leaving the result
