@@ -208,7 +208,10 @@ pub fn bench() -> Result<()> {
 /// Runs `chasles skin`.
 pub fn run(a: SkinArgs) -> Result<()> {
     if a.bench {
-        return bench();
+        return match a.device {
+            crate::device::Device::Gpu => crate::device::bench_gpu(),
+            _ => bench(),
+        };
     }
     for (p, ext) in [
         (&a.render, "png"),

@@ -93,19 +93,6 @@ impl GpuSkinner {
     /// Opens the default adapter (a high-performance one when there is a choice) and
     /// uploads `rig`'s mesh and influences.
     pub fn new(rig: &Rig) -> Result<Self, GpuError> {
-        let instance = wgpu::Instance::new(&wgpu::InstanceDescriptor::default());
-        let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
-            power_preference: wgpu::PowerPreference::HighPerformance,
-            ..Default::default()
-        }))
-        .map_err(|e| GpuError::NoAdapter(e.to_string()))?;
-        let info = adapter.get_info();
-        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
-            label: Some("chasles skinning"),
-            required_limits: adapter.limits(),
-            ..Default::default()
-        }))
-        .map_err(|e| GpuError::Device(e.to_string()))?;
         let n = rig.mesh.positions.len();
         let mut verts = Vec::with_capacity(n);
         for v in 0..n {
@@ -133,11 +120,53 @@ impl GpuSkinner {
                 w,
             });
         }
-        let joints = rig.joints.len().max(1);
+        Self::upload(&verts, rig.joints.len())
+    }
+
+    /// Uploads a fast-path rig (four influences, heaviest first, indices checked) — the
+    /// benchmarks' synthetic meshes.
+    pub fn from_fast(rig: &crate::fast::FastRig<4>) -> Result<Self, GpuError> {
+        let verts: Vec<GpuVertex> = rig
+            .vertices()
+            .iter()
+            .map(|v| GpuVertex {
+                p: [v.p[0], v.p[1], v.p[2], 1.0],
+                n: [v.n[0], v.n[1], v.n[2], 0.0],
+                j: v.j.map(u32::from),
+                w: v.w,
+            })
+            .collect();
+        Self::upload(&verts, rig.joints())
+    }
+
+    fn upload(verts: &[GpuVertex], rig_joints: usize) -> Result<Self, GpuError> {
+        let instance = wgpu::Instance::new(&wgpu::InstanceDescriptor::default());
+        let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
+            power_preference: wgpu::PowerPreference::HighPerformance,
+            ..Default::default()
+        }))
+        .map_err(|e| GpuError::NoAdapter(e.to_string()))?;
+        let info = adapter.get_info();
+        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+            label: Some("chasles skinning"),
+            required_limits: adapter.limits(),
+            ..Default::default()
+        }))
+        .map_err(|e| GpuError::Device(e.to_string()))?;
+        let n = verts.len();
+        let needed = std::mem::size_of_val(verts) as u64;
+        let limit = u64::from(device.limits().max_storage_buffer_binding_size)
+            .min(device.limits().max_buffer_size);
+        if needed > limit {
+            return Err(GpuError::Device(format!(
+                "{n} vertices need a {needed}-byte buffer; the adapter allows {limit}"
+            )));
+        }
+        let joints = rig_joints.max(1);
         let usage = wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST;
         let vertex_buf = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("vertices"),
-            contents: bytemuck::cast_slice(&verts),
+            contents: bytemuck::cast_slice(verts),
             usage: wgpu::BufferUsages::STORAGE,
         });
         let buffer = |label, size: usize, usage| {
@@ -229,7 +258,7 @@ impl GpuSkinner {
             skinned,
             readback,
             vertices: n as u32,
-            joints: rig.joints.len(),
+            joints: rig_joints,
             groups,
             adapter: format!("{} ({:?}, {:?})", info.name, info.device_type, info.backend),
             software: info.device_type == wgpu::DeviceType::Cpu,
@@ -318,6 +347,39 @@ impl GpuSkinner {
             return Err(GpuError::NonFinite(v));
         }
         Ok(out)
+    }
+
+    /// Waits until the GPU has finished everything submitted.
+    pub fn wait(&self) -> Result<(), GpuError> {
+        self.device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map(|_| ())
+            .map_err(|e| GpuError::Device(e.to_string()))
+    }
+
+    /// Bytes per second a buffer-to-buffer copy of the output's size moves on this adapter
+    /// (read plus write), the median of `runs`: the memory-bandwidth yardstick for the
+    /// skinning benchmark.
+    pub fn copy_rate(&self, runs: usize) -> Result<f64, GpuError> {
+        let size = self.skinned.size();
+        let scratch = self.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("bandwidth scratch"),
+            size,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let mut times = Vec::new();
+        for _ in 0..runs.max(1) + 1 {
+            let start = std::time::Instant::now();
+            let mut encoder = self.device.create_command_encoder(&Default::default());
+            encoder.copy_buffer_to_buffer(&self.skinned, 0, &scratch, 0, size);
+            self.queue.submit([encoder.finish()]);
+            self.wait()?;
+            times.push(start.elapsed().as_secs_f64());
+        }
+        times.remove(0);
+        times.sort_by(f64::total_cmp);
+        Ok(2.0 * size as f64 / times[times.len() / 2])
     }
 
     /// [`GpuSkinner::dispatch`] then [`GpuSkinner::read`].

@@ -118,3 +118,40 @@ fn gpu_errors_are_typed() {
         })
     ));
 }
+
+#[test]
+fn gpu_matches_the_fast_path_on_a_synthetic_mesh() {
+    use chasles_skin::fast::{dqs, dual_quats8, lbs, matrices12};
+    let rig = chasles_skin::synthetic::rig(5000, 54, 3);
+    let jt = chasles_skin::synthetic::joints(54, 3);
+    let gpu = match GpuSkinner::from_fast(&rig) {
+        Ok(g) => g,
+        Err(GpuError::NoAdapter(why)) => {
+            eprintln!("skipping: no adapter ({why})");
+            return;
+        }
+        Err(e) => panic!("{e}"),
+    };
+    let mut out = vec![[0f32; 6]; 5000];
+    for m in [Method::Lbs, Method::Dqs] {
+        match m {
+            Method::Lbs => lbs(&rig, &matrices12(&jt), &mut out, false).unwrap(),
+            _ => dqs(&rig, &dual_quats8(&jt), &mut out, false).unwrap(),
+        }
+        let g = gpu.skin(&jt, m).unwrap();
+        let worst = out
+            .iter()
+            .zip(g.positions.iter().zip(&g.normals))
+            .flat_map(|(c, (p, n))| {
+                (0..3).map(move |k| {
+                    (c[k] - p.to_array()[k])
+                        .abs()
+                        .max((c[3 + k] - n.to_array()[k]).abs())
+                })
+            })
+            .fold(0.0f32, f32::max);
+        assert!(worst < 1e-4, "{}: {worst:e}", m.name());
+    }
+    // The bandwidth yardstick is a positive rate.
+    assert!(gpu.copy_rate(3).unwrap() > 0.0);
+}
