@@ -1,7 +1,7 @@
 //! `chasles skin --device cpu|gpu|auto`: where a pose is skinned. `gpu` takes any adapter
 //! (a software one too) and fails with the reason when there is none or the method has no
 //! shader; `auto` takes a hardware GPU when one exists and the method has a shader (LBS,
-//! DQS), the CPU otherwise — a software adapter is correct but no faster than the CPU.
+//! DQS, DIB), the CPU otherwise — a software adapter is correct but no faster than the CPU.
 
 use anyhow::{bail, Result};
 use chasles_skin::{joint_transforms, skin, Method, Pose, Rig, Skinned};
@@ -34,10 +34,10 @@ impl Engine {
         }
         #[cfg(feature = "gpu")]
         {
-            let shader = matches!(method, Method::Lbs | Method::Dqs);
+            let shader = matches!(method, Method::Lbs | Method::Dqs | Method::Dib);
             if device == Device::Gpu && !shader {
                 bail!(
-                    "{} has no GPU path (lbs and dqs do); use --device cpu",
+                    "{} has no GPU path (lbs, dqs and dib do); use --device cpu",
                     method.name()
                 );
             }
@@ -82,7 +82,7 @@ impl Engine {
     }
 }
 
-/// `chasles skin --bench --device gpu`: vertices per second of the LBS and DQS shaders on
+/// `chasles skin --bench --device gpu`: vertices per second of the LBS, DQS and DIB shaders on
 /// synthetic meshes (54 joints, 4 influences) of 10⁵, 10⁶ and 10⁷ vertices — the shader
 /// alone (joint upload, dispatch, wait) and with the read-back of positions and normals —
 /// the DQS/LBS ratio, and the share of the adapter's copy bandwidth reached at 96 bytes
@@ -134,7 +134,8 @@ pub fn bench_gpu() -> Result<()> {
         };
         let (l, lr) = rate(Method::Lbs)?;
         let (d, dr) = rate(Method::Dqs)?;
-        for (name, s, r) in [("lbs", l, lr), ("dqs", d, dr)] {
+        let (b, br) = rate(Method::Dib)?;
+        for (name, s, r) in [("lbs", l, lr), ("dqs", d, dr), ("dib", b, br)] {
             println!(
                 "| {n} | {name} | {:.1} | {:.1} | {:.2} |",
                 s / 1e6,

@@ -196,7 +196,7 @@ enum Command {
         /// Also write the clip's most-turning joint rotation on the unit sphere (Dam et al. §5.3), PNG.
         #[arg(long)]
         sphere: Option<std::path::PathBuf>,
-        /// Where to skin: cpu, gpu (any adapter, lavapipe included) or auto (a hardware GPU for lbs/dqs when there is one).
+        /// Where to skin: cpu, gpu (any adapter, lavapipe included) or auto (a hardware GPU for lbs/dqs/dib when there is one).
         #[arg(long, value_enum, default_value_t = device::Device::Auto)]
         device: device::Device,
     },

@@ -1335,15 +1335,15 @@ fn skin_on_the_gpu_matches_the_cpu() {
         .map(|(x, y)| (x - y).abs())
         .fold(0.0, f64::max);
     assert!(worst < 1e-4, "GPU vs CPU {worst:e}");
-    // Methods without a shader are refused on --device gpu, with the reason.
-    let (dib, _) = {
-        let out = dir.path().join("dib.json");
+    // DIB runs on the GPU too; methods without a shader are refused with the reason.
+    let (log, _) = {
+        let out = dir.path().join("log.json");
         let o = chasles(&[
             "skin",
             "--rig",
             &gltf("CesiumMan.glb"),
             "--method",
-            "dib",
+            "log",
             "--device",
             "gpu",
             "--out",
@@ -1351,6 +1351,6 @@ fn skin_on_the_gpu_matches_the_cpu() {
         ]);
         (o, out)
     };
-    assert!(String::from_utf8_lossy(&dib.stderr).contains("dib has no GPU path"));
-    assert!(!dir.path().join("dib.json").exists());
+    assert!(String::from_utf8_lossy(&log.stderr).contains("log has no GPU path"));
+    assert!(!dir.path().join("log.json").exists());
 }

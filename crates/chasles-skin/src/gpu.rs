@@ -1,7 +1,7 @@
 //! Skinning on the GPU (Kavan et al. 2006, §6: "DLB … can be easily implemented on the
-//! GPU"): WGSL compute shaders for linear blend skinning and dual quaternion skinning
-//! (with the antipodality fix against each vertex's heaviest influence), run through wgpu
-//! without a window. The mesh stays on the GPU; per frame only the joint transforms go up —
+//! GPU"): WGSL compute shaders for linear blend skinning, dual quaternion skinning (with
+//! the antipodality fix against each vertex's heaviest influence) and DIB (§5: from DLB,
+//! at most 8 updates, the CPU's stopping rule), run through wgpu without a window. The mesh stays on the GPU; per frame only the joint transforms go up —
 //! 12 floats a joint for LBS (three rows of the matrix), 8 for DQS (the dual quaternion),
 //! as the paper notes — and the skinned positions and normals come back.
 //!
@@ -23,7 +23,7 @@ pub enum GpuError {
     #[error("GPU device: {0}")]
     Device(String),
     /// A method with no GPU shader yet.
-    #[error("{0} has no GPU path (lbs and dqs do)")]
+    #[error("{0} has no GPU path (lbs, dqs and dib do)")]
     Unsupported(&'static str),
     /// A vertex with more influences than the shaders take.
     #[error("vertex {vertex} has {count} influences; the GPU path takes at most 4")]
@@ -54,6 +54,7 @@ pub struct GpuSkinner {
     queue: wgpu::Queue,
     lbs: wgpu::ComputePipeline,
     dqs: wgpu::ComputePipeline,
+    dib: wgpu::ComputePipeline,
     bind_group: wgpu::BindGroup,
     matrices: wgpu::Buffer,
     dual_quats: wgpu::Buffer,
@@ -246,12 +247,13 @@ impl GpuSkinner {
                 cache: None,
             })
         };
-        let (lbs, dqs) = (pipeline("lbs"), pipeline("dqs"));
+        let (lbs, dqs, dib) = (pipeline("lbs"), pipeline("dqs"), pipeline("dib"));
         Ok(GpuSkinner {
             device,
             queue,
             lbs,
             dqs,
+            dib,
             bind_group,
             matrices,
             dual_quats,
@@ -292,11 +294,15 @@ impl GpuSkinner {
                     .write_buffer(&self.matrices, 0, bytemuck::cast_slice(&rows));
                 &self.lbs
             }
-            Method::Dqs => {
+            Method::Dqs | Method::Dib => {
                 let dq: Vec<f32> = jt.dual_quats.iter().flat_map(|d| d.to_array()).collect();
                 self.queue
                     .write_buffer(&self.dual_quats, 0, bytemuck::cast_slice(&dq));
-                &self.dqs
+                if method == Method::Dqs {
+                    &self.dqs
+                } else {
+                    &self.dib
+                }
             }
             other => return Err(GpuError::Unsupported(other.name())),
         };

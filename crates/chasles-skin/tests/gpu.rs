@@ -1,4 +1,4 @@
-//! The GPU shaders agree with the CPU reference (Kavan et al. 2006, §6): LBS and DQS on
+//! The GPU shaders agree with the CPU reference (Kavan et al. 2006, §6): LBS, DQS and DIB on
 //! the twisted cylinder at many angles (the candy wrapper included) and on CesiumMan's
 //! walk, positions and normals to 1e-4 of the mesh's size. Runs on any adapter, Mesa's
 //! software lavapipe included; with no adapter at all it says why and skips.
@@ -56,7 +56,7 @@ fn gpu_matches_cpu_on_the_cylinder() {
     for motion in [Motion::Twist, Motion::Bend] {
         for deg in [0.0f32, 45.0, 90.0, 135.0, 170.0, 179.0] {
             let pose = cylinder::pose(&rig, motion, deg.to_radians());
-            for m in [Method::Lbs, Method::Dqs] {
+            for m in [Method::Lbs, Method::Dqs, Method::Dib] {
                 let (dp, dn) = compare(&rig, &gpu, &pose, m);
                 assert!(
                     dp < 1e-4 && dn < 1e-4,
@@ -89,7 +89,7 @@ fn gpu_matches_cpu_on_a_real_character() {
     let d = rig.animations[0].duration();
     for k in 0..5 {
         let pose = Pose::animated(&rig, 0, d * k as f32 / 4.0).unwrap();
-        for m in [Method::Lbs, Method::Dqs] {
+        for m in [Method::Lbs, Method::Dqs, Method::Dib] {
             let (dp, dn) = compare(&rig, &gpu, &pose, m);
             assert!(
                 dp < 1e-4 && dn < 1e-4,

@@ -104,3 +104,141 @@ fn dqs(@builtin(global_invocation_id) id: vec3<u32>) {
         vec4<f32>(unit_or(rotate(r, v.n.xyz), v.n.xyz), 0.0),
     );
 }
+
+// Dual quaternion iterative blending (Kavan et al. §5): start at DLB, then repeatedly move
+// b by exp(Σ wᵢ log(b* qᵢ)), at most 8 updates, stopping as the CPU does (below 1e-5, or
+// stuck under 100× that). Dual quaternions as (real, dual), quaternions (w, x, y, z).
+
+struct Dq {
+    r: vec4<f32>,
+    d: vec4<f32>,
+};
+
+fn qmul(a: vec4<f32>, b: vec4<f32>) -> vec4<f32> {
+    return vec4<f32>(a.x * b.x - dot(a.yzw, b.yzw), a.x * b.yzw + b.x * a.yzw + cross(a.yzw, b.yzw));
+}
+
+fn qconj(a: vec4<f32>) -> vec4<f32> {
+    return vec4<f32>(a.x, -a.yzw);
+}
+
+fn dqmul(a: Dq, b: Dq) -> Dq {
+    return Dq(qmul(a.r, b.r), qmul(a.r, b.d) + qmul(a.d, b.r));
+}
+
+fn dqnormalize(a: Dq) -> Dq {
+    let n = length(a.r);
+    let r = a.r / n;
+    let d = a.d / n;
+    return Dq(r, d - r * dot(r, d));
+}
+
+// log of a dual quaternion with w ≥ 0 (DualQuat::log's main branch).
+fn dqlog(q: Dq) -> Dq {
+    let n2 = dot(q.r, q.r);
+    let n2du = 2.0 * dot(q.r, q.d);
+    let a = q.r.yzw;
+    let b = q.d.yzw;
+    let w = q.r.x;
+    let s = dot(a, a);
+    let s_du = 2.0 * dot(a, b);
+    let n = sqrt(s);
+    var h: f32;
+    var h_s: f32;
+    if (s < 1e-6 * w * w) {
+        // atan2(n, w)/n = (1/w)(1 − s/(3w²) + s²/(5w⁴) − …)
+        let w2 = w * w;
+        h = (1.0 - s / (3.0 * w2) + s * s / (5.0 * w2 * w2)) / w;
+        h_s = (-1.0 / (3.0 * w2) + 2.0 * s / (5.0 * w2 * w2)) / w;
+    } else {
+        let phi = atan2(n, w);
+        h = phi / n;
+        h_s = w / (2.0 * s * (s + w * w)) - phi / (2.0 * s * n);
+    }
+    let h_w = -1.0 / (s + w * w);
+    let h_du = h_s * s_du + h_w * q.d.x;
+    return Dq(
+        vec4<f32>(0.5 * log(n2), a * h),
+        vec4<f32>(0.5 * n2du / n2, b * h + a * h_du),
+    );
+}
+
+// exp of any dual quaternion (DualQuat::exp).
+fn dqexp(x: Dq) -> Dq {
+    let a = x.r.yzw;
+    let b = x.d.yzw;
+    let s = dot(a, a);
+    let s_du = 2.0 * dot(a, b);
+    let t = sqrt(s);
+    var k: f32;
+    var dk: f32;
+    if (s < 1e-6) {
+        k = 1.0 - s / 6.0 + s * s / 120.0;
+        dk = -1.0 / 6.0 + s / 60.0;
+    } else {
+        k = sin(t) / t;
+        dk = (t * cos(t) - sin(t)) / (2.0 * s * t);
+    }
+    let c_re = cos(t);
+    let c_du = -k * 0.5 * s_du;
+    let k_du = dk * s_du;
+    let e = exp(x.r.x);
+    let e_du = x.d.x * e;
+    let ur = vec4<f32>(c_re, a * k);
+    let ud = vec4<f32>(c_du, a * k_du + b * k);
+    return Dq(ur * e, ud * e + ur * e_du);
+}
+
+@compute @workgroup_size(64)
+fn dib(@builtin(global_invocation_id) id: vec3<u32>) {
+    let i = id.x + id.y * params.stride;
+    if (i >= params.count) {
+        return;
+    }
+    let v = vertices[i];
+    let total = v.w.x + v.w.y + v.w.z + v.w.w;
+    let wn = v.w / total;
+    let pivot = dual_quats[v.j[0] * 2u];
+    var q: array<Dq, 4>;
+    var sum = Dq(vec4<f32>(0.0), vec4<f32>(0.0));
+    for (var k = 0u; k < 4u; k = k + 1u) {
+        let j = v.j[k] * 2u;
+        q[k] = Dq(dual_quats[j], dual_quats[j + 1u]);
+        var w = wn[k];
+        if (dot(q[k].r, pivot) < 0.0) {
+            w = -w;
+        }
+        sum = Dq(sum.r + q[k].r * w, sum.d + q[k].d * w);
+    }
+    var b = dqnormalize(sum);
+    var last = 3.0e38;
+    for (var step = 0u; step < 8u; step = step + 1u) {
+        let bc = Dq(qconj(b.r), qconj(b.d));
+        var x = Dq(vec4<f32>(0.0), vec4<f32>(0.0));
+        for (var k = 0u; k < 4u; k = k + 1u) {
+            if (wn[k] == 0.0) {
+                continue;
+            }
+            var rel = dqmul(bc, q[k]);
+            if (rel.r.x < 0.0) {
+                rel = Dq(-rel.r, -rel.d);
+            }
+            let l = dqlog(rel);
+            x = Dq(x.r + l.r * wn[k], x.d + l.d * wn[k]);
+        }
+        let norm = sqrt(dot(x.r, x.r) + dot(x.d, x.d));
+        let converged = norm < 1e-5;
+        let stuck = norm >= last && norm < 1e-3;
+        if (converged || stuck) {
+            break;
+        }
+        last = norm;
+        b = dqnormalize(dqmul(b, dqexp(x)));
+    }
+    b = dqnormalize(b);
+    let t = 2.0 * (b.r.x * b.d.yzw - b.d.x * b.r.yzw + cross(b.r.yzw, b.d.yzw));
+    skinned[i] = Skinned(
+        vec4<f32>(rotate(b.r, v.p.xyz) + t, 1.0),
+        vec4<f32>(unit_or(rotate(b.r, v.n.xyz), v.n.xyz), 0.0),
+    );
+}
