@@ -6,7 +6,8 @@
 //! as the paper notes — and the skinned positions and normals come back.
 //!
 //! Up to four influences per vertex (glTF's usual `JOINTS_0`); a rig with more is refused
-//! with [`GpuError::TooManyInfluences`]. Any Vulkan, Metal, DX12 or GL adapter works,
+//! with [`GpuError::TooManyInfluences`]. Meshes larger than the adapter's storage-binding
+//! limit are split into chunks, one dispatch each. Any Vulkan, Metal, DX12 or GL adapter works,
 //! software ones included (Mesa's lavapipe), so the tests run on machines without a GPU.
 
 use crate::{JointTransforms, Method, Rig, Skinned};
@@ -55,16 +56,23 @@ pub struct GpuSkinner {
     lbs: wgpu::ComputePipeline,
     dqs: wgpu::ComputePipeline,
     dib: wgpu::ComputePipeline,
-    bind_group: wgpu::BindGroup,
+    chunks: Vec<Chunk>,
     matrices: wgpu::Buffer,
     dual_quats: wgpu::Buffer,
-    skinned: wgpu::Buffer,
     readback: wgpu::Buffer,
-    vertices: u32,
+    vertices: usize,
     joints: usize,
-    groups: (u32, u32),
     adapter: String,
     software: bool,
+}
+
+/// A run of vertices small enough for one storage binding: meshes larger than the
+/// adapter's binding limit are skinned in several dispatches.
+struct Chunk {
+    bind_group: wgpu::BindGroup,
+    skinned: wgpu::Buffer,
+    vertices: usize,
+    groups: (u32, u32),
 }
 
 /// One vertex as the shader reads it: position, normal, 4 joints (heaviest first), weights.
@@ -121,12 +129,21 @@ impl GpuSkinner {
                 w,
             });
         }
-        Self::upload(&verts, rig.joints.len())
+        Self::upload(&verts, rig.joints.len(), usize::MAX)
     }
 
     /// Uploads a fast-path rig (four influences, heaviest first, indices checked) — the
     /// benchmarks' synthetic meshes.
     pub fn from_fast(rig: &crate::fast::FastRig<4>) -> Result<Self, GpuError> {
+        Self::from_fast_in_chunks(rig, usize::MAX)
+    }
+
+    /// As [`GpuSkinner::from_fast`], with at most `per_chunk` vertices a dispatch (fewer
+    /// where the adapter's binding limit says so): bounds each dispatch's buffers.
+    pub fn from_fast_in_chunks(
+        rig: &crate::fast::FastRig<4>,
+        per_chunk: usize,
+    ) -> Result<Self, GpuError> {
         let verts: Vec<GpuVertex> = rig
             .vertices()
             .iter()
@@ -137,10 +154,10 @@ impl GpuSkinner {
                 w: v.w,
             })
             .collect();
-        Self::upload(&verts, rig.joints())
+        Self::upload(&verts, rig.joints(), per_chunk)
     }
 
-    fn upload(verts: &[GpuVertex], rig_joints: usize) -> Result<Self, GpuError> {
+    fn upload(verts: &[GpuVertex], rig_joints: usize, per_chunk: usize) -> Result<Self, GpuError> {
         let instance = wgpu::Instance::new(&wgpu::InstanceDescriptor::default());
         let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
             power_preference: wgpu::PowerPreference::HighPerformance,
@@ -155,21 +172,12 @@ impl GpuSkinner {
         }))
         .map_err(|e| GpuError::Device(e.to_string()))?;
         let n = verts.len();
-        let needed = std::mem::size_of_val(verts) as u64;
         let limit = u64::from(device.limits().max_storage_buffer_binding_size)
             .min(device.limits().max_buffer_size);
-        if needed > limit {
-            return Err(GpuError::Device(format!(
-                "{n} vertices need a {needed}-byte buffer; the adapter allows {limit}"
-            )));
-        }
+        let per_chunk = ((limit / std::mem::size_of::<GpuVertex>() as u64).max(1) as usize)
+            .min(per_chunk.max(1));
         let joints = rig_joints.max(1);
         let usage = wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST;
-        let vertex_buf = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("vertices"),
-            contents: bytemuck::cast_slice(verts),
-            usage: wgpu::BufferUsages::STORAGE,
-        });
         let buffer = |label, size: usize, usage| {
             device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(label),
@@ -180,26 +188,6 @@ impl GpuSkinner {
         };
         let matrices = buffer("matrices", joints * 48, usage);
         let dual_quats = buffer("dual quaternions", joints * 32, usage);
-        let out_size = n * 32;
-        let skinned = buffer(
-            "skinned",
-            out_size,
-            wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-        );
-        let readback = buffer(
-            "readback",
-            out_size,
-            wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-        );
-        let groups_needed = (n as u32).div_ceil(WORKGROUP).max(1);
-        let max = device.limits().max_compute_workgroups_per_dimension.max(1);
-        let groups = (groups_needed.min(max), groups_needed.div_ceil(max));
-        let params: [u32; 4] = [n as u32, groups.0 * WORKGROUP, 0, 0];
-        let params_buf = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("params"),
-            contents: bytemuck::cast_slice(&params),
-            usage: wgpu::BufferUsages::UNIFORM,
-        });
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("skinning"),
             entries: &[
@@ -219,18 +207,55 @@ impl GpuSkinner {
                 },
             ],
         });
-        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("skinning"),
-            layout: &layout,
-            entries: &[&vertex_buf, &matrices, &dual_quats, &skinned, &params_buf]
-                .iter()
-                .enumerate()
-                .map(|(i, b)| wgpu::BindGroupEntry {
-                    binding: i as u32,
-                    resource: b.as_entire_binding(),
-                })
-                .collect::<Vec<_>>(),
-        });
+        let max_groups = device.limits().max_compute_workgroups_per_dimension.max(1);
+        let mut chunks = Vec::new();
+        for part in verts.chunks(per_chunk) {
+            let m = part.len();
+            let vertex_buf = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("vertices"),
+                contents: bytemuck::cast_slice(part),
+                usage: wgpu::BufferUsages::STORAGE,
+            });
+            let skinned = buffer(
+                "skinned",
+                m * 32,
+                wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+            );
+            let groups_needed = (m as u32).div_ceil(WORKGROUP).max(1);
+            let groups = (
+                groups_needed.min(max_groups),
+                groups_needed.div_ceil(max_groups),
+            );
+            let params: [u32; 4] = [m as u32, groups.0 * WORKGROUP, 0, 0];
+            let params_buf = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("params"),
+                contents: bytemuck::cast_slice(&params),
+                usage: wgpu::BufferUsages::UNIFORM,
+            });
+            let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("skinning"),
+                layout: &layout,
+                entries: &[&vertex_buf, &matrices, &dual_quats, &skinned, &params_buf]
+                    .iter()
+                    .enumerate()
+                    .map(|(i, b)| wgpu::BindGroupEntry {
+                        binding: i as u32,
+                        resource: b.as_entire_binding(),
+                    })
+                    .collect::<Vec<_>>(),
+            });
+            chunks.push(Chunk {
+                bind_group,
+                skinned,
+                vertices: m,
+                groups,
+            });
+        }
+        let readback = buffer(
+            "readback",
+            n.min(per_chunk) * 32,
+            wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+        );
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("skinning"),
             bind_group_layouts: &[&layout],
@@ -254,14 +279,12 @@ impl GpuSkinner {
             lbs,
             dqs,
             dib,
-            bind_group,
+            chunks,
             matrices,
             dual_quats,
-            skinned,
             readback,
-            vertices: n as u32,
+            vertices: n,
             joints: rig_joints,
-            groups,
             adapter: format!("{} ({:?}, {:?})", info.name, info.device_type, info.backend),
             software: info.device_type == wgpu::DeviceType::Cpu,
         })
@@ -310,8 +333,10 @@ impl GpuSkinner {
         {
             let mut pass = encoder.begin_compute_pass(&Default::default());
             pass.set_pipeline(pipeline);
-            pass.set_bind_group(0, &self.bind_group, &[]);
-            pass.dispatch_workgroups(self.groups.0, self.groups.1, 1);
+            for c in &self.chunks {
+                pass.set_bind_group(0, &c.bind_group, &[]);
+                pass.dispatch_workgroups(c.groups.0, c.groups.1, 1);
+            }
         }
         self.queue.submit([encoder.finish()]);
         Ok(())
@@ -319,40 +344,38 @@ impl GpuSkinner {
 
     /// Waits for the last dispatch and brings the skinned positions and normals back.
     pub fn read(&self) -> Result<Skinned, GpuError> {
-        let size = u64::from(self.vertices) * 32;
-        let mut encoder = self.device.create_command_encoder(&Default::default());
-        if size > 0 {
-            encoder.copy_buffer_to_buffer(&self.skinned, 0, &self.readback, 0, size);
-        }
-        self.queue.submit([encoder.finish()]);
-        let slice = self.readback.slice(..size.max(16));
-        let (tx, rx) = std::sync::mpsc::channel();
-        slice.map_async(wgpu::MapMode::Read, move |r| {
-            let _ = tx.send(r);
-        });
-        self.device
-            .poll(wgpu::PollType::wait_indefinitely())
-            .map_err(|e| GpuError::Device(e.to_string()))?;
-        rx.recv()
-            .map_err(|e| GpuError::Device(e.to_string()))?
-            .map_err(|e| GpuError::Device(e.to_string()))?;
-        let out = {
-            let data = slice.get_mapped_range();
-            let f: &[f32] = bytemuck::cast_slice(&data);
-            let n = self.vertices as usize;
-            let mut positions = Vec::with_capacity(n);
-            let mut normals = Vec::with_capacity(n);
-            for v in f.chunks_exact(8).take(n) {
-                positions.push(Vec3::new(v[0], v[1], v[2]));
-                normals.push(Vec3::new(v[4], v[5], v[6]));
+        let mut positions = Vec::with_capacity(self.vertices);
+        let mut normals = Vec::with_capacity(self.vertices);
+        for c in &self.chunks {
+            let size = c.vertices as u64 * 32;
+            let mut encoder = self.device.create_command_encoder(&Default::default());
+            if size > 0 {
+                encoder.copy_buffer_to_buffer(&c.skinned, 0, &self.readback, 0, size);
             }
-            Skinned { positions, normals }
-        };
-        self.readback.unmap();
-        if let Some(v) = out.positions.iter().position(|p| !p.is_finite()) {
+            self.queue.submit([encoder.finish()]);
+            let slice = self.readback.slice(..size.max(16));
+            let (tx, rx) = std::sync::mpsc::channel();
+            slice.map_async(wgpu::MapMode::Read, move |r| {
+                let _ = tx.send(r);
+            });
+            self.wait()?;
+            rx.recv()
+                .map_err(|e| GpuError::Device(e.to_string()))?
+                .map_err(|e| GpuError::Device(e.to_string()))?;
+            {
+                let data = slice.get_mapped_range();
+                let f: &[f32] = bytemuck::cast_slice(&data);
+                for v in f.chunks_exact(8).take(c.vertices) {
+                    positions.push(Vec3::new(v[0], v[1], v[2]));
+                    normals.push(Vec3::new(v[4], v[5], v[6]));
+                }
+            }
+            self.readback.unmap();
+        }
+        if let Some(v) = positions.iter().position(|p| !p.is_finite()) {
             return Err(GpuError::NonFinite(v));
         }
-        Ok(out)
+        Ok(Skinned { positions, normals })
     }
 
     /// Waits until the GPU has finished everything submitted.
@@ -367,7 +390,10 @@ impl GpuSkinner {
     /// (read plus write), the median of `runs`: the memory-bandwidth yardstick for the
     /// skinning benchmark.
     pub fn copy_rate(&self, runs: usize) -> Result<f64, GpuError> {
-        let size = self.skinned.size();
+        let Some(first) = self.chunks.first() else {
+            return Ok(0.0);
+        };
+        let size = first.skinned.size();
         let scratch = self.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("bandwidth scratch"),
             size,
@@ -378,7 +404,7 @@ impl GpuSkinner {
         for _ in 0..runs.max(1) + 1 {
             let start = std::time::Instant::now();
             let mut encoder = self.device.create_command_encoder(&Default::default());
-            encoder.copy_buffer_to_buffer(&self.skinned, 0, &scratch, 0, size);
+            encoder.copy_buffer_to_buffer(&first.skinned, 0, &scratch, 0, size);
             self.queue.submit([encoder.finish()]);
             self.wait()?;
             times.push(start.elapsed().as_secs_f64());
