@@ -26,6 +26,25 @@ pub enum Engine {
     Gpu(Box<chasles_skin::gpu::GpuSkinner>),
 }
 
+/// Mesa's software Vulkan prints "XDG_RUNTIME_DIR is invalid" three times while the
+/// adapters are listed when that variable is unset (containers, CI). Called once at start,
+/// before any thread exists, it points the variable at a private temporary folder (one per
+/// user, reused).
+pub fn quiet_vulkan_loader() {
+    if std::env::var_os("XDG_RUNTIME_DIR").is_none() {
+        let user = std::env::var("USER").unwrap_or_default();
+        let dir = std::env::temp_dir().join(format!("chasles-runtime-{user}"));
+        if std::fs::create_dir_all(&dir).is_ok() {
+            #[cfg(unix)]
+            {
+                use std::os::unix::fs::PermissionsExt;
+                let _ = std::fs::set_permissions(&dir, std::fs::Permissions::from_mode(0o700));
+            }
+            std::env::set_var("XDG_RUNTIME_DIR", &dir);
+        }
+    }
+}
+
 impl Engine {
     /// The engine for `rig` and `method` under `device`.
     pub fn new(device: Device, rig: &Rig, method: Method) -> Result<Self> {

@@ -251,6 +251,7 @@ fn parse_repr(s: &str) -> Result<Repr, String> {
 }
 
 fn main() {
+    device::quiet_vulkan_loader();
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
         Err(e) if !e.use_stderr() => e.exit(), // --help, --version
