@@ -95,9 +95,12 @@ fn dqs(@builtin(global_invocation_id) id: vec3<u32>) {
         dual = dual + dual_quats[j + 1u] * w;
     }
     let len = length(real);
-    let r = real / len;
-    let d = dual / len;
-    // Translation 2 d r*: its vector part.
+    store_rigid(i, v, real / len, dual / len);
+}
+
+// Vertex v moved by the unit dual quaternion (r, d): rotation, then the translation
+// 2 d r* (its vector part); the normal turned by r.
+fn store_rigid(i: u32, v: Vertex, r: vec4<f32>, d: vec4<f32>) {
     let t = 2.0 * (r.x * d.yzw - d.x * r.yzw + cross(r.yzw, d.yzw));
     skinned[i] = Skinned(
         vec4<f32>(rotate(r, v.p.xyz) + t, 1.0),
@@ -236,9 +239,5 @@ fn dib(@builtin(global_invocation_id) id: vec3<u32>) {
         b = dqnormalize(dqmul(b, dqexp(x)));
     }
     b = dqnormalize(b);
-    let t = 2.0 * (b.r.x * b.d.yzw - b.d.x * b.r.yzw + cross(b.r.yzw, b.d.yzw));
-    skinned[i] = Skinned(
-        vec4<f32>(rotate(b.r, v.p.xyz) + t, 1.0),
-        vec4<f32>(unit_or(rotate(b.r, v.n.xyz), v.n.xyz), 0.0),
-    );
+    store_rigid(i, v, b.r, b.d);
 }
