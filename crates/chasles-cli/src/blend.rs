@@ -11,7 +11,7 @@
 //! ([`crate::blend_pictures`]).
 
 use crate::blend_pictures;
-use crate::output::{extension, write_atomic};
+use crate::output::{check_extension, write_atomic};
 use crate::repr::motion_from_json;
 use anyhow::{anyhow, bail, Context, Result};
 use chasles::blend::{blend_dual_quats, Method, Options};
@@ -159,12 +159,13 @@ fn blend_all(method: Method, input: &str) -> Result<(Value, Option<Case>)> {
 /// (GIF) and `--sphere` (PNG) paths, drawn for the first case (see
 /// [`crate::blend_pictures`]).
 pub fn run(method: &str, input: &str, pictures: [Option<PathBuf>; 4]) -> Result<()> {
-    for (p, ext) in pictures.iter().zip(["svg", "png", "gif", "png"]) {
-        if let Some(p) = p {
-            if extension(p) != ext {
-                bail!("{} must end in .{ext}", p.display());
-            }
-        }
+    for (p, (flag, ext)) in pictures.iter().zip([
+        ("--plot", "svg"),
+        ("--render", "png"),
+        ("--gif", "gif"),
+        ("--sphere", "png"),
+    ]) {
+        check_extension(flag, p.as_deref(), &[ext])?;
     }
     let m = Method::from_name(method).ok_or_else(|| {
         let names: Vec<&str> = Method::ALL.iter().map(|m| m.name()).collect();

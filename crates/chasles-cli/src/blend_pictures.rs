@@ -106,62 +106,64 @@ fn view_for(points: &[Vec3<f64>], size: usize) -> View {
     )
 }
 
-/// The inputs in grey and each method's blend (at the case's own weights) in colour, one
-/// panel per method.
-pub fn render(case: &Case) -> Result<Image> {
+/// The letter at a fifth of its size (about the inputs' translations), and its triangles.
+fn small_letter() -> (Vec<Vec3<f64>>, Vec<[u32; 3]>) {
     let (v, t) = letter_r(0.8);
-    let v: Vec<Vec3<f64>> = v.iter().map(|p| *p * 0.2).collect();
+    (v.iter().map(|p| *p * 0.2).collect(), t)
+}
+
+/// One picture per placed letter (label, vertices): it in red over the inputs in grey,
+/// all seen through one view fitted to everything.
+fn scenes(
+    case: &Case,
+    placed: &[(&str, Vec<Vec3<f64>>)],
+    letter: &[Vec3<f64>],
+    triangles: &[[u32; 3]],
+    size: usize,
+) -> Vec<Image> {
     let inputs: Vec<Vec<Vec3<f64>>> = case
         .x
         .iter()
-        .map(|d| letter_at(&d.to_matrix4(), &v))
+        .map(|d| letter_at(&d.to_matrix4(), letter))
         .collect();
-    let mut blends = Vec::new();
-    for m in Method::ALL {
-        if let Ok(b) = blend_dual_quats(m, case.x, case.w, case.opt) {
-            blends.push((m, letter_at(&b.matrix, &v)));
-        }
-    }
     let all: Vec<Vec3<f64>> = inputs
         .iter()
-        .chain(blends.iter().map(|b| &b.1))
+        .chain(placed.iter().map(|p| &p.1))
         .flatten()
         .copied()
         .collect();
-    let size = 260;
     let view = view_for(&all, size);
-    let panels: Vec<Image> = blends
+    placed
         .iter()
-        .map(|(m, pts)| scene(&view, size, &inputs, pts, &t, m.name()))
+        .map(|(label, pts)| scene(&view, size, &inputs, pts, triangles, label))
+        .collect()
+}
+
+/// The inputs in grey and each method's blend (at the case's own weights) in colour, one
+/// panel per method.
+pub fn render(case: &Case) -> Result<Image> {
+    let (v, t) = small_letter();
+    let placed: Vec<(&str, Vec<Vec3<f64>>)> = Method::ALL
+        .iter()
+        .filter_map(|m| {
+            let b = blend_dual_quats(*m, case.x, case.w, case.opt).ok()?;
+            Some((m.name(), letter_at(&b.matrix, &v)))
+        })
         .collect();
-    Ok(Image::side_by_side(&panels))
+    Ok(Image::side_by_side(&scenes(case, &placed, &v, &t, 260)))
 }
 
 /// The letter moved along the path by `method`, `frames` pictures, inputs in grey.
 pub fn animate(case: &Case, method: Method, frames: usize) -> Result<Vec<Image>> {
-    let (v, t) = letter_r(0.8);
-    let v: Vec<Vec3<f64>> = v.iter().map(|p| *p * 0.2).collect();
+    let (v, t) = small_letter();
     let n = frames.max(2);
-    let path = (0..n)
+    let placed = (0..n)
         .map(|k| {
-            Ok(letter_at(
-                &case.blend(method, k as f64 / (n - 1) as f64)?.matrix,
-                &v,
-            ))
+            let b = case.blend(method, k as f64 / (n - 1) as f64)?;
+            Ok((method.name(), letter_at(&b.matrix, &v)))
         })
         .collect::<Result<Vec<_>>>()?;
-    let inputs: Vec<Vec<Vec3<f64>>> = case
-        .x
-        .iter()
-        .map(|d| letter_at(&d.to_matrix4(), &v))
-        .collect();
-    let all: Vec<Vec3<f64>> = inputs.iter().chain(&path).flatten().copied().collect();
-    let size = 280;
-    let view = view_for(&all, size);
-    Ok(path
-        .iter()
-        .map(|pts| scene(&view, size, &inputs, pts, &t, method.name()))
-        .collect())
+    Ok(scenes(case, &placed, &v, &t, 280))
 }
 
 /// One picture: the input letters in grey, the blended one in red, labelled.

@@ -108,19 +108,9 @@ impl Engine {
 /// per vertex (64 read, 32 written). Medians of 7 runs after a warm-up.
 #[cfg(feature = "gpu")]
 pub fn bench_gpu() -> Result<()> {
+    use crate::skin::median_secs;
     use chasles_skin::gpu::GpuSkinner;
     use chasles_skin::synthetic;
-    let median = |f: &mut dyn FnMut() -> Result<()>| -> Result<f64> {
-        f()?;
-        let mut t = Vec::new();
-        for _ in 0..7 {
-            let s = std::time::Instant::now();
-            f()?;
-            t.push(s.elapsed().as_secs_f64());
-        }
-        t.sort_by(f64::total_cmp);
-        Ok(t[3])
-    };
     println!(
         "| vertices | method | M vertices/s (shader) | with read-back | share of copy bandwidth |"
     );
@@ -140,11 +130,11 @@ pub fn bench_gpu() -> Result<()> {
         adapter = gpu.adapter().to_string();
         let bandwidth = gpu.copy_rate(7)?;
         let rate = |m: Method| -> Result<(f64, f64)> {
-            let shader = median(&mut || {
+            let shader = median_secs(7, || {
                 gpu.dispatch(&jt, m)?;
                 Ok(gpu.wait()?)
             })?;
-            let full = median(&mut || {
+            let full = median_secs(7, || {
                 gpu.dispatch(&jt, m)?;
                 gpu.read()?;
                 Ok(())

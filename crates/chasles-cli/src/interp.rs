@@ -2,7 +2,7 @@
 //! 1998, chapters 5–7) and write one row per frame.
 
 use crate::keyfile;
-use crate::output::{extension, num, write_atomic};
+use crate::output::{check_extension, extension, num, write_atomic};
 use anyhow::{bail, Context, Result};
 use chasles::analysis::curvature::{curvature_energy, Width};
 use chasles::analysis::velocity::velocity_chord;
@@ -228,30 +228,13 @@ pub fn run(args: InterpArgs) -> Result<()> {
             bail!("--out must end in .csv or .json, got {}", out.display());
         }
     }
-    if let Some(p) = &args.plot {
-        if !matches!(extension(p).as_str(), "svg" | "png") {
-            bail!("--plot {} must end in .svg or .png", p.display());
-        }
-    }
-    for (p, ext) in [
-        (&args.sphere, "png"),
-        (&args.gif, "gif"),
-        (&args.render, "png"),
-    ] {
-        if let Some(p) = p {
-            if extension(p) != ext {
-                bail!("{} must end in .{ext}", p.display());
-            }
-        }
-    }
+    check_extension("--plot", args.plot.as_deref(), &["svg", "png"])?;
+    check_extension("--sphere", args.sphere.as_deref(), &["png"])?;
+    check_extension("--gif", args.gif.as_deref(), &["gif"])?;
+    check_extension("--render", args.render.as_deref(), &["png"])?;
     let run = compute(&args)?;
     if let Some(p) = &args.plot {
-        let keys: Vec<usize> = run
-            .frames
-            .iter()
-            .enumerate()
-            .filter_map(|(i, f)| f.key.map(|_| i))
-            .collect();
+        let keys = chasles_viz::graph::key_indices(&run.frames);
         let title = format!(
             "{} through {}: angular velocity (Dam et al. eq. 5.1)",
             args.method, args.keys
@@ -266,23 +249,8 @@ pub fn run(args: InterpArgs) -> Result<()> {
         eprintln!("wrote {}", p.display());
     }
     if let Some(p) = &args.sphere {
-        use chasles_viz::sphere::{fixed_coordinate, render, Mark};
-        let q: Vec<Quat<f64>> = run.frames.iter().map(|f| f.q).collect();
-        let pts: Vec<(Quat<f64>, Mark)> = run
-            .frames
-            .iter()
-            .map(|f| {
-                (
-                    f.q,
-                    match f.key {
-                        Some(0) => Mark::FirstKey,
-                        Some(_) => Mark::Key,
-                        None => Mark::Frame,
-                    },
-                )
-            })
-            .collect();
-        write_atomic(p, &render(&pts, fixed_coordinate(&q), 600).png())?;
+        let img = chasles_viz::sphere::render_frames(&run.frames, 600);
+        write_atomic(p, &img.png())?;
         eprintln!("wrote {}", p.display());
     }
     // The frames as rotations: a non-unit frame (raw Lerp) is shown by its rotation.

@@ -30,6 +30,18 @@ pub fn extension(path: &Path) -> String {
         .to_ascii_lowercase()
 }
 
+/// Refuses, before any work is done, an output path given with `flag` whose extension is
+/// none of `allowed`: "--plot a.txt must end in .svg or .png".
+pub fn check_extension(flag: &str, path: Option<&Path>, allowed: &[&str]) -> Result<()> {
+    match path {
+        Some(p) if !allowed.contains(&extension(p).as_str()) => {
+            let list: Vec<String> = allowed.iter().map(|e| format!(".{e}")).collect();
+            anyhow::bail!("{flag} {} must end in {}", p.display(), list.join(" or "))
+        }
+        _ => Ok(()),
+    }
+}
+
 /// A number for text tables: shortest exact decimal, with an exponent for very small or
 /// very large magnitudes (Rust's `{}` would print 20 zeros).
 pub fn num(x: f64) -> String {

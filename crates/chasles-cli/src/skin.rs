@@ -1,7 +1,7 @@
 //! `chasles skin`: skin a rigged glTF mesh with any method (Kavan et al. 2006, §6), one pose
 //! or a whole clip, and the candy-wrapper table (`--artifacts`).
 
-use crate::output::{extension, write_atomic};
+use crate::output::{check_extension, extension, write_atomic};
 use crate::pictures;
 use anyhow::{anyhow, bail, Context, Result};
 use chasles_skin::cylinder::{self, Motion};
@@ -140,7 +140,7 @@ pub fn artifacts_table() -> Result<String> {
 }
 
 /// Median seconds of `f` over `runs` runs after one warm-up.
-fn median_secs(runs: usize, mut f: impl FnMut() -> Result<()>) -> Result<f64> {
+pub(crate) fn median_secs(runs: usize, mut f: impl FnMut() -> Result<()>) -> Result<f64> {
     f()?;
     let mut t = Vec::with_capacity(runs);
     for _ in 0..runs {
@@ -213,18 +213,10 @@ pub fn run(a: SkinArgs) -> Result<()> {
             _ => bench(),
         };
     }
-    for (p, ext) in [
-        (&a.render, "png"),
-        (&a.gif, "gif"),
-        (&a.plot, "svg"),
-        (&a.sphere, "png"),
-    ] {
-        if let Some(p) = p {
-            if extension(p) != ext {
-                bail!("{} must end in .{ext}", p.display());
-            }
-        }
-    }
+    check_extension("--render", a.render.as_deref(), &["png"])?;
+    check_extension("--gif", a.gif.as_deref(), &["gif"])?;
+    check_extension("--plot", a.plot.as_deref(), &["svg"])?;
+    check_extension("--sphere", a.sphere.as_deref(), &["png"])?;
     if a.artifacts {
         print!("{}", artifacts_table()?);
         let rig = cylinder::twisted_cylinder();

@@ -247,7 +247,6 @@ fn energy(f: &[chasles::interp::Frame<f64>]) -> f64 {
 
 /// Dam et al. chapters 5–7 on the built-in key sets.
 fn interpolation(rep: &mut Report) -> anyhow::Result<()> {
-    use chasles_viz::sphere::{self, Mark};
     stage("interpolation");
     heading("Dam et al. ch. 5–6: Table 5.1's six keys, 550 frames shared by interval angle (§6.2)");
     rep.section(
@@ -317,24 +316,10 @@ fn interpolation(rep: &mut Report) -> anyhow::Result<()> {
             format!("{:.3}", hi / lo),
         ]);
         ratios.insert(name, hi / lo);
-        let keys_at: Vec<usize> = (0..frames.len())
-            .filter(|i| frames[*i].key.is_some())
-            .collect();
+        let keys_at = chasles_viz::graph::key_indices(&frames);
         let title = format!("{name}: angular velocity (Dam et al. eq. 5.1), Table 5.1 keys");
         let svg = chasles_viz::graph::velocity_svg(&v, &keys_at, &title);
-        let q: Vec<Quat<f64>> = frames.iter().map(|f| f.q).collect();
-        let pts: Vec<(Quat<f64>, Mark)> = frames
-            .iter()
-            .map(|f| {
-                let m = match f.key {
-                    Some(0) => Mark::FirstKey,
-                    Some(_) => Mark::Key,
-                    None => Mark::Frame,
-                };
-                (f.q, m)
-            })
-            .collect();
-        let png = sphere::render(&pts, sphere::fixed_coordinate(&q), 420).png();
+        let png = chasles_viz::sphere::render_frames(&frames, 420).png();
         pictures.push((name, svg, png));
     }
     rep.table(&rows);

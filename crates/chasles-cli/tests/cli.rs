@@ -1263,9 +1263,24 @@ fn skin_pictures_of_a_real_clip() {
     ]);
     let out = stdout(&o);
     assert!(out.contains("the rotation of leg_joint_"), "{out}");
-    // LBS's smallest volume over the walk reaches 0.47 (the plot's lowest point).
+    // LBS's smallest volume over the walk reaches 0.47 (the plot's lowest point): 41
+    // samples, read back through the plot's axis (chasles_viz::plot::lines_svg: plot area
+    // from y = 40 to y = 290 pixels; the data start near 0, so the axis runs from 0 to 1.05,
+    // the rigid blends' 1 plus 5 %).
     let svg = std::fs::read_to_string(p("volume.svg")).unwrap();
     assert_eq!(svg.matches("class=\"series\"").count(), 2);
+    let lbs = svg
+        .split("<polyline class=\"series\" points=\"")
+        .nth(1)
+        .unwrap();
+    let ys: Vec<f64> = lbs[..lbs.find('"').unwrap()]
+        .split_whitespace()
+        .map(|xy| xy.split(',').nth(1).unwrap().parse().unwrap())
+        .collect();
+    assert_eq!(ys.len(), 41);
+    let lowest = ys.iter().fold(0.0f64, |m, y| m.max(*y));
+    let det = 1.05 * (1.0 - (lowest - 40.0) / 250.0);
+    assert!((det - 0.47).abs() < 0.03, "lowest LBS volume {det}");
     std::fs::create_dir(dir.path().join("r")).unwrap();
     std::fs::write(
         dir.path().join("r/index.html"),

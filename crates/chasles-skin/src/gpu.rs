@@ -6,7 +6,7 @@
 //! as the paper notes — and the skinned positions and normals come back.
 //!
 //! Up to four influences per vertex (glTF's usual `JOINTS_0`); a rig with more is refused
-//! with [`GpuError::TooManyInfluences`]. Meshes larger than the adapter's storage-binding
+//! with [`GpuError::Rig`]. Meshes larger than the adapter's storage-binding
 //! limit are split into chunks, one dispatch each. Any Vulkan, Metal, DX12 or GL adapter works,
 //! software ones included (Mesa's lavapipe), so the tests run on machines without a GPU.
 
@@ -26,14 +26,9 @@ pub enum GpuError {
     /// A method with no GPU shader yet.
     #[error("{0} has no GPU path (lbs, dqs and dib do)")]
     Unsupported(&'static str),
-    /// A vertex with more influences than the shaders take.
-    #[error("vertex {vertex} has {count} influences; the GPU path takes at most 4")]
-    TooManyInfluences {
-        /// The vertex.
-        vertex: usize,
-        /// Its influences.
-        count: usize,
-    },
+    /// A rig the four-influence layout cannot hold (more than 4 influences a vertex).
+    #[error(transparent)]
+    Rig(#[from] crate::SkinError),
     /// Transforms for another rig.
     #[error("{given} joint transforms for a rig of {joints} joints")]
     JointCount {
@@ -60,7 +55,6 @@ pub struct GpuSkinner {
     matrices: wgpu::Buffer,
     dual_quats: wgpu::Buffer,
     readback: wgpu::Buffer,
-    vertices: usize,
     joints: usize,
     adapter: String,
     software: bool,
@@ -102,34 +96,8 @@ impl GpuSkinner {
     /// Opens the default adapter (a high-performance one when there is a choice) and
     /// uploads `rig`'s mesh and influences.
     pub fn new(rig: &Rig) -> Result<Self, GpuError> {
-        let n = rig.mesh.positions.len();
-        let mut verts = Vec::with_capacity(n);
-        for v in 0..n {
-            let mut inf: Vec<(usize, f32)> = rig.influences.of(v).collect();
-            if inf.len() > 4 {
-                return Err(GpuError::TooManyInfluences {
-                    vertex: v,
-                    count: inf.len(),
-                });
-            }
-            // Heaviest first (DQS's pivot), the earliest on ties as on the CPU.
-            if let Some(h) = (0..inf.len()).reduce(|a, b| if inf[b].1 > inf[a].1 { b } else { a }) {
-                inf.swap(0, h);
-            }
-            let (mut j, mut w) = ([0u32; 4], [0f32; 4]);
-            for (k, (jj, ww)) in inf.iter().enumerate() {
-                j[k] = *jj as u32;
-                w[k] = *ww;
-            }
-            let (p, nn) = (rig.mesh.positions[v], rig.mesh.normals[v]);
-            verts.push(GpuVertex {
-                p: [p.x, p.y, p.z, 1.0],
-                n: [nn.x, nn.y, nn.z, 0.0],
-                j,
-                w,
-            });
-        }
-        Self::upload(&verts, rig.joints.len(), usize::MAX)
+        // The fast path's layout: four influences at most, heaviest first.
+        Self::from_fast(&crate::fast::FastRig::<4>::new(rig)?)
     }
 
     /// Uploads a fast-path rig (four influences, heaviest first, indices checked) — the
@@ -283,7 +251,6 @@ impl GpuSkinner {
             matrices,
             dual_quats,
             readback,
-            vertices: n,
             joints: rig_joints,
             adapter: format!("{} ({:?}, {:?})", info.name, info.device_type, info.backend),
             software: info.device_type == wgpu::DeviceType::Cpu,
@@ -344,8 +311,9 @@ impl GpuSkinner {
 
     /// Waits for the last dispatch and brings the skinned positions and normals back.
     pub fn read(&self) -> Result<Skinned, GpuError> {
-        let mut positions = Vec::with_capacity(self.vertices);
-        let mut normals = Vec::with_capacity(self.vertices);
+        let n: usize = self.chunks.iter().map(|c| c.vertices).sum();
+        let mut positions = Vec::with_capacity(n);
+        let mut normals = Vec::with_capacity(n);
         for c in &self.chunks {
             let size = c.vertices as u64 * 32;
             let mut encoder = self.device.create_command_encoder(&Default::default());

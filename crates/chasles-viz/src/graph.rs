@@ -201,3 +201,12 @@ fn text(img: &mut Image, x: f64, y: f64, s: &str, colour: [u8; 3], px: usize) {
         }
     }
 }
+
+/// The indices of the key frames among interpolated `frames` (where the asterisks go).
+pub fn key_indices(frames: &[chasles::interp::Frame<f64>]) -> Vec<usize> {
+    frames
+        .iter()
+        .enumerate()
+        .filter_map(|(i, f)| f.key.map(|_| i))
+        .collect()
+}

@@ -141,3 +141,21 @@ pub fn render(points: &[(Quat<f64>, Mark)], fixed: usize, size: usize) -> Image 
         rgb,
     }
 }
+
+/// The plot of an interpolated curve: its frames, key frames marked (the first key larger),
+/// the fixed coordinate found from the frames.
+pub fn render_frames(frames: &[chasles::interp::Frame<f64>], size: usize) -> Image {
+    let pts: Vec<(Quat<f64>, Mark)> = frames
+        .iter()
+        .map(|f| {
+            let m = match f.key {
+                Some(0) => Mark::FirstKey,
+                Some(_) => Mark::Key,
+                None => Mark::Frame,
+            };
+            (f.q, m)
+        })
+        .collect();
+    let q: Vec<Quat<f64>> = frames.iter().map(|f| f.q).collect();
+    render(&pts, fixed_coordinate(&q), size)
+}
