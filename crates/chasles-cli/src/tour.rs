@@ -241,6 +241,33 @@ pub fn run(args: TourArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// The largest max/min ratio of the speed `v` inside one interval between keys (frames
+/// next to a key left out): 1 for constant speed. The worst interval, not the whole curve,
+/// because whole frame counts per interval make the step differ slightly from one interval
+/// to the next even for a constant-speed method.
+fn speed_ratio_within_intervals(frames: &[chasles::interp::Frame<f64>], v: &[f64]) -> f64 {
+    let mut per_interval: Vec<(f64, f64)> = Vec::new();
+    let mut interval = 0;
+    for (w, s) in frames.windows(3).zip(&v[1..]) {
+        if w[1].key.is_some() {
+            interval += 1;
+        }
+        if w.iter().any(|f| f.key.is_some()) {
+            continue;
+        }
+        if per_interval.len() <= interval {
+            per_interval.resize(interval + 1, (f64::MAX, 0.0));
+        }
+        let r = &mut per_interval[interval];
+        *r = (r.0.min(*s), r.1.max(*s));
+    }
+    per_interval
+        .iter()
+        .filter(|r| r.1 > 0.0)
+        .map(|r| r.1 / r.0)
+        .fold(1.0f64, f64::max)
+}
+
 fn energy(f: &[chasles::interp::Frame<f64>]) -> f64 {
     curvature_energy(&f.iter().map(|x| x.q).collect::<Vec<_>>(), Width::Unit)
 }
@@ -285,37 +312,14 @@ fn interpolation(rep: &mut Report) -> anyhow::Result<()> {
             }
         };
         let v = velocity_angle(&frames.iter().map(|f| f.q).collect::<Vec<_>>());
-        // Speed ratio inside each interval (frames next to keys left out), worst interval:
-        // the frame counts per interval are whole numbers, so the step differs slightly
-        // from one interval to the next even for a constant-speed method.
-        let mut per_interval: Vec<(f64, f64)> = Vec::new();
-        let mut interval = 0;
-        for (w, s) in frames.windows(3).zip(&v[1..]) {
-            if w[1].key.is_some() {
-                interval += 1;
-            }
-            if w.iter().any(|f| f.key.is_some()) {
-                continue;
-            }
-            if per_interval.len() <= interval {
-                per_interval.resize(interval + 1, (f64::MAX, 0.0));
-            }
-            let r = &mut per_interval[interval];
-            *r = (r.0.min(*s), r.1.max(*s));
-        }
-        let ratio = per_interval
-            .iter()
-            .filter(|r| r.1 > 0.0)
-            .map(|r| r.1 / r.0)
-            .fold(1.0f64, f64::max);
-        let (lo, hi) = (1.0, ratio);
-        println!("  {name:<10}  {:<28.4e}  {:.3}", energy(&frames), hi / lo);
+        let (e, ratio) = (energy(&frames), speed_ratio_within_intervals(&frames, &v));
+        println!("  {name:<10}  {e:<28.4e}  {ratio:.3}");
         rows.push(vec![
             name.to_string(),
-            format!("{:.4e}", energy(&frames)),
-            format!("{:.3}", hi / lo),
+            format!("{e:.4e}"),
+            format!("{ratio:.3}"),
         ]);
-        ratios.insert(name, hi / lo);
+        ratios.insert(name, ratio);
         let keys_at = chasles_viz::graph::key_indices(&frames);
         let title = format!("{name}: angular velocity (Dam et al. eq. 5.1), Table 5.1 keys");
         let svg = chasles_viz::graph::velocity_svg(&v, &keys_at, &title);
