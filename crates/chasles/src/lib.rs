@@ -63,6 +63,7 @@ pub mod matrix;
 pub mod quat;
 pub mod real;
 pub mod screw;
+pub(crate) mod trig;
 pub mod vec3;
 
 pub use convert::euler::{EulerAngles, EulerOrder};

@@ -92,6 +92,14 @@ pub trait Real:
     fn sin_cos(self) -> (Self, Self) {
         (self.sin(), self.cos())
     }
+    /// `self · a + b`. For `f32` and `f64` with one rounding (`mul_add`): one instruction
+    /// where the code is compiled with the `fma` target feature, a slow software routine
+    /// elsewhere — so generic code calls it only on such paths (see `trig::Lanes`). The
+    /// default is a product and a sum.
+    #[inline]
+    fn fused_mul_add(self, a: Self, b: Self) -> Self {
+        self * a + b
+    }
     /// Converts a small integer constant.
     #[inline]
     fn from_i32(v: i32) -> Self {
@@ -168,6 +176,10 @@ macro_rules! impl_real {
             #[inline]
             fn sin_cos(self) -> (Self, Self) {
                 $t::sin_cos(self)
+            }
+            #[inline]
+            fn fused_mul_add(self, a: Self, b: Self) -> Self {
+                $t::mul_add(self, a, b)
             }
         }
     };

@@ -13,12 +13,31 @@
 //! with the dual angle `cos Ω̂ = ⟨p̂, q̂⟩ = x + ε xε`, `xε = ⟨p0, qε⟩ + ⟨pε, q0⟩`. Writing
 //! the weights as dual numbers `a(Ω̂) = a(Ω) + ε a'(Ω) Ωε` with `Ωε = −xε / sin Ω`, the blend is
 //! `real = a p0 + b q0`, `dual = a pε + b qε + Ωε (a' p0 + b' q0)` — two dot products and
-//! a handful of scalars, no dual-quaternion products, one inverse trigonometric function and
-//! one `sin_cos`. Below Ω = 0.01 the weights and their derivatives come from their Taylor
-//! series in Ω (`sin(tΩ)/sin Ω = t(1 + c₁Ω² + c₂Ω⁴ + c₃Ω⁶)`), so a pure translation (Ω = 0)
-//! is exact. [`sclerp_pow`] is the definition itself, through the dual power.
+//! a handful of scalars and no dual-quaternion products.
+//!
+//! The trigonometry, on the common path (0 < t < 1, Ω ≥ 0.01, unit inputs): the angle from
+//! the chord, `Ω = d · A(d²/2)` with `d = ‖p0 − q0‖` and `A` a polynomial
+//! (`trig::acos_over_chord`), and `sin`, `cos` of `tΩ/2` ≤ π/4 by reduced polynomials,
+//! then the double angle — no library `acos`/`sin_cos` call and no division or square root
+//! before the angle. For `f64` the common path runs two lanes at a time (`wide::f64x2`:
+//! SSE2 on every x86-64, NEON on AArch64): each quaternion as two pairs, and the two ends'
+//! weights side by side. Fused multiply-adds where the build has FMA (not chosen at run
+//! time: a call into code compiled for AVX cost more than the fused operations saved,
+//! 40 ns against 31 ns per blend). Together these make the blend about 2.3× as fast as
+//! nalgebra's `sclerp` (`cargo bench -p chasles --bench blend`). Elsewhere — extrapolation
+//! (t outside [0, 1]), inputs off unit length —
+//! the general path takes `acos` of the dot product where well conditioned (Ω > 18°), else
+//! the angle from the chord, and the library `sin_cos`. Below Ω = 0.01 the weights and their
+//! derivatives come from their Taylor series in Ω (`sin(tΩ)/sin Ω = t(1 + c₁Ω² + c₂Ω⁴ +
+//! c₃Ω⁶)`), so a pure translation (Ω = 0) is exact. [`sclerp_pow`] is the definition
+//! itself, through the dual power.
 
-use crate::{DualQuat, Real, Result};
+use crate::trig::{
+    acos_over_chord, sin_cos_reduced, Lanes, ACOS_OVER_CHORD_MAX, SIN_COS_REDUCED_MAX,
+};
+use crate::{DualQuat, Quat, Real, Result};
+use core::any::Any;
+use wide::f64x2;
 
 /// ScLERP through the definition `p̂ (p̂* q̂)^t` (the general dual-quaternion power).
 pub fn sclerp_pow<T: Real>(p: DualQuat<T>, q: DualQuat<T>, t: T) -> Result<DualQuat<T>> {
@@ -68,6 +87,116 @@ pub fn sclerp<T: Real>(p: DualQuat<T>, q: DualQuat<T>, t: T) -> Result<DualQuat<
     if t == T::ONE {
         return Ok(q);
     }
+    let (d2, e2) = (
+        (p.real - q.real).norm_squared(),
+        (p.real + q.real).norm_squared(),
+    );
+    let y = d2 * T::HALF;
+    if !(t > T::ZERO
+        && t < T::ONE
+        && y >= T::from_f64(SMALL_ANGLE_Y)
+        && y <= T::from_f64(ACOS_OVER_CHORD_MAX))
+    {
+        return Ok(general(p, q, x, t));
+    }
+    // f64 two lanes at a time (resolved at compile time: the `Any` casts are no-ops).
+    let any = (&p as &dyn Any, &q as &dyn Any, &t as &dyn Any);
+    if let (Some(p64), Some(q64), Some(t64)) = (
+        any.0.downcast_ref::<DualQuat<f64>>(),
+        any.1.downcast_ref::<DualQuat<f64>>(),
+        any.2.downcast_ref::<f64>(),
+    ) {
+        let r = blend_f64x2(*p64, *q64, *t64, [x.to_f64(), d2.to_f64(), e2.to_f64()]);
+        if let Some(r) = (&r as &dyn Any).downcast_ref::<DualQuat<T>>() {
+            return Ok(*r);
+        }
+    }
+    Ok(blend(p, q, t, x, d2, e2))
+}
+
+/// `y = 1 − cos Ω` at Ω = 0.01, below which the weights come from their series.
+const SMALL_ANGLE_Y: f64 = 4.999_958_333_473_664e-5;
+
+/// `a p + b q` per component.
+#[inline(always)]
+fn lin2<T: Real>(p: Quat<T>, a: T, q: Quat<T>, b: T) -> Quat<T> {
+    let m = |p: T, q: T| p.madd(a, q * b);
+    Quat::new(m(p.w, q.w), m(p.x, q.x), m(p.y, q.y), m(p.z, q.z))
+}
+
+/// The blend of `p` and `q` on the common path: `x = ⟨p0, q0⟩ ≥ 0` (shorter arc),
+/// `d2 = ‖p0 − q0‖²`, `e2 = ‖p0 + q0‖²`, 0 < t < 1, Ω ≥ 0.01.
+#[inline(always)]
+fn blend<T: Real>(p: DualQuat<T>, q: DualQuat<T>, t: T, x: T, d2: T, e2: T) -> DualQuat<T> {
+    let (p0, pe, q0, qe) = (p.real, p.dual, q.real, q.dual);
+    let g = T::ONE - t;
+    // d = 2 sin(Ω/2), e = 2 cos(Ω/2): sin Ω = de/2; Ω = d A(d²/2).
+    let (d, e) = (d2.sqrt(), e2.sqrt());
+    let half_omega = d * T::HALF * acos_over_chord(d2 * T::HALF);
+    debug_assert!(half_omega <= T::from_f64(SIN_COS_REDUCED_MAX));
+    let (st, ct) = sin_cos_reduced(t * half_omega);
+    // sin and cos of tΩ by the double angle, of (1 − t)Ω by the difference from Ω
+    // (cos Ω = x).
+    let st2 = st + st;
+    let s2 = st2 * ct;
+    let c2 = (-st2).madd(st, T::ONE);
+    let sin_omega = d * e * T::HALF;
+    let s1 = sin_omega.madd(c2, -(x * s2));
+    let c1 = x.madd(c2, sin_omega * s2);
+    let inv = T::TWO / (d * e);
+    let xe = p0.dot(qe) + pe.dot(q0);
+    // Ωε = −xε / sin Ω; the dual parts of the weights are Ωε a'(Ω), Ωε b'(Ω) with
+    // a' = ((1 − t) cos((1 − t)Ω) − a cos Ω)/sin Ω, b' likewise.
+    let k = -xe * inv * inv;
+    let xk = x * inv * k;
+    let (a, b) = (s1 * inv, s2 * inv);
+    let ad = (g * k).madd(c1, -(s1 * xk));
+    let bd = (t * k).madd(c2, -(s2 * xk));
+    let real = lin2(p0, a, q0, b);
+    let dual = lin2(pe, a, qe, b) + lin2(p0, ad, q0, bd);
+    DualQuat::new(real, dual)
+}
+
+/// [`blend`] for `f64`, two lanes at a time: each quaternion as two pairs, and the weights
+/// of both ends together — `sin`, `cos` of `(1 − t)Ω/2` and `tΩ/2` side by side, then the
+/// double angle. `xde` = `[x, d2, e2]`.
+#[inline(always)]
+fn blend_f64x2(p: DualQuat<f64>, q: DualQuat<f64>, t: f64, xde: [f64; 3]) -> DualQuat<f64> {
+    let [x, d2, e2] = xde;
+    let halves = |q: Quat<f64>| (f64x2::new([q.w, q.x]), f64x2::new([q.y, q.z]));
+    let ((p0a, p0b), (pea, peb)) = (halves(p.real), halves(p.dual));
+    let ((q0a, q0b), (qea, qeb)) = (halves(q.real), halves(q.dual));
+    let [d, e] = f64x2::new([d2, e2]).sqrt().to_array();
+    let half_omega = d * 0.5 * acos_over_chord(d2 * 0.5);
+    debug_assert!(half_omega <= SIN_COS_REDUCED_MAX);
+    let gt = f64x2::new([1.0 - t, t]);
+    let (sn, cs) = sin_cos_reduced(gt * f64x2::splat(half_omega));
+    // (sin((1 − t)Ω), sin(tΩ)) and the cosines, by the double angle.
+    let sn2 = sn + sn;
+    let s = sn2 * cs;
+    let c = (-sn2).madd(sn, f64x2::ONE);
+    let xe = {
+        let v = p0a.madd(qea, p0b * qeb) + pea.madd(q0a, peb * q0b);
+        v.reduce_add()
+    };
+    let inv = 2.0 / (d * e);
+    let k = -xe * inv * inv;
+    let xk = x * inv * k;
+    let ab = s * f64x2::splat(inv);
+    let abd = (gt * f64x2::splat(k)).madd(c, -(s * f64x2::splat(xk)));
+    let [a, b] = ab.to_array().map(f64x2::splat);
+    let [ad, bd] = abd.to_array().map(f64x2::splat);
+    let ra = p0a.madd(a, q0a * b);
+    let rb = p0b.madd(a, q0b * b);
+    let ua = pea.madd(a, qea * b) + p0a.madd(ad, q0a * bd);
+    let ub = peb.madd(a, qeb * b) + p0b.madd(ad, q0b * bd);
+    let ([rw, rx], [ry, rz]) = (ra.to_array(), rb.to_array());
+    let ([uw, ux], [uy, uz]) = (ua.to_array(), ub.to_array());
+    DualQuat::new(Quat::new(rw, rx, ry, rz), Quat::new(uw, ux, uy, uz))
+}
+
+/// The blend on every input: extrapolation, small angles (series), inputs off unit length.
+fn general<T: Real>(p: DualQuat<T>, q: DualQuat<T>, x: T, t: T) -> DualQuat<T> {
     let (p0, pe, q0, qe) = (p.real, p.dual, q.real, q.dual);
     let xe = p0.dot(qe) + pe.dot(q0);
     let g = T::ONE - t;
@@ -106,5 +235,82 @@ pub fn sclerp<T: Real>(p: DualQuat<T>, q: DualQuat<T>, t: T) -> Result<DualQuat<
     }
     let real = p0 * a + q0 * b;
     let dual = pe * a + qe * b + (p0 * da + q0 * db) * omega_e;
-    Ok(DualQuat::new(real, dual))
+    DualQuat::new(real, dual)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::analysis::properties::random_rigid;
+    use rand::rngs::StdRng;
+    use rand::{Rng, SeedableRng};
+
+    /// The largest difference of two blends, as 8 numbers.
+    fn diff(a: DualQuat<f64>, b: DualQuat<f64>) -> f64 {
+        let (a, b) = (a.to_array(), b.to_array());
+        (0..8).map(|i| (a[i] - b[i]).abs()).fold(0.0, f64::max)
+    }
+
+    /// The common path's three forms — generic (as f32 and the FLOP counter run it), two
+    /// lanes (f64) and the general path — agree with the definition `p (p* q)^t` on random
+    /// pairs at every angle of the path, down to its small-angle end (Ω = 0.01).
+    #[test]
+    fn the_three_paths_agree_with_the_definition() {
+        let mut rng = StdRng::seed_from_u64(17);
+        let mut worst = [0.0_f64; 3];
+        for i in 0..4000 {
+            let p = random_rigid(&mut rng);
+            let q = match i % 4 {
+                0 => random_rigid(&mut rng),
+                // Near the small-angle end: rotations 0.01…0.02 rad apart (Ω = half that).
+                k => {
+                    let angle = [0.0, 0.02, 0.021, 0.04][k] + rng.random_range(0.0..0.01);
+                    let r = Quat::from_axis_angle(
+                        crate::Vec3::new(rng.random(), rng.random(), 1.0),
+                        angle,
+                    )
+                    .unwrap();
+                    p * DualQuat::from_rotation_translation(r, crate::Vec3::new(0.3, -1.0, 2.0))
+                }
+            };
+            let t = rng.random_range(0.001..0.999);
+            let mut x = p.real.dot(q.real);
+            let q = if x < 0.0 {
+                x = -x;
+                -q
+            } else {
+                q
+            };
+            let (d2, e2) = (
+                (p.real - q.real).norm_squared(),
+                (p.real + q.real).norm_squared(),
+            );
+            if d2 * 0.5 < SMALL_ANGLE_Y {
+                continue;
+            }
+            let reference = sclerp_pow(p, q, t).unwrap();
+            let paths = [
+                blend(p, q, t, x, d2, e2),
+                blend_f64x2(p, q, t, [x, d2, e2]),
+                general(p, q, x, t),
+            ];
+            for (w, r) in worst.iter_mut().zip(paths) {
+                *w = w.max(diff(r, reference));
+            }
+        }
+        assert!(worst.iter().all(|&w| w < 1e-12), "{worst:?}");
+    }
+
+    /// f32 runs the generic path; it is as accurate as f32 allows.
+    #[test]
+    fn f32_runs_the_generic_path_to_f32_accuracy() {
+        let mut rng = StdRng::seed_from_u64(18);
+        for _ in 0..2000 {
+            let (p, q) = (random_rigid(&mut rng), random_rigid(&mut rng));
+            let t = rng.random_range(0.0..1.0);
+            let want = sclerp(p, q, t).unwrap();
+            let got = sclerp(p.cast::<f32>(), q.cast::<f32>(), t as f32).unwrap();
+            assert!(diff(got.cast::<f64>(), want) < 2e-5);
+        }
+    }
 }
