@@ -1,7 +1,10 @@
-//! Eight vertices at a time with AVX2 and FMA (x86-64, chosen at run time): the vertex
-//! fields and the joints' dual quaternions are gathered into 8-lane registers and the DQS
-//! arithmetic of [`super::dqs_vertex`] runs lane-parallel, in the same order of operations,
-//! so the results agree with the scalar kernel to rounding.
+//! Eight vertices at a time with AVX2 and FMA (x86-64, chosen at run time), in the order of
+//! operations of the scalar kernels, so the results agree with them to rounding. DQS: each
+//! vertex's four joint dual quaternions are whole-register loads and its blend (antipodality
+//! signs included) runs in one register; eight blends, and eight vertices' positions and
+//! normals, are transposed into lanes for the normalization and the transformation. LBS: the
+//! vertex fields and the joints' matrices are gathered into lanes. Both write their results
+//! back by a transpose and masked stores.
 
 use super::{Out, Vertex};
 use std::arch::x86_64::*;
@@ -18,11 +21,10 @@ struct Block {
     w: [__m256; 4],
 }
 
-/// Gathers vertices `i … i + 7`.
+/// The lane indices (in floats) of fields of vertices `i … i + 7`.
 #[inline]
 #[target_feature(enable = "avx2,fma")]
-unsafe fn load(v: &[Vertex<4>], i: usize) -> Block {
-    let vb = v.as_ptr() as *const f32;
+fn lanes(i: usize) -> __m256i {
     let lane = _mm256_setr_epi32(
         0,
         STRIDE,
@@ -33,15 +35,35 @@ unsafe fn load(v: &[Vertex<4>], i: usize) -> Block {
         6 * STRIDE,
         7 * STRIDE,
     );
-    let vi = _mm256_add_epi32(_mm256_set1_epi32(i as i32 * STRIDE), lane);
+    _mm256_add_epi32(_mm256_set1_epi32(i as i32 * STRIDE), lane)
+}
+
+/// Gathers the positions and normals of vertices `i … i + 7`: x, y, z, nx, ny, nz.
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn load_pn(v: &[Vertex<4>], i: usize) -> [__m256; 6] {
+    let vb = v.as_ptr() as *const f32;
+    let vi = lanes(i);
+    core::array::from_fn(|c| {
+        _mm256_i32gather_ps::<4>(vb, _mm256_add_epi32(vi, _mm256_set1_epi32(c as i32)))
+    })
+}
+
+/// Gathers vertices `i … i + 7`.
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn load(v: &[Vertex<4>], i: usize) -> Block {
+    let vb = v.as_ptr() as *const f32;
+    let vi = lanes(i);
     let at = |off: i32| _mm256_add_epi32(vi, _mm256_set1_epi32(off));
+    let [x, y, z, nx, ny, nz] = load_pn(v, i);
     let g = |off: i32| _mm256_i32gather_ps::<4>(vb, at(off));
     let lo16 = _mm256_set1_epi32(0xFFFF);
     let j01 = _mm256_i32gather_epi32::<4>(vb as *const i32, at(6));
     let j23 = _mm256_i32gather_epi32::<4>(vb as *const i32, at(7));
     Block {
-        p: [g(0), g(1), g(2)],
-        n: [g(3), g(4), g(5)],
+        p: [x, y, z],
+        n: [nx, ny, nz],
         j: [
             _mm256_and_si256(j01, lo16),
             _mm256_srli_epi32::<16>(j01),
@@ -52,27 +74,76 @@ unsafe fn load(v: &[Vertex<4>], i: usize) -> Block {
     }
 }
 
-/// Writes eight vertices' results (six lane vectors) to `o[i … i + 7]`.
+/// One vertex's blended dual quaternion `Σ ±wₖ q̂ₖ` (8 floats in one register): its four
+/// joints' dual quaternions are whole-register loads, not gathers; the antipodality signs
+/// come from the four dot products with the pivot (the heaviest influence), summed in the
+/// scalar kernel's order after a 4×4 transpose, so the signs are the same.
 #[inline]
 #[target_feature(enable = "avx2,fma")]
-unsafe fn store(o: &mut [Out], i: usize, r: [__m256; 6]) {
-    let mut lanes = [[0f32; 8]; 6];
-    for (dst, src) in lanes.iter_mut().zip(r) {
-        _mm256_storeu_ps(dst.as_mut_ptr(), src);
-    }
-    for l in 0..8 {
-        o[i + l] = [
-            lanes[0][l],
-            lanes[1][l],
-            lanes[2][l],
-            lanes[3][l],
-            lanes[4][l],
-            lanes[5][l],
-        ];
+unsafe fn blend_one(vx: &Vertex<4>, db: *const f32) -> __m256 {
+    let q = vx.j.map(|j| _mm256_loadu_ps(db.add(usize::from(j) * 8)));
+    let pivot = _mm256_castps256_ps128(q[0]);
+    let [mut m0, mut m1, mut m2, mut m3] = q.map(|q| _mm_mul_ps(_mm256_castps256_ps128(q), pivot));
+    _MM_TRANSPOSE4_PS(&mut m0, &mut m1, &mut m2, &mut m3);
+    let dots = _mm_add_ps(_mm_add_ps(_mm_add_ps(m0, m1), m2), m3);
+    let neg = _mm_and_ps(_mm_cmplt_ps(dots, _mm_setzero_ps()), _mm_set1_ps(-0.0));
+    let w = _mm_xor_ps(_mm_loadu_ps(vx.w.as_ptr()), neg);
+    let w = _mm256_set_m128(w, w);
+    let b = _mm256_mul_ps(_mm256_permute_ps::<0x00>(w), q[0]);
+    let b = _mm256_add_ps(b, _mm256_mul_ps(_mm256_permute_ps::<0x55>(w), q[1]));
+    let b = _mm256_add_ps(b, _mm256_mul_ps(_mm256_permute_ps::<0xAA>(w), q[2]));
+    _mm256_add_ps(b, _mm256_mul_ps(_mm256_permute_ps::<0xFF>(w), q[3]))
+}
+
+/// Transposes 8 registers of 8 floats: row k of the result is element k of every input.
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+fn transpose8(r: [__m256; 8]) -> [__m256; 8] {
+    let t0 = _mm256_unpacklo_ps(r[0], r[1]);
+    let t1 = _mm256_unpackhi_ps(r[0], r[1]);
+    let t2 = _mm256_unpacklo_ps(r[2], r[3]);
+    let t3 = _mm256_unpackhi_ps(r[2], r[3]);
+    let t4 = _mm256_unpacklo_ps(r[4], r[5]);
+    let t5 = _mm256_unpackhi_ps(r[4], r[5]);
+    let t6 = _mm256_unpacklo_ps(r[6], r[7]);
+    let t7 = _mm256_unpackhi_ps(r[6], r[7]);
+    let s0 = _mm256_shuffle_ps::<0x44>(t0, t2);
+    let s1 = _mm256_shuffle_ps::<0xEE>(t0, t2);
+    let s2 = _mm256_shuffle_ps::<0x44>(t1, t3);
+    let s3 = _mm256_shuffle_ps::<0xEE>(t1, t3);
+    let s4 = _mm256_shuffle_ps::<0x44>(t4, t6);
+    let s5 = _mm256_shuffle_ps::<0xEE>(t4, t6);
+    let s6 = _mm256_shuffle_ps::<0x44>(t5, t7);
+    let s7 = _mm256_shuffle_ps::<0xEE>(t5, t7);
+    [
+        _mm256_permute2f128_ps::<0x20>(s0, s4),
+        _mm256_permute2f128_ps::<0x20>(s1, s5),
+        _mm256_permute2f128_ps::<0x20>(s2, s6),
+        _mm256_permute2f128_ps::<0x20>(s3, s7),
+        _mm256_permute2f128_ps::<0x31>(s0, s4),
+        _mm256_permute2f128_ps::<0x31>(s1, s5),
+        _mm256_permute2f128_ps::<0x31>(s2, s6),
+        _mm256_permute2f128_ps::<0x31>(s3, s7),
+    ]
+}
+
+/// Writes eight vertices' results (six lane vectors) to `o[i … i + 7]` by a transpose and
+/// eight 6-lane masked stores.
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn store_rows(o: &mut [Out], i: usize, r: [__m256; 6]) {
+    let z = _mm256_setzero_ps();
+    let rows = transpose8([r[0], r[1], r[2], r[3], r[4], r[5], z, z]);
+    let mask = _mm256_setr_epi32(-1, -1, -1, -1, -1, -1, 0, 0);
+    let ob = o.as_mut_ptr().add(i) as *mut f32;
+    for (l, row) in rows.into_iter().enumerate() {
+        _mm256_maskstore_ps(ob.add(l * 6), mask, row);
     }
 }
 
-/// DQS for the first `v.len() / 8 * 8` vertices; returns how many were done.
+/// DQS for the first `v.len() / 8 * 8` vertices; returns how many were done. Each
+/// vertex's blend runs in one register ([`blend_one`]); eight blends are transposed into
+/// lanes, and the normalization and transformation run lane-parallel.
 ///
 /// # Safety
 /// The processor must have AVX2 and FMA, every joint index in `v` must be below
@@ -80,53 +151,18 @@ unsafe fn store(o: &mut [Out], i: usize, r: [__m256; 6]) {
 #[target_feature(enable = "avx2,fma")]
 pub unsafe fn dqs(v: &[Vertex<4>], d: &[[f32; 8]], o: &mut [Out]) -> usize {
     let db = d.as_ptr() as *const f32;
-    let zero = _mm256_setzero_ps();
-    let sign = _mm256_set1_ps(-0.0);
     let one = _mm256_set1_ps(1.0);
     let two = _mm256_set1_ps(2.0);
-    macro_rules! gd {
-        ($base:expr, $c:expr) => {
-            _mm256_i32gather_ps::<4>(db, _mm256_add_epi32($base, _mm256_set1_epi32($c)))
-        };
-    }
     let blocks = v.len() / 8;
     for blk in 0..blocks {
         let i = blk * 8;
-        let Block {
-            p: [px, py, pz],
-            n: [nx, ny, nz],
-            j: js,
-            w: ws,
-        } = load(v, i);
-        let base0 = _mm256_slli_epi32::<3>(js[0]);
-        let p = [gd!(base0, 0), gd!(base0, 1), gd!(base0, 2), gd!(base0, 3)];
-        let mut b = [zero; 8];
-        for k in 0..4 {
-            let base = _mm256_slli_epi32::<3>(js[k]);
-            let q = [
-                gd!(base, 0),
-                gd!(base, 1),
-                gd!(base, 2),
-                gd!(base, 3),
-                gd!(base, 4),
-                gd!(base, 5),
-                gd!(base, 6),
-                gd!(base, 7),
-            ];
-            // dot = q0 p0 + q1 p1 + q2 p2 + q3 p3, as the scalar kernel sums it.
-            let dot = _mm256_add_ps(
-                _mm256_add_ps(
-                    _mm256_add_ps(_mm256_mul_ps(q[0], p[0]), _mm256_mul_ps(q[1], p[1])),
-                    _mm256_mul_ps(q[2], p[2]),
-                ),
-                _mm256_mul_ps(q[3], p[3]),
-            );
-            let neg = _mm256_and_ps(_mm256_cmp_ps::<_CMP_LT_OQ>(dot, zero), sign);
-            let w = _mm256_xor_ps(ws[k], neg);
-            for c in 0..8 {
-                b[c] = _mm256_add_ps(b[c], _mm256_mul_ps(w, q[c]));
-            }
-        }
+        let vb = v.as_ptr().add(i) as *const f32;
+        let [px, py, pz, nx, ny, nz, _, _] = transpose8(core::array::from_fn(|l| {
+            _mm256_loadu_ps(vb.add(l * STRIDE as usize))
+        }));
+        let b = transpose8(core::array::from_fn(|l| {
+            blend_one(v.get_unchecked(i + l), db)
+        }));
         let len2 = _mm256_add_ps(
             _mm256_add_ps(
                 _mm256_add_ps(_mm256_mul_ps(b[0], b[0]), _mm256_mul_ps(b[1], b[1])),
@@ -170,7 +206,7 @@ pub unsafe fn dqs(v: &[Vertex<4>], d: &[[f32; 8]], o: &mut [Out]) -> usize {
         let mx = add(nx, mul(two, sub(mul(y0, sz), mul(z0, sy))));
         let my = add(ny, mul(two, sub(mul(z0, sx), mul(x0, sz))));
         let mz = add(nz, mul(two, sub(mul(x0, sy), mul(y0, sx))));
-        store(o, i, [qx, qy, qz, mx, my, mz]);
+        store_rows(o, i, [qx, qy, qz, mx, my, mz]);
     }
     blocks * 8
 }
@@ -228,7 +264,7 @@ pub unsafe fn lbs(v: &[Vertex<4>], m: &[[f32; 12]], o: &mut [Out]) -> usize {
         let mx = _mm256_blendv_ps(nx, _mm256_div_ps(mx, l), ok);
         let my = _mm256_blendv_ps(ny, _mm256_div_ps(my, l), ok);
         let mz = _mm256_blendv_ps(nz, _mm256_div_ps(mz, l), ok);
-        store(o, i, [px, py, pz, mx, my, mz]);
+        store_rows(o, i, [px, py, pz, mx, my, mz]);
     }
     blocks * 8
 }
