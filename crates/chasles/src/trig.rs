@@ -110,7 +110,8 @@ const COS: [f64; 7] = [
 
 /// The polynomial with coefficients `c` (constant term first) at `z`, by Estrin's scheme
 /// (pairs, then pairs of pairs, up to 32 coefficients): a dependency chain of about log₂ N
-/// multiply-adds instead of Horner's N.
+/// multiply-adds instead of Horner's N. Written out level by level: as a loop over levels
+/// the compiler kept the coefficients in memory (ScLERP 48 ns instead of 26 ns).
 #[inline(always)]
 fn poly<L: Lanes, const N: usize>(z: L, c: &[f64; N]) -> L {
     let k = |i: usize| L::splat(c[i]);

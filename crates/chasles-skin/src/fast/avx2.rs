@@ -3,8 +3,8 @@
 //! vertex's four joint dual quaternions are whole-register loads and its blend (antipodality
 //! signs included) runs in one register; eight blends, and eight vertices' positions and
 //! normals, are transposed into lanes for the normalization and the transformation. LBS: the
-//! vertex fields and the joints' matrices are gathered into lanes. Both write their results
-//! back by a transpose and masked stores.
+//! vertex fields are transposed in the same way (weights gathered) and the joints' matrices
+//! gathered into lanes. Both write their results back by a transpose and masked stores.
 
 use super::{Out, Vertex};
 use std::arch::x86_64::*;
@@ -21,10 +21,25 @@ struct Block {
     w: [__m256; 4],
 }
 
-/// The lane indices (in floats) of fields of vertices `i … i + 7`.
+/// The first 8 floats of vertices `i … i + 7` in lanes, by eight loads and a transpose:
+/// x, y, z, nx, ny, nz and the two words of joint indices (as float bits).
 #[inline]
 #[target_feature(enable = "avx2,fma")]
-fn lanes(i: usize) -> __m256i {
+unsafe fn load_head(v: &[Vertex<4>], i: usize) -> [__m256; 8] {
+    let vb = v.as_ptr().add(i) as *const f32;
+    transpose8(core::array::from_fn(|l| {
+        _mm256_loadu_ps(vb.add(l * STRIDE as usize))
+    }))
+}
+
+/// Vertices `i … i + 7` in lanes: the head by [`load_head`], the weights gathered.
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn load(v: &[Vertex<4>], i: usize) -> Block {
+    let [x, y, z, nx, ny, nz, j01, j23] = load_head(v, i);
+    let (j01, j23) = (_mm256_castps_si256(j01), _mm256_castps_si256(j23));
+    let lo16 = _mm256_set1_epi32(0xFFFF);
+    let vb = v.as_ptr() as *const f32;
     let lane = _mm256_setr_epi32(
         0,
         STRIDE,
@@ -35,32 +50,8 @@ fn lanes(i: usize) -> __m256i {
         6 * STRIDE,
         7 * STRIDE,
     );
-    _mm256_add_epi32(_mm256_set1_epi32(i as i32 * STRIDE), lane)
-}
-
-/// Gathers the positions and normals of vertices `i … i + 7`: x, y, z, nx, ny, nz.
-#[inline]
-#[target_feature(enable = "avx2,fma")]
-unsafe fn load_pn(v: &[Vertex<4>], i: usize) -> [__m256; 6] {
-    let vb = v.as_ptr() as *const f32;
-    let vi = lanes(i);
-    core::array::from_fn(|c| {
-        _mm256_i32gather_ps::<4>(vb, _mm256_add_epi32(vi, _mm256_set1_epi32(c as i32)))
-    })
-}
-
-/// Gathers vertices `i … i + 7`.
-#[inline]
-#[target_feature(enable = "avx2,fma")]
-unsafe fn load(v: &[Vertex<4>], i: usize) -> Block {
-    let vb = v.as_ptr() as *const f32;
-    let vi = lanes(i);
-    let at = |off: i32| _mm256_add_epi32(vi, _mm256_set1_epi32(off));
-    let [x, y, z, nx, ny, nz] = load_pn(v, i);
-    let g = |off: i32| _mm256_i32gather_ps::<4>(vb, at(off));
-    let lo16 = _mm256_set1_epi32(0xFFFF);
-    let j01 = _mm256_i32gather_epi32::<4>(vb as *const i32, at(6));
-    let j23 = _mm256_i32gather_epi32::<4>(vb as *const i32, at(7));
+    let vi = _mm256_add_epi32(_mm256_set1_epi32(i as i32 * STRIDE), lane);
+    let g = |off: i32| _mm256_i32gather_ps::<4>(vb, _mm256_add_epi32(vi, _mm256_set1_epi32(off)));
     Block {
         p: [x, y, z],
         n: [nx, ny, nz],
@@ -156,10 +147,7 @@ pub unsafe fn dqs(v: &[Vertex<4>], d: &[[f32; 8]], o: &mut [Out]) -> usize {
     let blocks = v.len() / 8;
     for blk in 0..blocks {
         let i = blk * 8;
-        let vb = v.as_ptr().add(i) as *const f32;
-        let [px, py, pz, nx, ny, nz, _, _] = transpose8(core::array::from_fn(|l| {
-            _mm256_loadu_ps(vb.add(l * STRIDE as usize))
-        }));
+        let [px, py, pz, nx, ny, nz, _, _] = load_head(v, i);
         let b = transpose8(core::array::from_fn(|l| {
             blend_one(v.get_unchecked(i + l), db)
         }));
