@@ -10,8 +10,13 @@
 //! limit are split into chunks, one dispatch each. Any Vulkan, Metal, DX12 or GL adapter works,
 //! software ones included (Mesa's lavapipe), so the tests run on machines without a GPU.
 
+mod timing;
+
+pub use timing::Clock;
+
 use crate::{JointTransforms, Method, Rig, Skinned};
 use chasles::Vec3;
+use rayon::prelude::*;
 use wgpu::util::DeviceExt;
 
 /// Why the GPU path cannot run.
@@ -58,6 +63,7 @@ pub struct GpuSkinner {
     joints: usize,
     adapter: String,
     software: bool,
+    timestamps: bool,
 }
 
 /// A run of vertices small enough for one storage binding: meshes larger than the
@@ -77,6 +83,14 @@ struct GpuVertex {
     n: [f32; 4],
     j: [u32; 4],
     w: [f32; 4],
+}
+
+/// Workgroups for `count` invocations of `size`-wide groups: a row of at most `max` groups
+/// (the adapter's per-dimension limit), as many rows as needed.
+fn grid(count: u32, size: u32, max: u32) -> (u32, u32) {
+    let needed = count.div_ceil(size).max(1);
+    let max = max.max(1);
+    (needed.min(max), needed.div_ceil(max))
 }
 
 fn storage(binding: u32, read_only: bool) -> wgpu::BindGroupLayoutEntry {
@@ -136,6 +150,8 @@ impl GpuSkinner {
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("chasles skinning"),
             required_limits: adapter.limits(),
+            // GPU-side pass times for the benchmark, where the adapter has them.
+            required_features: adapter.features() & wgpu::Features::TIMESTAMP_QUERY,
             ..Default::default()
         }))
         .map_err(|e| GpuError::Device(e.to_string()))?;
@@ -189,11 +205,7 @@ impl GpuSkinner {
                 m * 32,
                 wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
             );
-            let groups_needed = (m as u32).div_ceil(WORKGROUP).max(1);
-            let groups = (
-                groups_needed.min(max_groups),
-                groups_needed.div_ceil(max_groups),
-            );
+            let groups = grid(m as u32, WORKGROUP, max_groups);
             let params: [u32; 4] = [m as u32, groups.0 * WORKGROUP, 0, 0];
             let params_buf = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("params"),
@@ -241,6 +253,7 @@ impl GpuSkinner {
             })
         };
         let (lbs, dqs, dib) = (pipeline("lbs"), pipeline("dqs"), pipeline("dib"));
+        let timestamps = device.features().contains(wgpu::Features::TIMESTAMP_QUERY);
         Ok(GpuSkinner {
             device,
             queue,
@@ -254,6 +267,7 @@ impl GpuSkinner {
             joints: rig_joints,
             adapter: format!("{} ({:?}, {:?})", info.name, info.device_type, info.backend),
             software: info.device_type == wgpu::DeviceType::Cpu,
+            timestamps,
         })
     }
 
@@ -271,13 +285,27 @@ impl GpuSkinner {
     /// Uploads the joint transforms `method` needs and runs its shader, leaving the result
     /// on the GPU (see [`GpuSkinner::read`]).
     pub fn dispatch(&self, jt: &JointTransforms, method: Method) -> Result<(), GpuError> {
+        let pipeline = self.prepare(jt, method)?;
+        let mut encoder = self.device.create_command_encoder(&Default::default());
+        self.encode(&mut encoder, pipeline, None);
+        self.queue.submit([encoder.finish()]);
+        Ok(())
+    }
+
+    /// Checks `jt` against the rig, queues the upload of the joint transforms `method`
+    /// reads (12 floats a joint for LBS, 8 for DQS and DIB) and returns its pipeline.
+    fn prepare(
+        &self,
+        jt: &JointTransforms,
+        method: Method,
+    ) -> Result<&wgpu::ComputePipeline, GpuError> {
         if jt.matrices.len() != self.joints || jt.dual_quats.len() != self.joints {
             return Err(GpuError::JointCount {
                 given: jt.matrices.len(),
                 joints: self.joints,
             });
         }
-        let pipeline = match method {
+        Ok(match method {
             Method::Lbs => {
                 let rows: Vec<f32> = jt.matrices.iter().flat_map(|m| m.m[..3].concat()).collect();
                 self.queue
@@ -295,25 +323,46 @@ impl GpuSkinner {
                 }
             }
             other => return Err(GpuError::Unsupported(other.name())),
-        };
-        let mut encoder = self.device.create_command_encoder(&Default::default());
-        {
-            let mut pass = encoder.begin_compute_pass(&Default::default());
-            pass.set_pipeline(pipeline);
-            for c in &self.chunks {
-                pass.set_bind_group(0, &c.bind_group, &[]);
-                pass.dispatch_workgroups(c.groups.0, c.groups.1, 1);
-            }
+        })
+    }
+
+    /// Records one compute pass that skins every chunk with `pipeline`, with the pass's
+    /// start and end time stamped when `timestamps` is given.
+    fn encode(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        pipeline: &wgpu::ComputePipeline,
+        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
+    ) {
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("skinning"),
+            timestamp_writes: timestamps,
+        });
+        pass.set_pipeline(pipeline);
+        for c in &self.chunks {
+            pass.set_bind_group(0, &c.bind_group, &[]);
+            pass.dispatch_workgroups(c.groups.0, c.groups.1, 1);
         }
-        self.queue.submit([encoder.finish()]);
-        Ok(())
     }
 
     /// Waits for the last dispatch and brings the skinned positions and normals back.
     pub fn read(&self) -> Result<Skinned, GpuError> {
+        let mut out = Skinned {
+            positions: Vec::new(),
+            normals: Vec::new(),
+        };
+        self.read_into(&mut out)?;
+        Ok(out)
+    }
+
+    /// As [`GpuSkinner::read`], into `out`'s vectors (replacing what they held): a clip
+    /// read frame after frame reuses one allocation instead of touching fresh pages.
+    pub fn read_into(&self, out: &mut Skinned) -> Result<(), GpuError> {
         let n: usize = self.chunks.iter().map(|c| c.vertices).sum();
-        let mut positions = Vec::with_capacity(n);
-        let mut normals = Vec::with_capacity(n);
+        out.positions.clear();
+        out.normals.clear();
+        out.positions.reserve(n);
+        out.normals.reserve(n);
         for c in &self.chunks {
             let size = c.vertices as u64 * 32;
             let mut encoder = self.device.create_command_encoder(&Default::default());
@@ -321,29 +370,45 @@ impl GpuSkinner {
                 encoder.copy_buffer_to_buffer(&c.skinned, 0, &self.readback, 0, size);
             }
             self.queue.submit([encoder.finish()]);
-            let slice = self.readback.slice(..size.max(16));
-            let (tx, rx) = std::sync::mpsc::channel();
-            slice.map_async(wgpu::MapMode::Read, move |r| {
-                let _ = tx.send(r);
-            });
-            self.wait()?;
-            rx.recv()
-                .map_err(|e| GpuError::Device(e.to_string()))?
-                .map_err(|e| GpuError::Device(e.to_string()))?;
-            {
-                let data = slice.get_mapped_range();
-                let f: &[f32] = bytemuck::cast_slice(&data);
-                for v in f.chunks_exact(8).take(c.vertices) {
-                    positions.push(Vec3::new(v[0], v[1], v[2]));
-                    normals.push(Vec3::new(v[4], v[5], v[6]));
-                }
+            // Split into positions and normals on all cores: one core's copy out of the
+            // mapped buffer is what limits a read-back of millions of vertices.
+            let bad = self.map_read(&self.readback, size.max(16), |data| {
+                let skinned: &[[f32; 8]] = bytemuck::cast_slice(&data[..size as usize]);
+                out.positions
+                    .par_extend(skinned.par_iter().map(|v| Vec3::new(v[0], v[1], v[2])));
+                out.normals
+                    .par_extend(skinned.par_iter().map(|v| Vec3::new(v[4], v[5], v[6])));
+                skinned
+                    .par_iter()
+                    .position_first(|v| !v[..3].iter().all(|x| x.is_finite()))
+            })?;
+            if let Some(v) = bad {
+                return Err(GpuError::NonFinite(out.positions.len() - c.vertices + v));
             }
-            self.readback.unmap();
         }
-        if let Some(v) = positions.iter().position(|p| !p.is_finite()) {
-            return Err(GpuError::NonFinite(v));
-        }
-        Ok(Skinned { positions, normals })
+        Ok(())
+    }
+
+    /// Maps the first `size` bytes of the mappable `buffer` once the GPU is done with it,
+    /// hands them to `f` and unmaps.
+    fn map_read<R>(
+        &self,
+        buffer: &wgpu::Buffer,
+        size: u64,
+        f: impl FnOnce(&[u8]) -> R,
+    ) -> Result<R, GpuError> {
+        let slice = buffer.slice(..size);
+        let (tx, rx) = std::sync::mpsc::channel();
+        slice.map_async(wgpu::MapMode::Read, move |r| {
+            let _ = tx.send(r);
+        });
+        self.wait()?;
+        rx.recv()
+            .map_err(|e| GpuError::Device(e.to_string()))?
+            .map_err(|e| GpuError::Device(e.to_string()))?;
+        let result = f(&slice.get_mapped_range());
+        buffer.unmap();
+        Ok(result)
     }
 
     /// Waits until the GPU has finished everything submitted.
@@ -352,34 +417,6 @@ impl GpuSkinner {
             .poll(wgpu::PollType::wait_indefinitely())
             .map(|_| ())
             .map_err(|e| GpuError::Device(e.to_string()))
-    }
-
-    /// Bytes per second a buffer-to-buffer copy of the output's size moves on this adapter
-    /// (read plus write), the median of `runs`: the memory-bandwidth yardstick for the
-    /// skinning benchmark.
-    pub fn copy_rate(&self, runs: usize) -> Result<f64, GpuError> {
-        let Some(first) = self.chunks.first() else {
-            return Ok(0.0);
-        };
-        let size = first.skinned.size();
-        let scratch = self.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("bandwidth scratch"),
-            size,
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        let mut times = Vec::new();
-        for _ in 0..runs.max(1) + 1 {
-            let start = std::time::Instant::now();
-            let mut encoder = self.device.create_command_encoder(&Default::default());
-            encoder.copy_buffer_to_buffer(&first.skinned, 0, &scratch, 0, size);
-            self.queue.submit([encoder.finish()]);
-            self.wait()?;
-            times.push(start.elapsed().as_secs_f64());
-        }
-        times.remove(0);
-        times.sort_by(f64::total_cmp);
-        Ok(2.0 * size as f64 / times[times.len() / 2])
     }
 
     /// [`GpuSkinner::dispatch`] then [`GpuSkinner::read`].

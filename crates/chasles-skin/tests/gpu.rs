@@ -152,8 +152,20 @@ fn gpu_matches_the_fast_path_on_a_synthetic_mesh() {
             .fold(0.0f32, f32::max);
         assert!(worst < 1e-4, "{}: {worst:e}", m.name());
     }
-    // The bandwidth yardstick is a positive rate.
-    assert!(gpu.copy_rate(3).unwrap() > 0.0);
+    // The benchmark's clocks: one positive, finite time per pass, and a positive
+    // bandwidth yardstick.
+    let times = gpu.shader_seconds(&jt, Method::Dqs, 5).unwrap();
+    assert_eq!(times.len(), 5);
+    assert!(times.iter().all(|t| t.is_finite() && *t > 0.0), "{times:?}");
+    eprintln!("clock: {}", gpu.clock().name());
+    assert!(gpu.stream_rate(1 << 20, 3).unwrap() > 0.0);
+    // Reading into reused vectors gives what a fresh read gives.
+    let mut reused = gpu.skin(&jt, Method::Lbs).unwrap();
+    gpu.dispatch(&jt, Method::Dqs).unwrap();
+    gpu.read_into(&mut reused).unwrap();
+    let fresh = gpu.skin(&jt, Method::Dqs).unwrap();
+    assert_eq!(reused.positions, fresh.positions);
+    assert_eq!(reused.normals, fresh.normals);
     // Split into dispatches of 999 vertices (as for meshes over the binding limit): the
     // same result.
     let chunked = GpuSkinner::from_fast_in_chunks(&rig, 999).unwrap();
@@ -161,5 +173,26 @@ fn gpu_matches_the_fast_path_on_a_synthetic_mesh() {
         let (a, b) = (gpu.skin(&jt, m).unwrap(), chunked.skin(&jt, m).unwrap());
         assert_eq!(a.positions, b.positions, "{}", m.name());
         assert_eq!(a.normals, b.normals);
+    }
+    // A non-finite joint matrix is caught on the way back, naming the first vertex it
+    // reaches, in whichever dispatch that vertex lies.
+    let mut broken = jt.clone();
+    broken.matrices[17].m[0][3] = f32::NAN;
+    let first = rig
+        .vertices()
+        .iter()
+        .position(|v| {
+            v.j.iter()
+                .zip(v.w)
+                .any(|(j, w)| usize::from(*j) == 17 && w > 0.0)
+        })
+        .unwrap();
+    assert!(first > 0);
+    let past_first_dispatch = GpuSkinner::from_fast_in_chunks(&rig, first.div_ceil(2)).unwrap();
+    for g in [&gpu, &past_first_dispatch] {
+        assert!(matches!(
+            g.skin(&broken, Method::Lbs),
+            Err(GpuError::NonFinite(v)) if v == first
+        ));
     }
 }
