@@ -13,7 +13,10 @@
 //!
 //! DQS normalizes the blended dual quaternion by ‖q0‖ only: removing qε's component along
 //! q0 would change nothing, because the point transform uses only the vector part of
-//! `qε q0*`, which that component does not touch.
+//! `qε q0*`, which that component does not touch. And since every term of the transform is
+//! quadratic in the blend, that normalization is one factor 2/‖q0‖² (no square root). The
+//! antipodality signs depend only on the pair (pivot joint, joint), so the SIMD kernel
+//! looks them up in a table made once per pose (`antipodes`).
 
 use crate::error::{invalid, Result};
 use crate::pose::JointTransforms;
@@ -34,8 +37,11 @@ pub struct Vertex<const K: usize> {
     pub w: [f32; K],
 }
 
+mod antipodes;
 #[cfg(target_arch = "x86_64")]
 mod avx2;
+
+use antipodes::Antipodes;
 
 /// A rig laid out for the fast path. Its joint indices are checked on construction (the
 /// SIMD kernels rely on it), so the fields are private.
@@ -167,61 +173,83 @@ fn dqs_vertex<const K: usize>(v: &Vertex<K>, d: &[[f32; 8]]) -> Out {
             b[i] += w * dj[i];
         }
     }
-    let inv = 1.0 / (b[0] * b[0] + b[1] * b[1] + b[2] * b[2] + b[3] * b[3]).sqrt();
-    let (w0, x0, y0, z0) = (b[0] * inv, b[1] * inv, b[2] * inv, b[3] * inv);
-    let (we, xe, ye, ze) = (b[4] * inv, b[5] * inv, b[6] * inv, b[7] * inv);
+    // The unit dual quaternion is b / ‖b0‖; every term below is quadratic in b, so the
+    // normalization is one factor s = 2 / ‖b0‖² (no square root, no eight divisions):
+    // p' = p + s (v0 × (v0 × p + w0 p) + w0 vε − wε v0 + v0 × vε)
+    let s = 2.0 / (b[0] * b[0] + b[1] * b[1] + b[2] * b[2] + b[3] * b[3]);
+    let [w0, x0, y0, z0, we, xe, ye, ze] = b;
     let [px, py, pz] = v.p;
-    // p' = p + 2 v0 × (v0 × p + w0 p) + 2 (w0 vε − wε v0 + v0 × vε)
     let (tx, ty, tz) = (
         y0 * pz - z0 * py + w0 * px,
         z0 * px - x0 * pz + w0 * py,
         x0 * py - y0 * px + w0 * pz,
     );
-    let qx = px + 2.0 * (y0 * tz - z0 * ty) + 2.0 * (w0 * xe - we * x0 + y0 * ze - z0 * ye);
-    let qy = py + 2.0 * (z0 * tx - x0 * tz) + 2.0 * (w0 * ye - we * y0 + z0 * xe - x0 * ze);
-    let qz = pz + 2.0 * (x0 * ty - y0 * tx) + 2.0 * (w0 * ze - we * z0 + x0 * ye - y0 * xe);
-    // n' = n + 2 v0 × (v0 × n + w0 n)
+    let qx = px + s * ((y0 * tz - z0 * ty) + (w0 * xe - we * x0 + y0 * ze - z0 * ye));
+    let qy = py + s * ((z0 * tx - x0 * tz) + (w0 * ye - we * y0 + z0 * xe - x0 * ze));
+    let qz = pz + s * ((x0 * ty - y0 * tx) + (w0 * ze - we * z0 + x0 * ye - y0 * xe));
+    // n' = n + s v0 × (v0 × n + w0 n)
     let [nx, ny, nz] = v.n;
     let (sx, sy, sz) = (
         y0 * nz - z0 * ny + w0 * nx,
         z0 * nx - x0 * nz + w0 * ny,
         x0 * ny - y0 * nx + w0 * nz,
     );
-    let mx = nx + 2.0 * (y0 * sz - z0 * sy);
-    let my = ny + 2.0 * (z0 * sx - x0 * sz);
-    let mz = nz + 2.0 * (x0 * sy - y0 * sx);
+    let mx = nx + s * (y0 * sz - z0 * sy);
+    let my = ny + s * (z0 * sx - x0 * sz);
+    let mz = nz + s * (x0 * sy - y0 * sx);
     [qx, qy, qz, mx, my, mz]
 }
 
 /// Vertices per parallel task.
 const CHUNK: usize = 4096;
 
-/// A per-vertex kernel, as a type so that every loop is monomorphized and inlined.
 /// The 8-vertex SIMD kernel of a method, if this processor has one: it skins a prefix of
 /// whole blocks and returns how many vertices it did.
-type SimdKernel<J> = unsafe fn(&[Vertex<4>], &[J], &mut [Out]) -> usize;
+type SimdKernel<J, T> = unsafe fn(&[Vertex<4>], &[J], &T, &mut [Out]) -> usize;
 
+/// Whether the AVX2+FMA kernels run here: x86-64 with both features, and 4 influences.
+fn simd(k: usize) -> bool {
+    #[cfg(target_arch = "x86_64")]
+    if k == 4 && std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma") {
+        return true;
+    }
+    let _ = k;
+    false
+}
+
+/// A per-vertex kernel, as a type so that every loop is monomorphized and inlined.
 trait Kernel<const K: usize> {
     type Joint: Sync;
+    /// What the SIMD kernel reads besides the joints, made once per pose (not per chunk).
+    type Table: Sync;
+    fn table(joints: &[Self::Joint], vertices: usize) -> Self::Table;
     fn vertex(v: &Vertex<K>, joints: &[Self::Joint]) -> Out;
     /// The AVX2+FMA kernel for 4 influences (x86-64 only).
     #[cfg(target_arch = "x86_64")]
-    const AVX2: SimdKernel<Self::Joint>;
+    const AVX2: SimdKernel<Self::Joint, Self::Table>;
     /// A chunk of vertices (joint indices already checked against `joints`): the SIMD kernel
-    /// where the processor and K allow, the scalar kernel for the rest.
-    fn chunk(o: &mut [Out], v: &[Vertex<K>], joints: &[Self::Joint]) {
+    /// where `simd` says so, the scalar kernel for the rest.
+    fn chunk(
+        o: &mut [Out],
+        v: &[Vertex<K>],
+        joints: &[Self::Joint],
+        table: &Self::Table,
+        simd: bool,
+    ) {
         let mut done = 0;
         #[cfg(target_arch = "x86_64")]
-        if K == 4 && std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma") {
-            // SAFETY: K == 4, so `Vertex<K>` is `Vertex<4>`; the joint indices were checked
+        if simd {
+            // SAFETY: `simd` is only true when K == 4 and the processor has AVX2 and FMA
+            // (see `simd`), so `Vertex<K>` is `Vertex<4>`; the joint indices were checked
             // against the joint count when the FastRig was built and `run` checked that
-            // `joints` has that many entries; `o` is as long as `v`; the features are
-            // present.
+            // `joints` has that many entries; `table` was made from `joints`; `o` is as
+            // long as `v`.
             done = unsafe {
                 let v4 = &*(v as *const [Vertex<K>] as *const [Vertex<4>]);
-                Self::AVX2(v4, joints, o)
+                Self::AVX2(v4, joints, table, o)
             };
         }
+        let _ = (simd, table);
         o[done..]
             .iter_mut()
             .zip(&v[done..])
@@ -232,8 +260,10 @@ trait Kernel<const K: usize> {
 struct LbsKernel;
 impl<const K: usize> Kernel<K> for LbsKernel {
     type Joint = [f32; 12];
+    type Table = ();
+    fn table(_: &[[f32; 12]], _: usize) {}
     #[cfg(target_arch = "x86_64")]
-    const AVX2: SimdKernel<[f32; 12]> = avx2::lbs;
+    const AVX2: SimdKernel<[f32; 12], ()> = avx2::lbs;
     #[inline(always)]
     fn vertex(v: &Vertex<K>, joints: &[[f32; 12]]) -> Out {
         lbs_vertex(v, joints)
@@ -243,8 +273,12 @@ impl<const K: usize> Kernel<K> for LbsKernel {
 struct DqsKernel;
 impl<const K: usize> Kernel<K> for DqsKernel {
     type Joint = [f32; 8];
+    type Table = Antipodes;
+    fn table(joints: &[[f32; 8]], vertices: usize) -> Antipodes {
+        Antipodes::new(joints, vertices)
+    }
     #[cfg(target_arch = "x86_64")]
-    const AVX2: SimdKernel<[f32; 8]> = avx2::dqs;
+    const AVX2: SimdKernel<[f32; 8], Antipodes> = avx2::dqs;
     #[inline(always)]
     fn vertex(v: &Vertex<K>, joints: &[[f32; 8]]) -> Out {
         dqs_vertex(v, joints)
@@ -271,14 +305,18 @@ fn run<const K: usize, F: Kernel<K>>(
             rig.joints
         ));
     }
+    let simd = simd(K);
+    // Only the SIMD kernels read the table.
+    let table = F::table(if simd { joints } else { &[] }, rig.vertices.len());
+    let table = &table;
     if parallel {
         out.par_chunks_mut(CHUNK)
             .zip(rig.vertices.par_chunks(CHUNK))
-            .for_each(|(o, v)| F::chunk(o, v, joints));
+            .for_each(|(o, v)| F::chunk(o, v, joints, table, simd));
     } else {
         out.chunks_mut(CHUNK)
             .zip(rig.vertices.chunks(CHUNK))
-            .for_each(|(o, v)| F::chunk(o, v, joints));
+            .for_each(|(o, v)| F::chunk(o, v, joints, table, simd));
     }
     Ok(())
 }

@@ -333,7 +333,14 @@ fn the_fast_path_agrees_with_the_reference() {
                             (n - want.normals[v]).norm() <= 1e-5,
                             "{file} {method:?} normal {v}"
                         );
-                        assert_eq!(o, o8, "K = 4 and K = 8 agree");
+                        // K = 4 runs the SIMD kernels where the processor has them
+                        // (fused multiply-adds), K = 8 the scalar ones: equal to rounding.
+                        for k in 0..6 {
+                            assert!(
+                                (o[k] - o8[k]).abs() <= 1e-6 * size,
+                                "{file} {method:?} vertex {v}: K = 4 {o:?}, K = 8 {o8:?}"
+                            );
+                        }
                     }
                 }
             }

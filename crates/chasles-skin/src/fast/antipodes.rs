@@ -1,0 +1,129 @@
+//! DQS's antipodality fix (Kavan et al. 2006, §3 and Kavan's `dqsAntipod`) as a table made
+//! once per pose: for a pivot joint a and a joint b, whether `⟨q̂_b, q̂_a⟩ < 0` (real parts),
+//! i.e. whether b's weight is negated when a is a vertex's heaviest influence. A vertex then
+//! looks its signs up instead of taking three dot products, and the SIMD kernel applies them
+//! to broadcast weights with no shuffles. The dot products are summed in the scalar
+//! kernel's order, so the signs are the same bit for bit.
+
+// Only the x86-64 SIMD kernel reads the table; elsewhere it is made empty and left unread.
+#![cfg_attr(not(target_arch = "x86_64"), allow(dead_code))]
+
+/// The sign table: `−0.0` where the weight flips, `+0.0` where it stays (so a sign is
+/// applied by an exclusive or), row `a` for pivot `a`. Empty where a table would not pay.
+#[derive(Debug, Clone, Default)]
+pub struct Antipodes {
+    pub(super) signs: Vec<f32>,
+    pub(super) joints: usize,
+}
+
+/// Most joints for which a table is made: 128² signs are 64 KiB, about what a core's
+/// first-level caches hold beside the joints and the vertex stream.
+const MOST_JOINTS: usize = 128;
+
+impl Antipodes {
+    /// The table for dual quaternions `d` (8 floats, real part first), when it pays: at
+    /// most [`MOST_JOINTS`] joints and no more signs than `vertices` to skin. Otherwise
+    /// empty, and the kernel takes the dot products itself.
+    pub fn new(d: &[[f32; 8]], vertices: usize) -> Self {
+        let joints = d.len();
+        if joints > MOST_JOINTS || joints * joints > vertices {
+            return Self::default();
+        }
+        let signs = d
+            .iter()
+            .flat_map(|pivot| {
+                d.iter().map(move |q| {
+                    let dot = q[0] * pivot[0] + q[1] * pivot[1] + q[2] * pivot[2] + q[3] * pivot[3];
+                    if dot < 0.0 {
+                        -0.0
+                    } else {
+                        0.0
+                    }
+                })
+            })
+            .collect();
+        Antipodes { signs, joints }
+    }
+
+    /// Whether there is a table.
+    pub fn is_empty(&self) -> bool {
+        self.signs.is_empty()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fast::{dqs_vertex, dual_quats8, Out};
+    use crate::synthetic;
+
+    /// Joints 60° or less from the identity, every odd one negated: the same rigid
+    /// transforms, with antipodal pairs everywhere.
+    fn flipped(joints: usize) -> (Vec<[f32; 8]>, Vec<[f32; 8]>) {
+        let d = dual_quats8(&synthetic::joints(joints, 5));
+        let f = d
+            .iter()
+            .enumerate()
+            .map(|(j, q)| if j % 2 == 1 { q.map(|x| -x) } else { *q })
+            .collect();
+        (d, f)
+    }
+
+    #[test]
+    fn the_table_holds_the_signs_of_the_dot_products() {
+        let (_, f) = flipped(54);
+        let t = Antipodes::new(&f, usize::MAX);
+        assert_eq!(t.joints, 54);
+        // Unflipped, every pair is within 2 rad of rotation, so ⟨q̂_a, q̂_b⟩ > 0: a weight
+        // flips exactly when one of the two joints was negated.
+        for a in 0..54 {
+            for b in 0..54 {
+                let s = t.signs[a * 54 + b];
+                assert_eq!(s, 0.0);
+                assert_eq!(s.is_sign_negative(), (a + b) % 2 == 1, "{a} {b}");
+            }
+        }
+        // No table where it would not pay: more signs than vertices, or too many joints.
+        assert!(Antipodes::new(&f, 54 * 54 - 1).is_empty());
+        assert!(Antipodes::new(&vec![f[0]; MOST_JOINTS + 1], usize::MAX).is_empty());
+    }
+
+    #[test]
+    fn negated_joints_skin_the_same_with_and_without_the_table() {
+        let rig = synthetic::rig(1003, 54, 5);
+        let (d, f) = flipped(54);
+        let want: Vec<Out> = rig.vertices().iter().map(|v| dqs_vertex(v, &d)).collect();
+        let scalar: Vec<Out> = rig.vertices().iter().map(|v| dqs_vertex(v, &f)).collect();
+        for (a, b) in want.iter().zip(&scalar) {
+            for k in 0..6 {
+                assert!((a[k] - b[k]).abs() < 1e-5, "{a:?} {b:?}");
+            }
+        }
+        #[cfg(target_arch = "x86_64")]
+        if crate::fast::simd(4) {
+            let run = |table: &Antipodes| {
+                let mut out = vec![[f32::NAN; 6]; 1003];
+                // SAFETY: the processor has AVX2 and FMA (`simd`), the synthetic rig's joint
+                // indices are below 54, the table is empty or made from `f`.
+                let done = unsafe { crate::fast::avx2::dqs(rig.vertices(), &f, table, &mut out) };
+                assert_eq!(done, 1000);
+                out.truncate(done);
+                out
+            };
+            let (dots, looked_up) = (
+                run(&Antipodes::default()),
+                run(&Antipodes::new(&f, usize::MAX)),
+            );
+            // The two ways to the signs give the same blends, bit for bit ...
+            assert_eq!(dots, looked_up);
+            // ... and the SIMD kernel (fused multiply-adds) is the scalar one to rounding.
+            for (a, b) in looked_up.iter().zip(&scalar) {
+                for k in 0..6 {
+                    assert!((a[k] - b[k]).abs() < 2e-6, "{a:?} {b:?}");
+                }
+            }
+        } else {
+            eprintln!("no AVX2+FMA here: only the scalar kernel is checked");
+        }
+    }
+}
