@@ -93,6 +93,27 @@ fn grid(count: u32, size: u32, max: u32) -> (u32, u32) {
     (needed.min(max), needed.div_ceil(max))
 }
 
+/// A bind group of whole buffers, bound at 0, 1, 2, … in the order given.
+fn bind_buffers(
+    device: &wgpu::Device,
+    label: &str,
+    layout: &wgpu::BindGroupLayout,
+    buffers: &[&wgpu::Buffer],
+) -> wgpu::BindGroup {
+    device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some(label),
+        layout,
+        entries: &buffers
+            .iter()
+            .enumerate()
+            .map(|(i, b)| wgpu::BindGroupEntry {
+                binding: i as u32,
+                resource: b.as_entire_binding(),
+            })
+            .collect::<Vec<_>>(),
+    })
+}
+
 fn storage(binding: u32, read_only: bool) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
         binding,
@@ -212,18 +233,12 @@ impl GpuSkinner {
                 contents: bytemuck::cast_slice(&params),
                 usage: wgpu::BufferUsages::UNIFORM,
             });
-            let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("skinning"),
-                layout: &layout,
-                entries: &[&vertex_buf, &matrices, &dual_quats, &skinned, &params_buf]
-                    .iter()
-                    .enumerate()
-                    .map(|(i, b)| wgpu::BindGroupEntry {
-                        binding: i as u32,
-                        resource: b.as_entire_binding(),
-                    })
-                    .collect::<Vec<_>>(),
-            });
+            let bind_group = bind_buffers(
+                &device,
+                "skinning",
+                &layout,
+                &[&vertex_buf, &matrices, &dual_quats, &skinned, &params_buf],
+            );
             chunks.push(Chunk {
                 bind_group,
                 skinned,

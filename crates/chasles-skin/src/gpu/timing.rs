@@ -4,7 +4,7 @@
 //! than the shader itself at 10⁵ vertices); and a bandwidth yardstick, a plain copy shader
 //! over buffers much larger than any cache, timed the same way.
 
-use super::{grid, GpuError, GpuSkinner};
+use super::{bind_buffers, grid, GpuError, GpuSkinner};
 use crate::{JointTransforms, Method};
 use wgpu::util::DeviceExt;
 
@@ -103,18 +103,12 @@ impl GpuSkinner {
                 compilation_options: Default::default(),
                 cache: None,
             });
-        let bind_group = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("stream"),
-            layout: &pipeline.get_bind_group_layout(0),
-            entries: &[&src, &dst, &params]
-                .iter()
-                .enumerate()
-                .map(|(i, b)| wgpu::BindGroupEntry {
-                    binding: i as u32,
-                    resource: b.as_entire_binding(),
-                })
-                .collect::<Vec<_>>(),
-        });
+        let bind_group = bind_buffers(
+            &self.device,
+            "stream",
+            &pipeline.get_bind_group_layout(0),
+            &[&src, &dst, &params],
+        );
         let mut times = self.timed(runs, |encoder, stamps| {
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                 label: Some("stream"),
