@@ -6,7 +6,7 @@
 //!
 //! `cargo bench -p chasles-skin --bench skin`
 
-use chasles_skin::fast::{dqs, dual_quats8, lbs, matrices12, Out};
+use chasles_skin::fast::{dqs, dual_quats8, lbs, log, matrices12, twists, Out};
 use chasles_skin::synthetic;
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use glam::{Affine3A, Quat, Vec3, Vec3A};
@@ -115,6 +115,7 @@ fn bench(c: &mut Criterion) {
                 )
             })
             .collect();
+        let tw = twists(&jt).unwrap();
         let mut out = vec![[0f32; 6]; n];
         let mut g = c.benchmark_group(format!("skin {n} vertices, 54 joints, 4 influences"));
         g.throughput(Throughput::Elements(n as u64));
@@ -126,6 +127,9 @@ fn bench(c: &mut Criterion) {
             });
             g.bench_function(format!("chasles dqs, {th}"), |b| {
                 b.iter(|| dqs(&rig, &d8, black_box(&mut out), parallel).unwrap())
+            });
+            g.bench_function(format!("chasles log, {th}"), |b| {
+                b.iter(|| log(&rig, &tw, black_box(&mut out), parallel).unwrap())
             });
         }
         g.bench_function("glam lbs (Affine3A), 1 thread", |b| {
@@ -184,6 +188,12 @@ fn figure_1(c: &mut Criterion) {
         b.iter(|| {
             let jt = joint_transforms(&rig, &pose).unwrap();
             dqs(&fast, &dual_quats8(&jt), &mut out, false).unwrap()
+        })
+    });
+    g.bench_function("log (fast, with the pose)", |b| {
+        b.iter(|| {
+            let jt = joint_transforms(&rig, &pose).unwrap();
+            log(&fast, &twists(&jt).unwrap(), &mut out, false).unwrap()
         })
     });
     g.finish();

@@ -1,4 +1,4 @@
-//! The fast path for LBS and DQS: a compact vertex layout, fixed influence counts (4 or 8),
+//! The fast path for LBS, DQS and Log (module `log`): a compact vertex layout, fixed influence counts (4 or 8),
 //! eight-vertex AVX2+FMA kernels chosen at run time (for 4 influences; elsewhere, and for
 //! the last few vertices, the scalar kernels),
 //! joint transforms as flat arrays (12 floats per matrix, 8 per dual quaternion — the
@@ -40,8 +40,10 @@ pub struct Vertex<const K: usize> {
 mod antipodes;
 #[cfg(target_arch = "x86_64")]
 mod avx2;
+mod log;
 
 use antipodes::Antipodes;
+pub use log::{log, twists};
 
 /// A rig laid out for the fast path. Its joint indices are checked on construction (the
 /// SIMD kernels rely on it), so the fields are private.
@@ -224,9 +226,9 @@ trait Kernel<const K: usize> {
     type Table: Sync;
     fn table(joints: &[Self::Joint], vertices: usize) -> Self::Table;
     fn vertex(v: &Vertex<K>, joints: &[Self::Joint]) -> Out;
-    /// The AVX2+FMA kernel for 4 influences (x86-64 only).
+    /// The AVX2+FMA kernel for 4 influences (x86-64 only), if the method has one.
     #[cfg(target_arch = "x86_64")]
-    const AVX2: SimdKernel<Self::Joint, Self::Table>;
+    const AVX2: Option<SimdKernel<Self::Joint, Self::Table>>;
     /// A chunk of vertices (joint indices already checked against `joints`): the SIMD kernel
     /// where `simd` says so, the scalar kernel for the rest.
     fn chunk(
@@ -238,7 +240,7 @@ trait Kernel<const K: usize> {
     ) {
         let mut done = 0;
         #[cfg(target_arch = "x86_64")]
-        if simd {
+        if let (true, Some(kernel)) = (simd, Self::AVX2) {
             // SAFETY: `simd` is only true when K == 4 and the processor has AVX2 and FMA
             // (see `simd`), so `Vertex<K>` is `Vertex<4>`; the joint indices were checked
             // against the joint count when the FastRig was built and `run` checked that
@@ -246,7 +248,7 @@ trait Kernel<const K: usize> {
             // long as `v`.
             done = unsafe {
                 let v4 = &*(v as *const [Vertex<K>] as *const [Vertex<4>]);
-                Self::AVX2(v4, joints, table, o)
+                kernel(v4, joints, table, o)
             };
         }
         let _ = (simd, table);
@@ -263,7 +265,7 @@ impl<const K: usize> Kernel<K> for LbsKernel {
     type Table = ();
     fn table(_: &[[f32; 12]], _: usize) {}
     #[cfg(target_arch = "x86_64")]
-    const AVX2: SimdKernel<[f32; 12], ()> = avx2::lbs;
+    const AVX2: Option<SimdKernel<[f32; 12], ()>> = Some(avx2::lbs);
     #[inline(always)]
     fn vertex(v: &Vertex<K>, joints: &[[f32; 12]]) -> Out {
         lbs_vertex(v, joints)
@@ -278,7 +280,7 @@ impl<const K: usize> Kernel<K> for DqsKernel {
         Antipodes::new(joints, vertices)
     }
     #[cfg(target_arch = "x86_64")]
-    const AVX2: SimdKernel<[f32; 8], Antipodes> = avx2::dqs;
+    const AVX2: Option<SimdKernel<[f32; 8], Antipodes>> = Some(avx2::dqs);
     #[inline(always)]
     fn vertex(v: &Vertex<K>, joints: &[[f32; 8]]) -> Out {
         dqs_vertex(v, joints)

@@ -258,7 +258,7 @@ fn rotation_centre(joints: &[u16], m: &[Mat4<f32>], prior: Vec3<f32>) -> Vec3<f3
 }
 
 /// The rigid matrix nearest to m: its 3×3 block replaced by the nearest rotation.
-fn rigid(m: &Mat4<f32>) -> Mat4<f32> {
+pub(crate) fn rigid(m: &Mat4<f32>) -> Mat4<f32> {
     let q = Quat::from_rotation_matrix_unchecked(&m.linear_part());
     Mat4::from_rotation_translation(&q.to_rotation_matrix(), m.translation())
 }

@@ -296,7 +296,7 @@ fn bad_rigs_get_errors_naming_the_problem() {
 
 #[test]
 fn the_fast_path_agrees_with_the_reference() {
-    use chasles_skin::fast::{dqs, dual_quats8, lbs, matrices12, FastRig};
+    use chasles_skin::fast::{dqs, dual_quats8, lbs, log, matrices12, twists, FastRig};
     for (file, _, _, _) in MODELS {
         let rig = gltf_load::load(&data(file)).unwrap();
         let size = rig
@@ -309,7 +309,7 @@ fn the_fast_path_agrees_with_the_reference() {
         for (c, clip) in rig.animations.iter().enumerate() {
             let pose = Pose::animated(&rig, c, clip.duration() * 0.61).unwrap();
             let jt = joint_transforms(&rig, &pose).unwrap();
-            for (m, method) in [(0, Method::Lbs), (1, Method::Dqs)] {
+            for (m, method) in [(0, Method::Lbs), (1, Method::Dqs), (2, Method::Log)] {
                 let want = skin(&rig, &pose, method).unwrap();
                 for parallel in [false, true] {
                     let mut out = vec![[0f32; 6]; rig.mesh.positions.len()];
@@ -317,9 +317,13 @@ fn the_fast_path_agrees_with_the_reference() {
                     if m == 0 {
                         lbs(&fast, &matrices12(&jt), &mut out, parallel).unwrap();
                         lbs(&fast8, &matrices12(&jt), &mut out8, parallel).unwrap();
-                    } else {
+                    } else if m == 1 {
                         dqs(&fast, &dual_quats8(&jt), &mut out, parallel).unwrap();
                         dqs(&fast8, &dual_quats8(&jt), &mut out8, parallel).unwrap();
+                    } else {
+                        let t = twists(&jt).unwrap();
+                        log(&fast, &t, &mut out, parallel).unwrap();
+                        log(&fast8, &t, &mut out8, parallel).unwrap();
                     }
                     for (v, (o, o8)) in out.iter().zip(&out8).enumerate() {
                         let p = Vec3::new(o[0], o[1], o[2]);
