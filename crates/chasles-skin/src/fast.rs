@@ -163,14 +163,24 @@ fn lbs_vertex<const K: usize>(v: &Vertex<K>, m: &[[f32; 12]]) -> Out {
     [px, py, pz, mx, my, mz]
 }
 
+/// `⟨q̂, p̂⟩` of two dual quaternions' real parts (8 floats, real part first), summed in one
+/// fixed order: the antipodality test of the scalar kernel and of the sign table alike.
+#[inline(always)]
+fn real_dot(q: &[f32; 8], p: &[f32; 8]) -> f32 {
+    q[0] * p[0] + q[1] * p[1] + q[2] * p[2] + q[3] * p[3]
+}
+
 #[inline(always)]
 fn dqs_vertex<const K: usize>(v: &Vertex<K>, d: &[[f32; 8]]) -> Out {
     let pivot = &d[usize::from(v.j[0])];
     let mut b = [0f32; 8];
     for k in 0..K {
         let dj = &d[usize::from(v.j[k])];
-        let dot = dj[0] * pivot[0] + dj[1] * pivot[1] + dj[2] * pivot[2] + dj[3] * pivot[3];
-        let w = if dot < 0.0 { -v.w[k] } else { v.w[k] };
+        let w = if real_dot(dj, pivot) < 0.0 {
+            -v.w[k]
+        } else {
+            v.w[k]
+        };
         for i in 0..8 {
             b[i] += w * dj[i];
         }

@@ -387,6 +387,7 @@ impl GpuSkinner {
             self.queue.submit([encoder.finish()]);
             // Split into positions and normals on all cores: one core's copy out of the
             // mapped buffer is what limits a read-back of millions of vertices.
+            let offset = out.positions.len();
             let bad = self.map_read(&self.readback, size.max(16), |data| {
                 let skinned: &[[f32; 8]] = bytemuck::cast_slice(&data[..size as usize]);
                 out.positions
@@ -398,7 +399,7 @@ impl GpuSkinner {
                     .position_first(|v| !v[..3].iter().all(|x| x.is_finite()))
             })?;
             if let Some(v) = bad {
-                return Err(GpuError::NonFinite(out.positions.len() - c.vertices + v));
+                return Err(GpuError::NonFinite(offset + v));
             }
         }
         Ok(())

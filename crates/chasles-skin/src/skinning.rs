@@ -118,10 +118,7 @@ pub fn skin_joints(rig: &Rig, jt: &JointTransforms, method: Method) -> Result<Sk
     let mut positions = Vec::with_capacity(n);
     let mut normals = Vec::with_capacity(n);
     let twists = if method == Method::Log {
-        jt.matrices
-            .iter()
-            .map(|m| log::log_rigid(&rigid(m)).map_err(Into::into))
-            .collect::<Result<Vec<_>>>()?
+        twists(jt)?
     } else {
         Vec::new()
     };
@@ -209,9 +206,9 @@ pub fn skin_joints(rig: &Rig, jt: &JointTransforms, method: Method) -> Result<Sk
                     x.w += twists[j].w * w;
                     x.v += twists[j].v * w;
                 }
-                let m = log::exp_twist(&x);
-                positions.push(m.transform_point(p));
-                normals.push(unit(m.linear_part().mul_vec(nrm), nrm));
+                let (p, n) = exp_twist_vertex(&x, p, nrm);
+                positions.push(p);
+                normals.push(n);
             }
         }
     }
@@ -257,8 +254,28 @@ fn rotation_centre(joints: &[u16], m: &[Mat4<f32>], prior: Vec3<f32>) -> Vec3<f3
     }
 }
 
+/// The joints' twists for Log skinning: `log` of each joint matrix's nearest rigid
+/// transform (a scaled or sheared joint is made rigid first).
+pub fn twists(jt: &JointTransforms) -> Result<Vec<log::Twist<f32>>> {
+    jt.matrices
+        .iter()
+        .map(|m| log::log_rigid(&rigid(m)).map_err(Into::into))
+        .collect()
+}
+
+/// A vertex moved by `exp(x)`, `x` its blended twist: the position, and the normal turned
+/// and made unit (itself where that fails). Log skinning's last step, on both paths.
+pub(crate) fn exp_twist_vertex(
+    x: &log::Twist<f32>,
+    p: Vec3<f32>,
+    n: Vec3<f32>,
+) -> (Vec3<f32>, Vec3<f32>) {
+    let m = log::exp_twist(x);
+    (m.transform_point(p), unit(m.linear_part().mul_vec(n), n))
+}
+
 /// The rigid matrix nearest to m: its 3×3 block replaced by the nearest rotation.
-pub(crate) fn rigid(m: &Mat4<f32>) -> Mat4<f32> {
+fn rigid(m: &Mat4<f32>) -> Mat4<f32> {
     let q = Quat::from_rotation_matrix_unchecked(&m.linear_part());
     Mat4::from_rotation_translation(&q.to_rotation_matrix(), m.translation())
 }

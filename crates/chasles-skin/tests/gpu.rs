@@ -154,9 +154,14 @@ fn gpu_matches_the_fast_path_on_a_synthetic_mesh() {
     }
     // The benchmark's clocks: one positive, finite time per pass, and a positive
     // bandwidth yardstick.
+    let start = std::time::Instant::now();
     let times = gpu.shader_seconds(&jt, Method::Dqs, 5).unwrap();
+    let wall = start.elapsed().as_secs_f64();
     assert_eq!(times.len(), 5);
     assert!(times.iter().all(|t| t.is_finite() && *t > 0.0), "{times:?}");
+    // The passes ran inside the call: their times (the timestamp period applied) add up to
+    // less than its wall-clock time.
+    assert!(times.iter().sum::<f64>() < wall, "{times:?} in {wall} s");
     eprintln!("clock: {}", gpu.clock().name());
     assert!(gpu.stream_rate(1 << 20, 3).unwrap() > 0.0);
     // Reading into reused vectors gives what a fresh read gives.

@@ -309,21 +309,25 @@ fn the_fast_path_agrees_with_the_reference() {
         for (c, clip) in rig.animations.iter().enumerate() {
             let pose = Pose::animated(&rig, c, clip.duration() * 0.61).unwrap();
             let jt = joint_transforms(&rig, &pose).unwrap();
-            for (m, method) in [(0, Method::Lbs), (1, Method::Dqs), (2, Method::Log)] {
+            for method in [Method::Lbs, Method::Dqs, Method::Log] {
                 let want = skin(&rig, &pose, method).unwrap();
                 for parallel in [false, true] {
                     let mut out = vec![[0f32; 6]; rig.mesh.positions.len()];
                     let mut out8 = out.clone();
-                    if m == 0 {
-                        lbs(&fast, &matrices12(&jt), &mut out, parallel).unwrap();
-                        lbs(&fast8, &matrices12(&jt), &mut out8, parallel).unwrap();
-                    } else if m == 1 {
-                        dqs(&fast, &dual_quats8(&jt), &mut out, parallel).unwrap();
-                        dqs(&fast8, &dual_quats8(&jt), &mut out8, parallel).unwrap();
-                    } else {
-                        let t = twists(&jt).unwrap();
-                        log(&fast, &t, &mut out, parallel).unwrap();
-                        log(&fast8, &t, &mut out8, parallel).unwrap();
+                    match method {
+                        Method::Lbs => {
+                            lbs(&fast, &matrices12(&jt), &mut out, parallel).unwrap();
+                            lbs(&fast8, &matrices12(&jt), &mut out8, parallel).unwrap();
+                        }
+                        Method::Dqs => {
+                            dqs(&fast, &dual_quats8(&jt), &mut out, parallel).unwrap();
+                            dqs(&fast8, &dual_quats8(&jt), &mut out8, parallel).unwrap();
+                        }
+                        _ => {
+                            let t = twists(&jt).unwrap();
+                            log(&fast, &t, &mut out, parallel).unwrap();
+                            log(&fast8, &t, &mut out8, parallel).unwrap();
+                        }
                     }
                     for (v, (o, o8)) in out.iter().zip(&out8).enumerate() {
                         let p = Vec3::new(o[0], o[1], o[2]);

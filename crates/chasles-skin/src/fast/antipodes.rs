@@ -2,11 +2,13 @@
 //! once per pose: for a pivot joint a and a joint b, whether `⟨q̂_b, q̂_a⟩ < 0` (real parts),
 //! i.e. whether b's weight is negated when a is a vertex's heaviest influence. A vertex then
 //! looks its signs up instead of taking three dot products, and the SIMD kernel applies them
-//! to broadcast weights with no shuffles. The dot products are summed in the scalar
-//! kernel's order, so the signs are the same bit for bit.
+//! to broadcast weights with no shuffles. The dot products are the scalar kernel's
+//! (`real_dot`), so the signs are the same bit for bit.
 
 // Only the x86-64 SIMD kernel reads the table; elsewhere it is made empty and left unread.
 #![cfg_attr(not(target_arch = "x86_64"), allow(dead_code))]
+
+use super::real_dot;
 
 /// The sign table: `−0.0` where the weight flips, `+0.0` where it stays (so a sign is
 /// applied by an exclusive or), row `a` for pivot `a`. Empty where a table would not pay.
@@ -32,14 +34,8 @@ impl Antipodes {
         let signs = d
             .iter()
             .flat_map(|pivot| {
-                d.iter().map(move |q| {
-                    let dot = q[0] * pivot[0] + q[1] * pivot[1] + q[2] * pivot[2] + q[3] * pivot[3];
-                    if dot < 0.0 {
-                        -0.0
-                    } else {
-                        0.0
-                    }
-                })
+                d.iter()
+                    .map(move |q| if real_dot(q, pivot) < 0.0 { -0.0 } else { 0.0 })
             })
             .collect();
         Antipodes { signs, joints }

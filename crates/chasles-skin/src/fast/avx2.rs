@@ -219,33 +219,33 @@ unsafe fn dqs_blocks(
         let fms = |a, b, c| _mm256_fmsub_ps(a, b, c);
         let fnma = |a, b, c| _mm256_fnmadd_ps(a, b, c);
         let [w0, x0, y0, z0, we, xe, ye, ze] = b;
+        let (v0, ve, p, n) = ([x0, y0, z0], [xe, ye, ze], [px, py, pz], [nx, ny, nz]);
         // s = 2 / ‖b0‖² normalizes (see `dqs_vertex`).
         let s = _mm256_div_ps(two, fma(z0, z0, fma(y0, y0, fma(x0, x0, mul(w0, w0)))));
-        // t = v0 × p + w0 p; u = v0 × n + w0 n
-        let cross_plus = |a: __m256, b: __m256, c: __m256, d: __m256, e: __m256, f: __m256| {
-            // a·b − c·d + e·f
-            fma(e, f, fms(a, b, mul(c, d)))
+        // Component c of a × b: a_j b_k − a_k b_j, (c, j, k) cyclic.
+        let cross = |a: [__m256; 3], b: [__m256; 3], c: usize| {
+            let (j, k) = ((c + 1) % 3, (c + 2) % 3);
+            fms(a[j], b[k], mul(a[k], b[j]))
         };
-        let tx = cross_plus(y0, pz, z0, py, w0, px);
-        let ty = cross_plus(z0, px, x0, pz, w0, py);
-        let tz = cross_plus(x0, py, y0, px, w0, pz);
+        // v0 × x + w0 x, the rotation's inner step (written out: no array::from_fn).
+        let inner = |x: [__m256; 3]| {
+            let e = |c: usize| fma(w0, x[c], cross(v0, x, c));
+            [e(0), e(1), e(2)]
+        };
+        let (t, u) = (inner(p), inner(n));
         // p' = p + s (v0 × t + w0 vε − wε v0 + v0 × vε)
-        let q = |p, a, b, c, d, x1, e1, y1, z1, y2, z2| {
-            // a·b − c·d + (w0·x1 − we·e1 + y1·z1 − z2·y2)
-            let tr = fnma(z2, y2, fma(y1, z1, fms(w0, x1, mul(we, e1))));
-            fma(s, add(fms(a, b, mul(c, d)), tr), p)
+        let q = |c: usize| {
+            let (j, k) = ((c + 1) % 3, (c + 2) % 3);
+            let tr = fnma(
+                v0[k],
+                ve[j],
+                fma(v0[j], ve[k], fms(w0, ve[c], mul(we, v0[c]))),
+            );
+            fma(s, add(cross(v0, t, c), tr), p[c])
         };
-        let qx = q(px, y0, tz, z0, ty, xe, x0, y0, ze, ye, z0);
-        let qy = q(py, z0, tx, x0, tz, ye, y0, z0, xe, ze, x0);
-        let qz = q(pz, x0, ty, y0, tx, ze, z0, x0, ye, xe, y0);
-        let ux = cross_plus(y0, nz, z0, ny, w0, nx);
-        let uy = cross_plus(z0, nx, x0, nz, w0, ny);
-        let uz = cross_plus(x0, ny, y0, nx, w0, nz);
         // n' = n + s v0 × u
-        let mx = fma(s, fms(y0, uz, mul(z0, uy)), nx);
-        let my = fma(s, fms(z0, ux, mul(x0, uz)), ny);
-        let mz = fma(s, fms(x0, uy, mul(y0, ux)), nz);
-        store_rows(o, i, [qx, qy, qz, mx, my, mz]);
+        let m = |c: usize| fma(s, cross(v0, u, c), n[c]);
+        store_rows(o, i, [q(0), q(1), q(2), m(0), m(1), m(2)]);
     }
     blocks * 8
 }

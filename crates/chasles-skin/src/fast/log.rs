@@ -7,18 +7,10 @@
 
 use super::{run, Kernel, Out, Vertex};
 use crate::error::Result;
-use crate::pose::JointTransforms;
-use chasles::blend::log::{exp_twist, log_rigid, Twist};
+use crate::skinning::exp_twist_vertex;
+pub use crate::skinning::twists;
+use chasles::blend::log::Twist;
 use chasles::Vec3;
-
-/// The joints' twists for [`log`]: `log` of each joint matrix's nearest rigid transform (a
-/// scaled or sheared joint is made rigid first, as the reference path does).
-pub fn twists(jt: &JointTransforms) -> Result<Vec<Twist<f32>>> {
-    jt.matrices
-        .iter()
-        .map(|m| log_rigid(&crate::skinning::rigid(m)).map_err(Into::into))
-        .collect()
-}
 
 #[inline(always)]
 fn log_vertex<const K: usize>(v: &Vertex<K>, t: &[Twist<f32>]) -> Out {
@@ -31,12 +23,8 @@ fn log_vertex<const K: usize>(v: &Vertex<K>, t: &[Twist<f32>]) -> Out {
         x.w += tj.w * v.w[k];
         x.v += tj.v * v.w[k];
     }
-    let m = exp_twist(&x);
-    let n = Vec3::from_array(v.n);
-    let p = m.transform_point(Vec3::from_array(v.p));
-    let r = m.linear_part().mul_vec(n);
-    let [px, py, pz] = p.to_array();
-    let [nx, ny, nz] = r.normalize().unwrap_or(n).to_array();
+    let (p, n) = exp_twist_vertex(&x, Vec3::from_array(v.p), Vec3::from_array(v.n));
+    let ([px, py, pz], [nx, ny, nz]) = (p.to_array(), n.to_array());
     [px, py, pz, nx, ny, nz]
 }
 
@@ -53,7 +41,7 @@ impl<const K: usize> Kernel<K> for LogKernel {
     }
 }
 
-/// Log-matrix skinning into `out` with the joints' [`twists`], on all threads when
+/// Log-matrix skinning into `out` with the joints' [`twists`] (made once per pose), on all threads when
 /// `parallel`.
 pub fn log<const K: usize>(
     rig: &super::FastRig<K>,
