@@ -4,12 +4,13 @@
 //! DQS, DIB), the CPU otherwise — a software adapter is correct but no faster than the CPU.
 
 use anyhow::{bail, Result};
-use chasles_skin::{joint_transforms, skin, Method, Pose, Rig, Skinned};
+use chasles_skin::fast::Skinner;
+use chasles_skin::{joint_transforms, Method, Pose, Rig, Skinned};
 
 /// The `--device` choice.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
 pub enum Device {
-    /// The CPU reference path.
+    /// The CPU: the fast path on all cores.
     Cpu,
     /// The GPU (wgpu compute), any adapter.
     Gpu,
@@ -19,8 +20,8 @@ pub enum Device {
 
 /// Where skinning runs, set up for one rig.
 pub enum Engine {
-    /// On the CPU.
-    Cpu,
+    /// On the CPU, the rig laid out for the fast path.
+    Cpu(Skinner),
     /// On the GPU, the mesh uploaded.
     #[cfg(feature = "gpu")]
     Gpu(Box<chasles_skin::gpu::GpuSkinner>),
@@ -48,8 +49,9 @@ pub fn quiet_vulkan_loader() {
 impl Engine {
     /// The engine for `rig` and `method` under `device`.
     pub fn new(device: Device, rig: &Rig, method: Method) -> Result<Self> {
+        let cpu = || Ok(Engine::Cpu(Skinner::new(rig)?));
         if device == Device::Cpu {
-            return Ok(Engine::Cpu);
+            return cpu();
         }
         #[cfg(feature = "gpu")]
         {
@@ -70,22 +72,22 @@ impl Engine {
                     Err(_) => {}
                 }
             }
-            Ok(Engine::Cpu)
+            cpu()
         }
         #[cfg(not(feature = "gpu"))]
         {
-            let _ = (rig, method);
+            let _ = method;
             if device == Device::Gpu {
                 bail!("this chasles was built without the `gpu` feature");
             }
-            Ok(Engine::Cpu)
+            cpu()
         }
     }
 
     /// Words for where it runs.
     pub fn describe(&self) -> String {
         match self {
-            Engine::Cpu => "the CPU".to_string(),
+            Engine::Cpu(_) => "the CPU".to_string(),
             #[cfg(feature = "gpu")]
             Engine::Gpu(g) => format!("the GPU ({})", g.adapter()),
         }
@@ -94,7 +96,7 @@ impl Engine {
     /// `rig` in `pose` skinned by `method`.
     pub fn skin(&self, rig: &Rig, pose: &Pose, method: Method) -> Result<Skinned> {
         match self {
-            Engine::Cpu => Ok(skin(rig, pose, method)?),
+            Engine::Cpu(s) => Ok(s.skin(rig, &joint_transforms(rig, pose)?, method)?),
             #[cfg(feature = "gpu")]
             Engine::Gpu(g) => Ok(g.skin(&joint_transforms(rig, pose)?, method)?),
         }

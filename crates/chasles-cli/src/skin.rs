@@ -152,12 +152,15 @@ pub(crate) fn median_secs(runs: usize, mut f: impl FnMut() -> Result<()>) -> Res
     Ok(t[runs / 2])
 }
 
-/// `chasles skin --bench`: vertices per second of the fast LBS and DQS on synthetic meshes
-/// (54 joints, 4 influences), one thread and all threads, each against a memory copy of the
-/// 72 bytes each vertex must move on as many threads (the bandwidth bound); medians of 31
-/// runs.
+/// `chasles skin --bench`: vertices per second of every method's fast path on synthetic
+/// meshes (54 joints, 4 influences), one thread and all threads, each against a memory copy
+/// of the 72 bytes each vertex must move on as many threads (the bandwidth bound); medians
+/// of 31 runs (5 for a method slower than 50 ms a run). The random joints make nearly every
+/// vertex its own SBS cluster: SBS's worst case, a rotation centre solved per vertex.
 pub fn bench() -> Result<()> {
-    use chasles_skin::fast::{dqs, dual_quats8, lbs, matrices12};
+    use chasles_skin::fast::{
+        clusters, dib, dqs, dual_quats8, lbs, log, matrices12, qlb, sbs, twists,
+    };
     use chasles_skin::synthetic;
     use rayon::prelude::*;
     // Runs per median: this many keeps a shared machine's hiccups out of 10⁵-vertex runs
@@ -169,7 +172,12 @@ pub fn bench() -> Result<()> {
     for n in [100_000usize, 1_000_000] {
         let rig = synthetic::rig(n, 54, 7);
         let jt = synthetic::joints(54, 7);
-        let (m12, d8) = (matrices12(&jt), dual_quats8(&jt));
+        let (m12, d8, tw, cl) = (
+            matrices12(&jt),
+            dual_quats8(&jt),
+            twists(&jt)?,
+            clusters(&rig),
+        );
         let mut out = vec![[0f32; 6]; n];
         let src = vec![1u8; n * 36];
         let mut dst = vec![0u8; n * 36];
@@ -196,24 +204,51 @@ pub fn bench() -> Result<()> {
                 "| {n} | memcpy (72 B moved per vertex) | {threads} | {:.1} | 1 |",
                 bound / 1e6
             );
-            let l = n as f64 / median_secs(RUNS, || Ok(lbs(&rig, &m12, &mut out, parallel)?))?;
-            let d = n as f64 / median_secs(RUNS, || Ok(dqs(&rig, &d8, &mut out, parallel)?))?;
-            println!(
-                "| {n} | lbs | {threads} | {:.1} | {:.2} |",
-                l / 1e6,
-                l / bound
-            );
-            println!(
-                "| {n} | dqs | {threads} | {:.1} | {:.2} |",
-                d / 1e6,
-                d / bound
-            );
-            ratios.push((n, threads, l / d));
+            let mut rate = |m: Method| -> Result<f64> {
+                let mut once = || -> Result<()> {
+                    match m {
+                        Method::Lbs => lbs(&rig, &m12, &mut out, parallel),
+                        Method::Dqs => dqs(&rig, &d8, &mut out, parallel),
+                        Method::Log => log(&rig, &tw, &mut out, parallel),
+                        Method::Qlb => qlb(&rig, &jt.dual_quats, &mut out, parallel),
+                        Method::Sbs => sbs(&rig, &cl, &jt.dual_quats, &mut out, parallel),
+                        Method::Dib => dib(&rig, &jt.dual_quats, &mut out, parallel),
+                    }?;
+                    Ok(())
+                };
+                // DIB takes a second a run at 10⁶ vertices: fewer runs for slow methods.
+                let start = std::time::Instant::now();
+                once()?;
+                let runs = if start.elapsed().as_secs_f64() > 0.05 {
+                    5
+                } else {
+                    RUNS
+                };
+                Ok(n as f64 / median_secs(runs, once)?)
+            };
+            let mut rates = std::collections::HashMap::new();
+            for m in Method::ALL {
+                let r = rate(m)?;
+                println!(
+                    "| {n} | {} | {threads} | {:.1} | {:.2} |",
+                    m.name(),
+                    r / 1e6,
+                    r / bound
+                );
+                rates.insert(m, r);
+            }
+            ratios.push((n, threads, rates));
         }
     }
     println!();
     for (n, threads, r) in ratios {
-        println!("{n} vertices, {threads} thread(s): DQS costs {r:.2}× LBS");
+        let dqs = r[&Method::Dqs];
+        println!(
+            "{n} vertices, {threads} thread(s): DQS costs {:.2}× LBS; DQS is {:.1}× Log and {:.1}× SBS (Figure 1: 2.3× and 2.2×)",
+            r[&Method::Lbs] / dqs,
+            dqs / r[&Method::Log],
+            dqs / r[&Method::Sbs]
+        );
     }
     Ok(())
 }

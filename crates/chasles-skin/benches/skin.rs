@@ -6,7 +6,9 @@
 //!
 //! `cargo bench -p chasles-skin --bench skin`
 
-use chasles_skin::fast::{dqs, dual_quats8, lbs, log, matrices12, twists, Out};
+use chasles_skin::fast::{
+    clusters, dib, dqs, dual_quats8, lbs, log, matrices12, qlb, sbs, twists, Out,
+};
 use chasles_skin::synthetic;
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use glam::{Affine3A, Quat, Vec3, Vec3A};
@@ -116,6 +118,7 @@ fn bench(c: &mut Criterion) {
             })
             .collect();
         let tw = twists(&jt).unwrap();
+        let cl = clusters(&rig);
         let mut out = vec![[0f32; 6]; n];
         let mut g = c.benchmark_group(format!("skin {n} vertices, 54 joints, 4 influences"));
         g.throughput(Throughput::Elements(n as u64));
@@ -130,6 +133,18 @@ fn bench(c: &mut Criterion) {
             });
             g.bench_function(format!("chasles log, {th}"), |b| {
                 b.iter(|| log(&rig, &tw, black_box(&mut out), parallel).unwrap())
+            });
+            g.bench_function(format!("chasles qlb, {th}"), |b| {
+                b.iter(|| qlb(&rig, &jt.dual_quats, black_box(&mut out), parallel).unwrap())
+            });
+            // Random joints make nearly every vertex its own cluster: SBS's worst case, a
+            // rotation centre solved per vertex (a real rig has far fewer clusters; see
+            // CesiumMan below).
+            g.bench_function(format!("chasles sbs, {th}"), |b| {
+                b.iter(|| sbs(&rig, &cl, &jt.dual_quats, black_box(&mut out), parallel).unwrap())
+            });
+            g.bench_function(format!("chasles dib, {th}"), |b| {
+                b.iter(|| dib(&rig, &jt.dual_quats, black_box(&mut out), parallel).unwrap())
             });
         }
         g.bench_function("glam lbs (Affine3A), 1 thread", |b| {
@@ -194,6 +209,25 @@ fn figure_1(c: &mut Criterion) {
         b.iter(|| {
             let jt = joint_transforms(&rig, &pose).unwrap();
             log(&fast, &twists(&jt).unwrap(), &mut out, false).unwrap()
+        })
+    });
+    g.bench_function("qlb (fast, with the pose)", |b| {
+        b.iter(|| {
+            let jt = joint_transforms(&rig, &pose).unwrap();
+            qlb(&fast, &jt.dual_quats, &mut out, false).unwrap()
+        })
+    });
+    let cl = clusters(&fast);
+    g.bench_function("sbs (fast, with the pose)", |b| {
+        b.iter(|| {
+            let jt = joint_transforms(&rig, &pose).unwrap();
+            sbs(&fast, &cl, &jt.dual_quats, &mut out, false).unwrap()
+        })
+    });
+    g.bench_function("dib (fast, with the pose)", |b| {
+        b.iter(|| {
+            let jt = joint_transforms(&rig, &pose).unwrap();
+            dib(&fast, &jt.dual_quats, &mut out, false).unwrap()
         })
     });
     g.finish();

@@ -1,10 +1,12 @@
-//! The fast path for LBS, DQS and Log (module `log`): a compact vertex layout, fixed influence counts (4 or 8),
-//! eight-vertex AVX2+FMA kernels chosen at run time (for 4 influences; elsewhere, and for
-//! the last few vertices, the scalar kernels),
-//! joint transforms as flat arrays (12 floats per matrix, 8 per dual quaternion — the
-//! register saving Kavan et al. 2006 note in §6), one pass per vertex, and rayon over
-//! chunks of vertices. It agrees with [`crate::skinning`]'s reference path to 1e-5
-//! (tests check it on the real models).
+//! The fast path for every method: a compact vertex layout, fixed influence counts (4 or
+//! 8), eight-vertex AVX2+FMA kernels chosen at run time (LBS, DQS, QLB and SBS with 4
+//! influences; elsewhere, and for the last few vertices, the scalar kernels), joint
+//! transforms as flat arrays made once per pose (12 floats per matrix, 8 per dual
+//! quaternion — the register saving Kavan et al. 2006 note in §6; a 24-float row for QLB and
+//! SBS, module `qlb`; twists for Log, module `log`), one pass per vertex with no allocation
+//! (DIB, module `dib`, runs the library's allocation-free blend on the stack), and rayon
+//! over chunks of vertices. It agrees with [`crate::skinning`]'s reference path to 1e-5
+//! (tests check it on the real models). [`Skinner`] puts every method behind one call.
 //!
 //! Per vertex it reads 48 bytes (position, normal, four u16 joints, four f32 weights) and
 //! writes 24 (position, normal): 72 bytes, the figure the bandwidth bound is computed
@@ -21,6 +23,8 @@
 use crate::error::{invalid, Result};
 use crate::pose::JointTransforms;
 use crate::rig::Rig;
+use crate::rotation_centre::joint_centres;
+use chasles::Vec3;
 use rayon::prelude::*;
 
 /// One vertex with K influences (unused slots have weight 0).
@@ -40,17 +44,24 @@ pub struct Vertex<const K: usize> {
 mod antipodes;
 #[cfg(target_arch = "x86_64")]
 mod avx2;
+mod dib;
 mod log;
+mod qlb;
+mod skinner;
 
 use antipodes::Antipodes;
+pub use dib::dib;
 pub use log::{log, twists};
+pub use qlb::{clusters, qlb, sbs, Row};
+pub use skinner::Skinner;
 
 /// A rig laid out for the fast path. Its joint indices are checked on construction (the
 /// SIMD kernels rely on it), so the fields are private.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FastRig<const K: usize> {
     vertices: Vec<Vertex<K>>,
-    joints: usize,
+    /// Each joint's bind-pose origin (decomposed QLB and SBS rotate about these).
+    centres: Vec<Vec3<f32>>,
 }
 
 /// Output: position and normal per vertex.
@@ -84,11 +95,14 @@ impl<const K: usize> FastRig<K> {
                 }
             })
             .collect();
-        Self::from_vertices(vertices, rig.joints.len())
+        Self::from_vertices(vertices, joint_centres(&rig.inverse_bind))
     }
 
-    /// A rig from laid-out vertices; an error if a joint index is not below `joints`.
-    pub fn from_vertices(vertices: Vec<Vertex<K>>, joints: usize) -> Result<Self> {
+    /// A rig from laid-out vertices and the bind-pose origin of each joint (see
+    /// [`joint_centres`]; their number is the joint count); an error if a joint index is
+    /// out of range.
+    pub fn from_vertices(vertices: Vec<Vertex<K>>, centres: Vec<Vec3<f32>>) -> Result<Self> {
+        let joints = centres.len();
         if let Some((i, v)) = vertices
             .iter()
             .enumerate()
@@ -99,7 +113,7 @@ impl<const K: usize> FastRig<K> {
                 v.j
             ));
         }
-        Ok(FastRig { vertices, joints })
+        Ok(FastRig { vertices, centres })
     }
 
     /// The vertices.
@@ -109,7 +123,12 @@ impl<const K: usize> FastRig<K> {
 
     /// The number of joints.
     pub fn joints(&self) -> usize {
-        self.joints
+        self.centres.len()
+    }
+
+    /// Each joint's bind-pose origin.
+    pub fn centres(&self) -> &[Vec3<f32>] {
+        &self.centres
     }
 }
 
@@ -163,10 +182,11 @@ fn lbs_vertex<const K: usize>(v: &Vertex<K>, m: &[[f32; 12]]) -> Out {
     [px, py, pz, mx, my, mz]
 }
 
-/// `⟨q̂, p̂⟩` of two dual quaternions' real parts (8 floats, real part first), summed in one
-/// fixed order: the antipodality test of the scalar kernel and of the sign table alike.
+/// `⟨q̂, p̂⟩` of two joints' rotation quaternions (the first 4 of their N floats: the real
+/// part of a dual quaternion, or a QLB row's rotation), summed in one fixed order: the
+/// antipodality test of the scalar kernels and of the sign table alike.
 #[inline(always)]
-fn real_dot(q: &[f32; 8], p: &[f32; 8]) -> f32 {
+fn real_dot<const N: usize>(q: &[f32; N], p: &[f32; N]) -> f32 {
     q[0] * p[0] + q[1] * p[1] + q[2] * p[2] + q[3] * p[3]
 }
 
@@ -297,26 +317,32 @@ impl<const K: usize> Kernel<K> for DqsKernel {
     }
 }
 
+/// The sizes every fast skinning checks: one output per vertex, one transform per joint.
+fn check<const K: usize>(rig: &FastRig<K>, joints: usize, out: usize) -> Result<()> {
+    if out != rig.vertices.len() {
+        return invalid(format!(
+            "output holds {} vertices, the rig has {}",
+            out,
+            rig.vertices.len()
+        ));
+    }
+    if joints != rig.joints() {
+        return invalid(format!(
+            "{} joint transforms for {} joints",
+            joints,
+            rig.joints()
+        ));
+    }
+    Ok(())
+}
+
 fn run<const K: usize, F: Kernel<K>>(
     rig: &FastRig<K>,
     joints: &[F::Joint],
     out: &mut [Out],
     parallel: bool,
 ) -> Result<()> {
-    if out.len() != rig.vertices.len() {
-        return invalid(format!(
-            "output holds {} vertices, the rig has {}",
-            out.len(),
-            rig.vertices.len()
-        ));
-    }
-    if joints.len() != rig.joints {
-        return invalid(format!(
-            "{} joint transforms for {} joints",
-            joints.len(),
-            rig.joints
-        ));
-    }
+    check(rig, joints.len(), out.len())?;
     let simd = simd(K);
     // Only the SIMD kernels read the table.
     let table = F::table(if simd { joints } else { &[] }, rig.vertices.len());

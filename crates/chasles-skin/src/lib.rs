@@ -19,6 +19,7 @@ pub mod gpu;
 pub mod json_rig;
 pub mod pose;
 pub mod rig;
+pub mod rotation_centre;
 pub mod skinning;
 pub mod synthetic;
 pub mod volume;

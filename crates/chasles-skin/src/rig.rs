@@ -63,7 +63,9 @@ pub struct Mesh {
 
 /// Per-vertex influences, any number per vertex, in compressed rows: the influences of
 /// vertex v are `joints[start[v]..start[v + 1]]` with `weights[…]`. Weights are
-/// non-negative and sum to 1 per vertex (normalized on construction).
+/// positive and sum to 1 per vertex (normalized on construction), heaviest first (ties in
+/// the order given): the first influence is the pivot of the antipodality fix, and the
+/// reference and fast paths sum in the same order.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Influences {
     /// Row starts, one more than the vertex count.
@@ -74,8 +76,22 @@ pub struct Influences {
     pub weights: Vec<f32>,
 }
 
+/// Sorts one vertex's influences by weight, heaviest first, ties keeping their order (an
+/// insertion sort: a vertex has a handful).
+fn sort_heaviest_first(joints: &mut [u16], weights: &mut [f32]) {
+    for i in 1..weights.len() {
+        let mut k = i;
+        while k > 0 && weights[k - 1] < weights[k] {
+            weights.swap(k - 1, k);
+            joints.swap(k - 1, k);
+            k -= 1;
+        }
+    }
+}
+
 impl Influences {
-    /// Builds influences from per-vertex lists, dropping zero weights, checking joint
+    /// Builds influences from per-vertex lists, dropping zero weights, sorting each
+    /// vertex's by weight (heaviest first), checking joint
     /// indices and weights, and normalizing each vertex's weights to sum to 1. Errors name
     /// the vertex: a joint index out of range, a negative or non-finite weight, or weights
     /// that sum to zero.
@@ -110,12 +126,14 @@ impl Influences {
                     reason: "the weights sum to zero (the vertex is bound to no joint)".into(),
                 });
             }
+            let first = out.joints.len();
             for &(joint, w) in list {
                 if w > 0.0 {
                     out.joints.push(joint as u16);
                     out.weights.push((f64::from(w) / sum) as f32);
                 }
             }
+            sort_heaviest_first(&mut out.joints[first..], &mut out.weights[first..]);
             out.start.push(out.joints.len() as u32);
         }
         if joints > usize::from(u16::MAX) {

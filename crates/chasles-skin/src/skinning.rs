@@ -7,26 +7,26 @@
 //! * [`Method::Dqs`] — dual quaternion skinning: DLB with the antipodality fix against a
 //!   pivot influence (the heaviest; Kavan's reference `dqsAntipod` takes the first), the
 //!   point moved by the normalized blend, the normal rotated by its real part.
-//! * [`Method::Dib`] — DIB per vertex (precision 1e-5, at most 8 updates).
+//! * [`Method::Dib`] — DIB per vertex (precision [`DIB_PRECISION`], at most
+//!   [`DIB_UPDATES`] updates).
 //! * [`Method::Log`] — Alexa's log-matrix blend per vertex; the joints' logarithms are
 //!   computed once per pose.
 //! * [`Method::Qlb`] — decomposed QLB about the joints (Hejl 2004): rotations by QLB,
-//!   translations blended linearly about the weighted bind-pose joint centre of the vertex.
+//!   translations blended linearly about the weighted bind-pose joint centre of the vertex
+//!   ([`crate::rotation_centre::joint_centres`]).
 //! * [`Method::Sbs`] — spherical blend skinning (Kavan & Žára 2005): rotations by QLB about
-//!   a *rotation centre* per cluster of vertices that share the same joints — the point r
-//!   whose images under the cluster's joint transforms agree best, by least squares:
-//!   `min Σ_{a<b} ‖(R_a − R_b) r + t_a − t_b‖²`. The normal equations are solved with a
-//!   small Tikhonov term pulling r towards the cluster's weighted joint centre, where the
-//!   problem is rank-deficient (equal rotations; the paper uses the SVD's pseudo-inverse).
-//!   Clusters of one joint move rigidly.
+//!   a *rotation centre* per cluster of vertices that share the same joints, solved once
+//!   per pose by least squares ([`crate::rotation_centre`]).
 //!
-//! This is the reference path: plain per-vertex loops in f32, easy to check. Scaled joints
+//! This is the reference path: plain per-vertex loops in f32, easy to check ([`crate::fast`]
+//! is the fast one). Scaled joints
 //! (non-rigid `Cⱼ`) are exact in LBS only; the other methods use the nearest rotation (see
 //! [`crate::pose::joint_transforms`]).
 
 use crate::error::{invalid, Result};
 use crate::pose::{joint_transforms, JointTransforms, Pose};
 use crate::rig::Rig;
+use crate::rotation_centre::{joint_centres, Clusters};
 use chasles::blend::{dib::dib, log, qlb::qlb};
 use chasles::{DualQuat, Mat3, Mat4, Quat, Vec3};
 
@@ -122,14 +122,16 @@ pub fn skin_joints(rig: &Rig, jt: &JointTransforms, method: Method) -> Result<Sk
     } else {
         Vec::new()
     };
-    // Bind-pose joint centres (for the decomposed QLB): the origin of each joint's frame.
-    let centres: Vec<Vec3<f32>> = rig
-        .inverse_bind
-        .iter()
-        .map(rigid_inverse_translation)
-        .collect();
-    let mut sbs_centres: std::collections::HashMap<Vec<u16>, Vec3<f32>> =
-        std::collections::HashMap::new();
+    // Bind-pose joint centres (for the decomposed QLB), and the SBS clusters' rotation
+    // centres for this pose.
+    let centres = joint_centres(&rig.inverse_bind);
+    let (clusters, rotation_centres) = if method == Method::Sbs {
+        let c = Clusters::new(n, |v| rig.influences.of(v).map(|(j, _)| j as u16));
+        let r = c.centres(&jt.dual_quats, &centres);
+        (c, r)
+    } else {
+        (Clusters::default(), Vec::new())
+    };
     for v in 0..n {
         let p = rig.mesh.positions[v];
         let nrm = rig.mesh.normals[v];
@@ -161,9 +163,9 @@ pub fn skin_joints(rig: &Rig, jt: &JointTransforms, method: Method) -> Result<Sk
                     let s = if d.real.dot(pr) < 0.0 { -w } else { w };
                     b = b + d * s;
                 }
-                let b = b.normalize()?;
-                positions.push(b.transform_point(p));
-                normals.push(unit(b.real.rotate(nrm), nrm));
+                let (p, n) = dual_quat_vertex(&b.normalize()?, p, nrm);
+                positions.push(p);
+                normals.push(n);
             }
             Method::Dib | Method::Qlb | Method::Sbs => {
                 let (q, w): (Vec<DualQuat<f32>>, Vec<f32>) = rig
@@ -171,31 +173,18 @@ pub fn skin_joints(rig: &Rig, jt: &JointTransforms, method: Method) -> Result<Sk
                     .of(v)
                     .map(|(j, w)| (jt.dual_quats[j], w))
                     .unzip();
-                let joint_centre = || {
-                    rig.influences
-                        .of(v)
-                        .fold(Vec3::zero(), |c, (j, w)| c + centres[j] * w)
-                };
                 let b = match method {
-                    Method::Dib => dib(&q, &w, 1e-5, 8)?.0,
-                    Method::Qlb => qlb(&q, &w, joint_centre())?,
-                    _ => {
-                        let mut key: Vec<u16> =
-                            rig.influences.of(v).map(|(j, _)| j as u16).collect();
-                        key.sort_unstable();
-                        let c = match sbs_centres.get(&key) {
-                            Some(c) => *c,
-                            None => {
-                                let c = rotation_centre(&key, &jt.matrices, joint_centre());
-                                sbs_centres.insert(key, c);
-                                c
-                            }
-                        };
-                        qlb(&q, &w, c)?
-                    }
+                    Method::Dib => dib(&q, &w, DIB_PRECISION, DIB_UPDATES)?.0,
+                    Method::Qlb => qlb(
+                        &q,
+                        &w,
+                        weighted_centre(rig.influences.of(v), |j| centres[j]),
+                    )?,
+                    _ => qlb(&q, &w, rotation_centres[clusters.of_vertex()[v] as usize])?,
                 };
-                positions.push(b.transform_point(p));
-                normals.push(unit(b.real.rotate(nrm), nrm));
+                let (p, n) = dual_quat_vertex(&b, p, nrm);
+                positions.push(p);
+                normals.push(n);
             }
             Method::Log => {
                 let mut x = log::Twist {
@@ -220,38 +209,6 @@ pub fn skin_joints(rig: &Rig, jt: &JointTransforms, method: Method) -> Result<Sk
         ));
     }
     Ok(Skinned { positions, normals })
-}
-
-/// The SBS rotation centre of a cluster: `min Σ_{a<b} ‖(R_a − R_b) r + t_a − t_b‖²`, with
-/// a Tikhonov pull towards `prior` (1e-6 of the trace) for the rank-deficient directions.
-fn rotation_centre(joints: &[u16], m: &[Mat4<f32>], prior: Vec3<f32>) -> Vec3<f32> {
-    let mut a = [[0f64; 3]; 3];
-    let mut b = [0f64; 3];
-    for (i, ja) in joints.iter().enumerate() {
-        for jb in &joints[i + 1..] {
-            let (ma, mb) = (&m[usize::from(*ja)], &m[usize::from(*jb)]);
-            let d: [[f64; 3]; 3] = core::array::from_fn(|r| {
-                core::array::from_fn(|c| f64::from(ma.m[r][c] - mb.m[r][c]))
-            });
-            let e: [f64; 3] = core::array::from_fn(|r| f64::from(ma.m[r][3] - mb.m[r][3]));
-            for r in 0..3 {
-                for c in 0..3 {
-                    a[r][c] += (0..3).map(|k| d[k][r] * d[k][c]).sum::<f64>();
-                }
-                b[r] -= (0..3).map(|k| d[k][r] * e[k]).sum::<f64>();
-            }
-        }
-    }
-    let lambda = 1e-6 * (a[0][0] + a[1][1] + a[2][2]) + 1e-12;
-    let p = prior.cast::<f64>().to_array();
-    for r in 0..3 {
-        a[r][r] += lambda;
-        b[r] += lambda * p[r];
-    }
-    match Mat3::from_rows(a).inverse() {
-        Some(inv) => inv.mul_vec(Vec3::from_array(b)).cast(),
-        None => prior,
-    }
 }
 
 /// The joints' twists for Log skinning: `log` of each joint matrix's nearest rigid
@@ -280,12 +237,28 @@ fn rigid(m: &Mat4<f32>) -> Mat4<f32> {
     Mat4::from_rotation_translation(&q.to_rotation_matrix(), m.translation())
 }
 
-/// The origin of a joint's frame in bind space: the translation of the inverse of its
-/// inverse bind matrix.
-fn rigid_inverse_translation(ib: &Mat4<f32>) -> Vec3<f32> {
-    let a = ib.linear_part();
-    match a.inverse() {
-        Some(inv) => -inv.mul_vec(ib.translation()),
-        None => Vec3::zero(),
-    }
+/// DIB skinning's precision and most updates per vertex, on both CPU paths (the GPU
+/// shader, `gpu/skin.wgsl`, writes the same numbers).
+pub const DIB_PRECISION: f32 = 1e-5;
+/// See [`DIB_PRECISION`].
+pub const DIB_UPDATES: usize = 8;
+
+/// `Σ wⱼ cⱼ` over a vertex's influences: the centre decomposed QLB rotates it about (both
+/// paths sum in the influences' order).
+pub(crate) fn weighted_centre(
+    influences: impl Iterator<Item = (usize, f32)>,
+    centre: impl Fn(usize) -> Vec3<f32>,
+) -> Vec3<f32> {
+    influences.fold(Vec3::zero(), |c, (j, w)| c + centre(j) * w)
+}
+
+/// A vertex moved by a unit dual quaternion: the position, and the normal rotated by the
+/// real part and made unit (itself where that fails). The last step of DQS, DIB, QLB and
+/// SBS, on both paths.
+pub(crate) fn dual_quat_vertex(
+    b: &DualQuat<f32>,
+    p: Vec3<f32>,
+    n: Vec3<f32>,
+) -> (Vec3<f32>, Vec3<f32>) {
+    (b.transform_point(p), unit(b.real.rotate(n), n))
 }

@@ -58,7 +58,17 @@ pub fn rig(n: usize, joints: usize, seed: u64) -> FastRig<4> {
             }
         })
         .collect();
-    FastRig::from_vertices(vertices, joints)
+    // Bind origins in and around the mesh's cube.
+    let centres = (0..joints)
+        .map(|_| {
+            Vec3::new(
+                r.next() * 3.0 - 1.5,
+                r.next() * 3.0 - 1.5,
+                r.next() * 3.0 - 1.5,
+            )
+        })
+        .collect();
+    FastRig::from_vertices(vertices, centres)
         .unwrap_or_else(|_| unreachable!("indices are drawn below `joints`"))
 }
 

@@ -296,7 +296,9 @@ fn bad_rigs_get_errors_naming_the_problem() {
 
 #[test]
 fn the_fast_path_agrees_with_the_reference() {
-    use chasles_skin::fast::{dqs, dual_quats8, lbs, log, matrices12, twists, FastRig};
+    use chasles_skin::fast::{
+        clusters, dib, dqs, dual_quats8, lbs, log, matrices12, qlb, sbs, twists, FastRig,
+    };
     for (file, _, _, _) in MODELS {
         let rig = gltf_load::load(&data(file)).unwrap();
         let size = rig
@@ -306,10 +308,12 @@ fn the_fast_path_agrees_with_the_reference() {
             .fold(1.0f32, |m, p| m.max(p.norm()));
         let fast = FastRig::<4>::new(&rig).unwrap();
         let fast8 = FastRig::<8>::new(&rig).unwrap();
+        let (c4, c8) = (clusters(&fast), clusters(&fast8));
         for (c, clip) in rig.animations.iter().enumerate() {
             let pose = Pose::animated(&rig, c, clip.duration() * 0.61).unwrap();
             let jt = joint_transforms(&rig, &pose).unwrap();
-            for method in [Method::Lbs, Method::Dqs, Method::Log] {
+            let d = &jt.dual_quats;
+            for method in Method::ALL {
                 let want = skin(&rig, &pose, method).unwrap();
                 for parallel in [false, true] {
                     let mut out = vec![[0f32; 6]; rig.mesh.positions.len()];
@@ -323,10 +327,34 @@ fn the_fast_path_agrees_with_the_reference() {
                             dqs(&fast, &dual_quats8(&jt), &mut out, parallel).unwrap();
                             dqs(&fast8, &dual_quats8(&jt), &mut out8, parallel).unwrap();
                         }
-                        _ => {
+                        Method::Log => {
                             let t = twists(&jt).unwrap();
                             log(&fast, &t, &mut out, parallel).unwrap();
                             log(&fast8, &t, &mut out8, parallel).unwrap();
+                        }
+                        Method::Dib => {
+                            dib(&fast, d, &mut out, parallel).unwrap();
+                            dib(&fast8, d, &mut out8, parallel).unwrap();
+                        }
+                        Method::Qlb => {
+                            qlb(&fast, d, &mut out, parallel).unwrap();
+                            qlb(&fast8, d, &mut out8, parallel).unwrap();
+                        }
+                        Method::Sbs => {
+                            sbs(&fast, &c4, d, &mut out, parallel).unwrap();
+                            sbs(&fast8, &c8, d, &mut out8, parallel).unwrap();
+                        }
+                    }
+                    if method == Method::Dib {
+                        // The same library calls on the same numbers in the same order as
+                        // the reference: equal bits, not just 1e-5.
+                        for (v, o) in out.iter().enumerate() {
+                            let (p, n) = (want.positions[v], want.normals[v]);
+                            assert_eq!(
+                                o,
+                                &[p.x, p.y, p.z, n.x, n.y, n.z],
+                                "{file} {method:?} vertex {v}"
+                            );
                         }
                     }
                     for (v, (o, o8)) in out.iter().zip(&out8).enumerate() {
@@ -366,6 +394,107 @@ fn the_fast_path_agrees_with_the_reference() {
         dqs(&fast, &[[0.0; 8]; 3], &mut out, false).is_err(),
         "joint count checked"
     );
+    let three = [chasles::DualQuat::identity(); 3];
+    assert!(
+        dib(&fast, &three, &mut out, false).is_err(),
+        "joint count checked"
+    );
+    assert!(
+        qlb(&fast, &three, &mut out, false).is_err(),
+        "joint count checked"
+    );
+    let other =
+        clusters(&FastRig::<4>::new(&gltf_load::load(&data("SimpleSkin.gltf")).unwrap()).unwrap());
+    let d = vec![chasles::DualQuat::identity(); fast.joints()];
+    assert!(
+        sbs(&fast, &other, &d, &mut out, false).is_err(),
+        "clusters of another rig refused"
+    );
+    // A NaN joint: NaN out for the vertices it moves, no panic.
+    let mut d = d;
+    d[usize::from(fast.vertices()[0].j[0])].real.w = f32::NAN;
+    for method in [Method::Dib, Method::Qlb, Method::Sbs] {
+        match method {
+            Method::Dib => dib(&fast, &d, &mut out, true),
+            Method::Qlb => qlb(&fast, &d, &mut out, true),
+            _ => sbs(&fast, &clusters(&fast), &d, &mut out, true),
+        }
+        .unwrap();
+        assert!(out[0].iter().all(|x| x.is_nan()), "{method:?}");
+    }
+}
+
+#[test]
+fn the_skinner_takes_every_method_to_the_fast_path_or_the_reference() {
+    use chasles_skin::fast::Skinner;
+    let close = |rig: &chasles_skin::Rig, a: &chasles_skin::Skinned, b: &chasles_skin::Skinned| {
+        let size = rig
+            .mesh
+            .positions
+            .iter()
+            .fold(1.0f32, |m, p| m.max(p.norm()));
+        for v in 0..a.positions.len() {
+            assert!(
+                (a.positions[v] - b.positions[v]).norm() <= 1e-5 * size,
+                "{} {v}",
+                rig.name
+            );
+            assert!(
+                (a.normals[v] - b.normals[v]).norm() <= 1e-5,
+                "{} {v}",
+                rig.name
+            );
+        }
+    };
+    for (file, _, _, _) in MODELS {
+        let rig = gltf_load::load(&data(file)).unwrap();
+        let s = Skinner::new(&rig).unwrap();
+        assert_eq!(s.influences(), 4, "{file}");
+        let pose = Pose::animated(&rig, 0, 0.3).unwrap();
+        let jt = joint_transforms(&rig, &pose).unwrap();
+        for m in Method::ALL {
+            close(
+                &rig,
+                &s.skin(&rig, &jt, m).unwrap(),
+                &skin(&rig, &pose, m).unwrap(),
+            );
+        }
+    }
+    // Nine joints on one vertex: more than the fast layouts hold, so the reference path.
+    let joints: Vec<String> = (0..9)
+        .map(|j| format!(r#"{{"name": "j{j}", "translation": [{j}, 0, 0]}}"#))
+        .collect();
+    let all: Vec<String> = (0..9).map(|j| format!("[{j}, {}]", j + 1)).collect();
+    let text = format!(
+        r#"{{"positions": [[0,0,0],[1,0,0],[0,1,0]], "triangles": [[0,1,2]],
+            "joints": [{}], "influences": [[{}], [[1, 1]], [[2, 1]]]}}"#,
+        joints.join(","),
+        all.join(",")
+    );
+    let rig = chasles_skin::json_rig::parse_rig(&text, "nine").unwrap();
+    let s = Skinner::new(&rig).unwrap();
+    assert_eq!(s.influences(), 0);
+    let jt = chasles_skin::JointTransforms::identity(9);
+    for m in Method::ALL {
+        let got = s.skin(&rig, &jt, m).unwrap();
+        assert_eq!(got, chasles_skin::skin_joints(&rig, &jt, m).unwrap());
+    }
+    // A NaN joint transform: an error naming the method, not NaN vertices.
+    let rig = gltf_load::load(&data("CesiumMan.glb")).unwrap();
+    let s = Skinner::new(&rig).unwrap();
+    let mut jt = chasles_skin::JointTransforms::identity(rig.joints.len());
+    jt.dual_quats[0].real.w = f32::NAN;
+    jt.matrices[0].m[0][0] = f32::NAN;
+    for m in [
+        Method::Lbs,
+        Method::Dqs,
+        Method::Qlb,
+        Method::Sbs,
+        Method::Dib,
+    ] {
+        let e = s.skin(&rig, &jt, m).unwrap_err().to_string();
+        assert!(e.contains(m.name()) && e.contains("non-finite"), "{e}");
+    }
 }
 
 const STRIP: &str = r#"{"positions": [[0,0,0],[1,0,0],[2,0,0],[0,1,0],[1,1,0],[2,1,0]],

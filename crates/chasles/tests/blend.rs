@@ -2,11 +2,12 @@
 //! behaviour, Table 1 measured against the paper, and the paper's claims by number.
 
 use chasles::analysis::{claims, properties};
-use chasles::blend::dib::dib;
-use chasles::blend::dlb::dlb;
+use chasles::blend::dib::{dib, dib_convex};
+use chasles::blend::dlb::{dlb, dlb_convex};
 use chasles::blend::log::{
     exp_twist, log_blend, log_blend_iterative, log_blend_iterative_from, log_rigid,
 };
+use chasles::blend::qlb::{qlb, qlb_convex};
 use chasles::blend::sclerp::sclerp;
 use chasles::blend::weights::convex_weights;
 use chasles::blend::{blend_dual_quats, blend_matrices, Method, Options};
@@ -201,7 +202,47 @@ fn alexa_blends_the_long_way_and_the_iterative_version_fixes_it() {
     }
 }
 
+#[test]
+fn convex_blends_check_lengths_and_never_panic() {
+    let q = [DualQuat::<f32>::identity(); 2];
+    let c = Vec3::zero();
+    for w in [&[][..], &[1.0f32][..], &[0.5, 0.25, 0.25][..]] {
+        let what = |e: Error| matches!(e, Error::BlendInput { .. });
+        assert!(what(dlb_convex(&q, w).unwrap_err()), "{w:?}");
+        assert!(what(dib_convex(&q, w, 1e-5, 8).unwrap_err()), "{w:?}");
+        assert!(what(qlb_convex(&q, w, c).unwrap_err()), "{w:?}");
+    }
+    assert!(
+        dlb_convex(&[] as &[DualQuat<f32>], &[]).is_err(),
+        "nothing to blend"
+    );
+    assert!(
+        qlb_convex(&[] as &[DualQuat<f32>], &[], c).is_err(),
+        "nothing to blend"
+    );
+}
+
 proptest! {
+    // The allocation-free blends (skinning calls them once per vertex) are the checked
+    // blends after the weights are made convex: the same numbers, bit for bit, in f32 and
+    // f64.
+    #[test]
+    fn convex_blends_are_the_blends_with_convex_weights(seed in 0u64..1000, n in 1usize..6) {
+        let mut r = rng(seed);
+        let x: Vec<DualQuat<f64>> = (0..n).map(|_| properties::random_rigid(&mut r)).collect();
+        let raw: Vec<f64> = (0..n).map(|i| 0.2 + ((seed as usize * 7 + i * 13) % 10) as f64).collect();
+        let w = convex_weights(&raw, n).unwrap();
+        let c = Vec3::new(0.3, -1.0, 2.0);
+        prop_assert_eq!(dlb(&x, &raw).unwrap(), dlb_convex(&x, &w).unwrap());
+        prop_assert_eq!(dib(&x, &raw, 1e-10, 20).unwrap(), dib_convex(&x, &w, 1e-10, 20).unwrap());
+        prop_assert_eq!(qlb(&x, &raw, c).unwrap(), qlb_convex(&x, &w, c).unwrap());
+        let x32: Vec<DualQuat<f32>> = x.iter().map(|d| d.cast()).collect();
+        let (raw32, c32): (Vec<f32>, _) = (raw.iter().map(|v| *v as f32).collect(), c.cast());
+        let w32 = convex_weights(&raw32, n).unwrap();
+        prop_assert_eq!(dib(&x32, &raw32, 1e-5, 8).unwrap(), dib_convex(&x32, &w32, 1e-5, 8).unwrap());
+        prop_assert_eq!(qlb(&x32, &raw32, c32).unwrap(), qlb_convex(&x32, &w32, c32).unwrap());
+    }
+
     #[test]
     fn rigid_log_and_exp_are_inverse(q in prop::array::uniform4(-1.0f64..1.0), t in prop::array::uniform3(-5.0f64..5.0), small in 0usize..4) {
         let q = Quat::from_array(q);

@@ -23,10 +23,11 @@ pub struct Antipodes {
 const MOST_JOINTS: usize = 128;
 
 impl Antipodes {
-    /// The table for dual quaternions `d` (8 floats, real part first), when it pays: at
-    /// most [`MOST_JOINTS`] joints and no more signs than `vertices` to skin. Otherwise
-    /// empty, and the kernel takes the dot products itself.
-    pub fn new(d: &[[f32; 8]], vertices: usize) -> Self {
+    /// The table for joints `d` whose first 4 floats are their rotation quaternions (dual
+    /// quaternions, real part first, or QLB rows), when it pays: at most [`MOST_JOINTS`]
+    /// joints and no more signs than `vertices` to skin. Otherwise empty, and the kernel
+    /// takes the dot products itself.
+    pub fn new<const N: usize>(d: &[[f32; N]], vertices: usize) -> Self {
         let joints = d.len();
         if joints > MOST_JOINTS || joints * joints > vertices {
             return Self::default();

@@ -12,6 +12,9 @@
 use super::{Antipodes, Out, Vertex};
 use std::arch::x86_64::*;
 
+pub mod log;
+pub mod qlb;
+
 /// Vertex stride in floats (`Vertex<4>` is 48 bytes: p 0–2, n 3–5, joints 6–7 as two u32
 /// words of u16 pairs, weights 8–11).
 const STRIDE: i32 = 12;
@@ -97,6 +100,13 @@ unsafe fn blend_one(vx: &Vertex<4>, db: *const f32) -> __m256 {
     let b = _mm256_fmadd_ps(_mm256_permute_ps::<0x55>(w), q[1], b);
     let b = _mm256_fmadd_ps(_mm256_permute_ps::<0xAA>(w), q[2], b);
     _mm256_fmadd_ps(_mm256_permute_ps::<0xFF>(w), q[3], b)
+}
+
+/// `[f(0), …, f(7)]`, written out: through `array::from_fn` the kernels' per-vertex blends
+/// stayed calls, one per vertex.
+#[inline(always)]
+fn eight<R>(f: impl Fn(usize) -> R) -> [R; 8] {
+    [f(0), f(1), f(2), f(3), f(4), f(5), f(6), f(7)]
 }
 
 /// Transposes 8 registers of 8 floats: row k of the result is element k of every input.
@@ -200,18 +210,7 @@ unsafe fn dqs_blocks(
     for blk in 0..blocks {
         let i = blk * 8;
         let [px, py, pz, nx, ny, nz, _, _] = load_head(v, i);
-        // Written out: through `array::from_fn` the blends stayed calls, one per vertex.
-        let vx = |l| v.get_unchecked(i + l);
-        let b = transpose8([
-            blend(vx(0)),
-            blend(vx(1)),
-            blend(vx(2)),
-            blend(vx(3)),
-            blend(vx(4)),
-            blend(vx(5)),
-            blend(vx(6)),
-            blend(vx(7)),
-        ]);
+        let b = transpose8(eight(|l| blend(v.get_unchecked(i + l))));
         let mul = |a, b| _mm256_mul_ps(a, b);
         let add = |a, b| _mm256_add_ps(a, b);
         // a·b + c, a·b − c, c − a·b, each rounded once.

@@ -15,7 +15,7 @@
 //! and when `‖x̂‖` stops decreasing within 100× the precision — rounding, not the blend,
 //! then sets the updates.
 
-use super::dlb::dlb;
+use super::dlb::dlb_convex;
 use super::weights::convex_weights;
 use crate::{DualQuat, Quat, Real, Result};
 
@@ -26,14 +26,24 @@ pub fn dib<T: Real>(
     precision: T,
     max_iterations: usize,
 ) -> Result<(DualQuat<T>, usize)> {
-    let w = convex_weights(w, q.len())?;
-    let mut b = dlb(q, &w)?;
+    dib_convex(q, &convex_weights(w, q.len())?, precision, max_iterations)
+}
+
+/// DIB with weights that are already convex (non-negative, summing to 1; only the lengths
+/// are checked) and no allocation: for callers that blend once per vertex (skinning).
+pub fn dib_convex<T: Real>(
+    q: &[DualQuat<T>],
+    w: &[T],
+    precision: T,
+    max_iterations: usize,
+) -> Result<(DualQuat<T>, usize)> {
+    let mut b = dlb_convex(q, w)?;
     let mut steps = 0;
     let mut last = T::from_f64(f64::INFINITY);
     while steps < max_iterations {
         let bc = b.conjugate();
         let mut x = DualQuat::new(Quat::zero(), Quat::zero());
-        for (qi, wi) in q.iter().zip(&w) {
+        for (qi, wi) in q.iter().zip(w) {
             x = x + (bc * *qi).to_positive_hemisphere().log()? * *wi;
         }
         let norm = (x.real.norm_squared() + x.dual.norm_squared()).sqrt();

@@ -8,15 +8,21 @@
 //! `dqsAntipod` does in skinning). The sum is then normalized as a dual quaternion (real
 //! part to unit length, dual part made orthogonal to it).
 
-use super::weights::{convex_weights, pivot};
+use super::weights::{check_lengths, convex_weights, pivot};
 use crate::{DualQuat, Real, Result};
 
 /// DLB of unit dual quaternions (weights made convex).
 pub fn dlb<T: Real>(q: &[DualQuat<T>], w: &[T]) -> Result<DualQuat<T>> {
-    let w = convex_weights(w, q.len())?;
-    let p = q[pivot(&w)].real;
+    dlb_convex(q, &convex_weights(w, q.len())?)
+}
+
+/// DLB with weights that are already convex (non-negative, summing to 1; only the lengths
+/// are checked) and no allocation: for callers that blend once per vertex.
+pub fn dlb_convex<T: Real>(q: &[DualQuat<T>], w: &[T]) -> Result<DualQuat<T>> {
+    check_lengths(q.len(), w.len())?;
+    let p = q[pivot(w)].real;
     let mut sum = DualQuat::new(crate::Quat::zero(), crate::Quat::zero());
-    for (qi, wi) in q.iter().zip(&w) {
+    for (qi, wi) in q.iter().zip(w) {
         let s = if qi.real.dot(p) < T::ZERO { -*wi } else { *wi };
         sum = sum + *qi * s;
     }

@@ -7,25 +7,37 @@
 //! linearly, about a chosen centre — a decomposition like Dec, and coordinate dependent for
 //! the same reason.
 
-use super::weights::{convex_weights, pivot};
+use super::weights::{check_lengths, convex_weights, pivot};
 use crate::{DualQuat, Quat, Real, Result, Vec3};
 
 /// QLB of rotations (weights made convex).
 pub fn qlb_rotation<T: Real>(q: &[Quat<T>], w: &[T]) -> Result<Quat<T>> {
     let w = convex_weights(w, q.len())?;
-    let p = q[pivot(&w)];
+    rotation_sum(q.iter().copied(), &w).normalize()
+}
+
+/// `Σ ±wᵢ qᵢ`, each sign putting qᵢ in the pivot's hemisphere. Weights convex, lengths equal
+/// and not zero.
+fn rotation_sum<T: Real>(q: impl Iterator<Item = Quat<T>> + Clone, w: &[T]) -> Quat<T> {
+    let p = q.clone().nth(pivot(w)).unwrap_or_else(Quat::zero);
     let mut sum = Quat::zero();
-    for (qi, wi) in q.iter().zip(&w) {
+    for (qi, wi) in q.zip(w) {
         let s = if qi.dot(p) < T::ZERO { -*wi } else { *wi };
-        sum += *qi * s;
+        sum += qi * s;
     }
-    sum.normalize()
+    sum
 }
 
 /// Rigid transformations: rotation by QLB, translation of `center` blended linearly.
 pub fn qlb<T: Real>(x: &[DualQuat<T>], w: &[T], center: Vec3<T>) -> Result<DualQuat<T>> {
-    let w = convex_weights(w, x.len())?;
-    let rotations: Vec<Quat<T>> = x.iter().map(|d| d.real).collect();
-    let r = qlb_rotation(&rotations, &w)?;
-    Ok(super::dec::recompose(x, &w, r, center))
+    qlb_convex(x, &convex_weights(w, x.len())?, center)
+}
+
+/// [`qlb`] with weights that are already convex (non-negative, summing to 1; only the
+/// lengths are checked) and no allocation: for callers that blend once per vertex
+/// (skinning).
+pub fn qlb_convex<T: Real>(x: &[DualQuat<T>], w: &[T], center: Vec3<T>) -> Result<DualQuat<T>> {
+    check_lengths(x.len(), w.len())?;
+    let r = rotation_sum(x.iter().map(|d| d.real), w).normalize()?;
+    Ok(super::dec::recompose(x, w, r, center))
 }

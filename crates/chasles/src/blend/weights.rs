@@ -10,16 +10,7 @@ use crate::{Error, Real, Result};
 
 /// Validates and scales weights to sum to 1. `n` is the number of transforms.
 pub fn convex_weights<T: Real>(w: &[T], n: usize) -> Result<Vec<T>> {
-    if n == 0 {
-        return Err(Error::BlendInput {
-            what: "nothing to blend: no transforms".into(),
-        });
-    }
-    if w.len() != n {
-        return Err(Error::BlendInput {
-            what: format!("{n} transforms but {} weights", w.len()),
-        });
-    }
+    check_lengths(n, w.len())?;
     let mut sum = T::ZERO;
     for (index, v) in w.iter().enumerate() {
         if !v.is_finite() || *v < T::ZERO {
@@ -46,4 +37,20 @@ pub fn pivot<T: Real>(w: &[T]) -> usize {
         }
     }
     best
+}
+
+/// The length check of the `*_convex` blends (weights already convex, no allocation): at
+/// least one transform, one weight each.
+pub(crate) fn check_lengths(n: usize, w: usize) -> Result<()> {
+    if n == 0 {
+        return Err(Error::BlendInput {
+            what: "nothing to blend: no transforms".into(),
+        });
+    }
+    if w != n {
+        return Err(Error::BlendInput {
+            what: format!("{n} transforms but {w} weights"),
+        });
+    }
+    Ok(())
 }

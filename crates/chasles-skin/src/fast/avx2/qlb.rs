@@ -1,0 +1,177 @@
+//! QLB and SBS (`super::super::qlb`) eight vertices at a time with AVX2 and FMA: each
+//! vertex's four joint rows are whole-register loads (three registers a row) and blended in
+//! registers — the rotation quaternions with the antipodality signs of the pivot's row of
+//! the sign table (`Antipodes`; the scalar kernel's dot products where there is no table),
+//! the matrices and origins with the plain weights — then eight blends are transposed into
+//! lanes and moved about their centres lane-parallel, with fused multiply-adds (the scalar
+//! kernel's formulas, so the two agree to rounding).
+
+use super::super::{real_dot, Antipodes, Out, Vertex};
+use super::{eight, load_head, store_rows, transpose8};
+use std::arch::x86_64::*;
+
+/// Floats per joint row (`super::super::qlb::Row`).
+const ROW: usize = 24;
+
+/// The antipodality sign of each influence (−0.0 to flip, +0.0 to keep, in all lanes):
+/// from the table's row for the vertex's pivot, or the scalar kernel's dot products.
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn signs(vx: &Vertex<4>, rows: &[[f32; ROW]], table: &Antipodes) -> [__m256; 4] {
+    let j = [0, 1, 2, 3].map(|k| usize::from(vx.j[k]));
+    // Written out, as everywhere in these kernels: array maps of closures can stay calls.
+    if table.is_empty() {
+        let pivot = rows.get_unchecked(j[0]);
+        let sign = |j: usize| {
+            let neg = real_dot(rows.get_unchecked(j), pivot) < 0.0;
+            _mm256_set1_ps(if neg { -0.0 } else { 0.0 })
+        };
+        [sign(j[0]), sign(j[1]), sign(j[2]), sign(j[3])]
+    } else {
+        let row = table.signs.as_ptr().add(j[0] * table.joints);
+        let sign = |j: usize| _mm256_broadcast_ss(&*row.add(j));
+        [sign(j[0]), sign(j[1]), sign(j[2]), sign(j[3])]
+    }
+}
+
+/// One vertex's blended row: `[Σ ±wₖ qₖ, Σ wₖ (row 0 of [R|t])ₖ]`, `[rows 1 and 2]`, and
+/// unless `SBS` (whose centres come from the clusters), `[Σ wₖ cₖ, 0…]`.
+///
+/// `inline(always)` without `target_feature` (the two cannot go together): as a plain
+/// `#[inline]` AVX2 function it stayed a call, one per vertex; it is only called from the
+/// AVX2 kernel body, into which it and its intrinsics are inlined.
+#[inline(always)]
+unsafe fn blend<const SBS: bool>(
+    vx: &Vertex<4>,
+    rows: &[[f32; ROW]],
+    table: &Antipodes,
+) -> [__m256; 3] {
+    let rb = rows.as_ptr() as *const f32;
+    let low = _mm256_setr_ps(-0.0, -0.0, -0.0, -0.0, 0.0, 0.0, 0.0, 0.0);
+    let s = signs(vx, rows, table);
+    let mut out = [_mm256_setzero_ps(); 3];
+    // By index: zipped iterators over the three arrays compiled to slower code.
+    #[allow(clippy::needless_range_loop)]
+    for k in 0..4 {
+        let r = rb.add(usize::from(vx.j[k]) * ROW);
+        let w = _mm256_broadcast_ss(&vx.w[k]);
+        // The sign touches the quaternion's four lanes only.
+        let sw = _mm256_xor_ps(w, _mm256_and_ps(s[k], low));
+        out[0] = _mm256_fmadd_ps(sw, _mm256_loadu_ps(r), out[0]);
+        out[1] = _mm256_fmadd_ps(w, _mm256_loadu_ps(r.add(8)), out[1]);
+        if !SBS {
+            out[2] = _mm256_fmadd_ps(w, _mm256_loadu_ps(r.add(16)), out[2]);
+        }
+    }
+    out
+}
+
+/// QLB for the first `v.len() / 8 * 8` vertices, each about the blend of its joints'
+/// origins; returns how many were done.
+///
+/// # Safety
+/// The processor must have AVX2 and FMA, every joint index in `v` must be below
+/// `rows.len()`, `table` must be empty or made from `rows`, and `o.len() >= v.len()`.
+#[target_feature(enable = "avx2,fma")]
+pub unsafe fn qlb(v: &[Vertex<4>], rows: &[[f32; ROW]], table: &Antipodes, o: &mut [Out]) -> usize {
+    blocks::<false>(v, rows, table, &[], &[], o)
+}
+
+/// SBS for the first `v.len() / 8 * 8` vertices, each about its cluster's centre
+/// (`centres[cluster[i]]`, padded to 8 floats); returns how many were done.
+///
+/// # Safety
+/// As for [`qlb`], and every `cluster[i]` (for `i < v.len()`) must be below
+/// `centres.len()`.
+#[target_feature(enable = "avx2,fma")]
+pub unsafe fn sbs(
+    v: &[Vertex<4>],
+    rows: &[[f32; ROW]],
+    table: &Antipodes,
+    cluster: &[u32],
+    centres: &[[f32; 8]],
+    o: &mut [Out],
+) -> usize {
+    blocks::<true>(v, rows, table, cluster, centres, o)
+}
+
+/// The body over whole blocks of eight: each vertex's blended row, and its centre — its
+/// cluster's with `SBS` (`centres[cluster[i]]`), else the blend of its joints' origins.
+/// Generic over `SBS` rather than taking the blend as a closure: the closure stayed a call.
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn blocks<const SBS: bool>(
+    v: &[Vertex<4>],
+    rows: &[[f32; ROW]],
+    table: &Antipodes,
+    cluster: &[u32],
+    centres: &[[f32; 8]],
+    o: &mut [Out],
+) -> usize {
+    let two = _mm256_set1_ps(2.0);
+    let blocks = v.len() / 8;
+    for blk in 0..blocks {
+        let i = blk * 8;
+        let [px, py, pz, nx, ny, nz, _, _] = load_head(v, i);
+        let r = eight(
+            #[inline(always)]
+            |l| {
+                let [a, b, c] = blend::<SBS>(v.get_unchecked(i + l), rows, table);
+                if SBS {
+                    let c = centres.get_unchecked(*cluster.get_unchecked(i + l) as usize);
+                    [a, b, _mm256_loadu_ps(c.as_ptr())]
+                } else {
+                    [a, b, c]
+                }
+            },
+        );
+        let lanes = |k: usize| {
+            transpose8([
+                r[0][k], r[1][k], r[2][k], r[3][k], r[4][k], r[5][k], r[6][k], r[7][k],
+            ])
+        };
+        let [w0, x0, y0, z0, m00, m01, m02, m03] = lanes(0);
+        let [m10, m11, m12, m13, m20, m21, m22, m23] = lanes(1);
+        let [cx, cy, cz, _, _, _, _, _] = lanes(2);
+        let mul = |a, b| _mm256_mul_ps(a, b);
+        let add = |a, b| _mm256_add_ps(a, b);
+        let sub = |a, b| _mm256_sub_ps(a, b);
+        let fma = |a, b, c| _mm256_fmadd_ps(a, b, c);
+        let fms = |a, b, c| _mm256_fmsub_ps(a, b, c);
+        let s = _mm256_div_ps(two, fma(z0, z0, fma(y0, y0, fma(x0, x0, mul(w0, w0)))));
+        // y = Σ wₖ (Rₖ c + tₖ), the blended matrix applied to c.
+        let y = [
+            fma(m02, cz, fma(m01, cy, fma(m00, cx, m03))),
+            fma(m12, cz, fma(m11, cy, fma(m10, cx, m13))),
+            fma(m22, cz, fma(m21, cy, fma(m20, cx, m23))),
+        ];
+        let v0 = [x0, y0, z0];
+        // Component c of a × b.
+        let cross = |a: [__m256; 3], b: [__m256; 3], c: usize| {
+            let (j, k) = ((c + 1) % 3, (c + 2) % 3);
+            fms(a[j], b[k], mul(a[k], b[j]))
+        };
+        // x + s v × (v × x + w x): x rotated by r / ‖r‖ (written out: no array::from_fn).
+        let rotate = |x: [__m256; 3]| {
+            let e = |c: usize| fma(w0, x[c], cross(v0, x, c));
+            let t = [e(0), e(1), e(2)];
+            let f = |c: usize| fma(s, cross(v0, t, c), x[c]);
+            [f(0), f(1), f(2)]
+        };
+        let d = rotate([sub(px, cx), sub(py, cy), sub(pz, cz)]);
+        let n = rotate([nx, ny, nz]);
+        store_rows(
+            o,
+            i,
+            [
+                add(y[0], d[0]),
+                add(y[1], d[1]),
+                add(y[2], d[2]),
+                n[0],
+                n[1],
+                n[2],
+            ],
+        );
+    }
+    blocks * 8
+}

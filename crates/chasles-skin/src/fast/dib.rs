@@ -1,0 +1,77 @@
+//! The fast path for DIB skinning (Kavan et al. 2006, §4, the DIB algorithm box, per vertex):
+//! each vertex's K influences are gathered on the stack and blended by the library's
+//! allocation-free [`dib_convex`] — the DLB start, then `b̂ ← b̂ exp(Σ wᵢ log(b̂* q̂ᵢ))` until
+//! the update is below [`DIB_PRECISION`] or [`DIB_UPDATES`] were made — with rayon over
+//! chunks of vertices. The same calls in the same order as the reference path
+//! ([`crate::skinning`]), so the two give equal numbers (a test checks it on every model and
+//! clip).
+
+use super::{run, FastRig, Kernel, Out, Vertex};
+use crate::error::Result;
+use crate::skinning::{DIB_PRECISION, DIB_UPDATES};
+use chasles::blend::dib::dib_convex;
+use chasles::{DualQuat, Vec3};
+
+/// A vertex's influences of positive weight, in order, with their weights scaled to sum to 1
+/// the way `convex_weights` does (the same sum, the same division: equal bits), on the
+/// stack: the inputs of the library's allocation-free `*_convex` blends. Returns how many.
+#[inline(always)]
+fn gather<const K: usize, J: Copy>(
+    v: &Vertex<K>,
+    joints: &[J],
+    fill: J,
+) -> ([J; K], [f32; K], usize) {
+    let (mut q, mut w, mut n) = ([fill; K], [0f32; K], 0);
+    for k in 0..K {
+        if v.w[k] > 0.0 {
+            q[n] = joints[usize::from(v.j[k])];
+            w[n] = v.w[k];
+            n += 1;
+        }
+    }
+    let mut sum = 0f32;
+    w[..n].iter().for_each(|x| sum += *x);
+    w[..n].iter_mut().for_each(|x| *x /= sum);
+    (q, w, n)
+}
+
+/// A blended unit dual quaternion applied to a vertex (the reference path's last step), or
+/// NaN where the blend failed (non-finite joints).
+#[inline(always)]
+fn dual_quat_out<const K: usize>(b: chasles::Result<chasles::DualQuat<f32>>, v: &Vertex<K>) -> Out {
+    match b {
+        Ok(b) => {
+            let (p, n) =
+                crate::skinning::dual_quat_vertex(&b, Vec3::from_array(v.p), Vec3::from_array(v.n));
+            let ([px, py, pz], [nx, ny, nz]) = (p.to_array(), n.to_array());
+            [px, py, pz, nx, ny, nz]
+        }
+        Err(_) => [f32::NAN; 6],
+    }
+}
+
+struct DibKernel;
+impl<const K: usize> Kernel<K> for DibKernel {
+    type Joint = DualQuat<f32>;
+    type Table = ();
+    fn table(_: &[DualQuat<f32>], _: usize) {}
+    #[cfg(target_arch = "x86_64")]
+    const AVX2: Option<super::SimdKernel<DualQuat<f32>, ()>> = None;
+    #[inline(always)]
+    fn vertex(v: &Vertex<K>, joints: &[DualQuat<f32>]) -> Out {
+        let (q, w, n) = gather(v, joints, DualQuat::identity());
+        let b = dib_convex(&q[..n], &w[..n], DIB_PRECISION, DIB_UPDATES).map(|(b, _)| b);
+        dual_quat_out(b, v)
+    }
+}
+
+/// DIB skinning into `out` with the joints' unit dual quaternions, on all threads when
+/// `parallel`. A vertex whose blend fails (non-finite joints) gets NaN.
+pub fn dib<const K: usize>(
+    rig: &FastRig<K>,
+    d: &[DualQuat<f32>],
+    out: &mut [Out],
+    parallel: bool,
+) -> Result<()> {
+    run::<K, DibKernel>(rig, d, out, parallel)
+}

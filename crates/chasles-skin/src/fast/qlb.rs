@@ -1,0 +1,289 @@
+//! The fast paths for the decomposed blends about a centre (Kavan et al. 2006, §2.2 and §6):
+//! decomposed QLB about the vertex's weighted joint origins (Hejl 2004) and spherical blend
+//! skinning about its cluster's rotation centre (Kavan & Žára 2005), the centres solved once
+//! per pose ([`crate::rotation_centre::Clusters::centres`]).
+//!
+//! Each joint is one [`Row`] of 24 floats made once per pose: its rotation quaternion, its
+//! rigid transform as a 3×4 matrix `[R | t]` (of the dual quaternion) and its bind origin.
+//! A vertex about a centre c blends its rows linearly — the quaternions with the
+//! antipodality signs against the pivot (QLB), the matrices and origins with the plain
+//! weights — and moves by
+//!
+//! ```text
+//! p' = Σ wₖ (Rₖ c + tₖ) + r̂ (p − c),    n' = r̂ n,    r̂ = r / ‖r‖,  r = Σ ±wₖ qₖ
+//! ```
+//!
+//! which is [`chasles::blend::qlb::qlb`]'s recomposition (the centre's images blended, the
+//! rest rotated by the QLB rotation) written out: `Σ wₖ (Rₖ c + tₖ)` is the blended matrix
+//! applied to c, and the rotation by r̂ takes no square root (every term is quadratic in r:
+//! one factor 2/‖r‖², as in DQS). QLB's c is the blended origins; SBS's is its cluster's.
+//! Eight vertices at a time with AVX2 and FMA where the processor has them (4 influences;
+//! `avx2::qlb`), the scalar kernel below elsewhere; rayon over chunks. Agrees with the
+//! reference path to 1e-5 (a test checks every model and clip).
+
+use super::{check, run, Antipodes, FastRig, Kernel, Out, Vertex, CHUNK};
+use crate::error::{invalid, Result};
+use crate::rotation_centre::Clusters;
+use chasles::DualQuat;
+use rayon::prelude::*;
+
+/// A joint for QLB and SBS: `[w, x, y, z]` of its rotation, the rows of `[R | t]` (12),
+/// its bind origin (3), then 5 zeros — three 8-float registers.
+pub type Row = [f32; 24];
+
+/// The rows of joint transforms `d` with bind origins `centres`.
+fn rows(d: &[DualQuat<f32>], centres: &[chasles::Vec3<f32>]) -> Vec<Row> {
+    d.iter()
+        .zip(centres)
+        .map(|(d, c)| {
+            let m = d.to_matrix4();
+            let mut r = [0f32; 24];
+            r[..4].copy_from_slice(&[d.real.w, d.real.x, d.real.y, d.real.z]);
+            for i in 0..12 {
+                r[4 + i] = m.m[i / 4][i % 4];
+            }
+            r[16..19].copy_from_slice(&c.to_array());
+            r
+        })
+        .collect()
+}
+
+/// A vertex's blended row: `Σ ±wₖ qₖ` (signs against the pivot, the heaviest influence),
+/// then `Σ wₖ [Rₖ | tₖ]` and `Σ wₖ cₖ`.
+#[inline(always)]
+fn blend<const K: usize>(v: &Vertex<K>, rows: &[Row]) -> [f32; 19] {
+    let pivot = &rows[usize::from(v.j[0])];
+    let mut b = [0f32; 19];
+    for k in 0..K {
+        let r = &rows[usize::from(v.j[k])];
+        let w = v.w[k];
+        let sw = if super::real_dot(r, pivot) < 0.0 {
+            -w
+        } else {
+            w
+        };
+        for i in 0..4 {
+            b[i] += sw * r[i];
+        }
+        for i in 4..19 {
+            b[i] += w * r[i];
+        }
+    }
+    b
+}
+
+/// The vertex moved by a blended row about the centre `c` (see the module's formula).
+#[inline(always)]
+fn about<const K: usize>(v: &Vertex<K>, b: &[f32; 19], c: [f32; 3]) -> Out {
+    let [w0, x0, y0, z0] = [b[0], b[1], b[2], b[3]];
+    let s = 2.0 / (w0 * w0 + x0 * x0 + y0 * y0 + z0 * z0);
+    // y = Σ wₖ (Rₖ c + tₖ): the blended matrix applied to c.
+    let y: [f32; 3] = core::array::from_fn(|i| {
+        b[4 + 4 * i] * c[0] + b[5 + 4 * i] * c[1] + b[6 + 4 * i] * c[2] + b[7 + 4 * i]
+    });
+    // x + s v × (v × x + w x): x rotated by the unit r̂ = r / ‖r‖.
+    let rotate = |x: [f32; 3]| {
+        let t = [
+            y0 * x[2] - z0 * x[1] + w0 * x[0],
+            z0 * x[0] - x0 * x[2] + w0 * x[1],
+            x0 * x[1] - y0 * x[0] + w0 * x[2],
+        ];
+        [
+            x[0] + s * (y0 * t[2] - z0 * t[1]),
+            x[1] + s * (z0 * t[0] - x0 * t[2]),
+            x[2] + s * (x0 * t[1] - y0 * t[0]),
+        ]
+    };
+    let d = rotate([v.p[0] - c[0], v.p[1] - c[1], v.p[2] - c[2]]);
+    let n = rotate(v.n);
+    [y[0] + d[0], y[1] + d[1], y[2] + d[2], n[0], n[1], n[2]]
+}
+
+/// Decomposed QLB; a joint is a [`Row`].
+struct QlbKernel;
+impl<const K: usize> Kernel<K> for QlbKernel {
+    type Joint = Row;
+    type Table = Antipodes;
+    fn table(joints: &[Row], vertices: usize) -> Antipodes {
+        Antipodes::new(joints, vertices)
+    }
+    #[cfg(target_arch = "x86_64")]
+    const AVX2: Option<super::SimdKernel<Row, Antipodes>> = Some(super::avx2::qlb::qlb);
+    #[inline(always)]
+    fn vertex(v: &Vertex<K>, joints: &[Row]) -> Out {
+        let b = blend(v, joints);
+        about(v, &b, [b[16], b[17], b[18]])
+    }
+}
+
+/// Decomposed QLB skinning (Hejl 2004) into `out` with the joints' unit dual quaternions,
+/// each vertex rotated about the weighted bind origins of its joints ([`FastRig::centres`]);
+/// on all threads when `parallel`.
+pub fn qlb<const K: usize>(
+    rig: &FastRig<K>,
+    d: &[DualQuat<f32>],
+    out: &mut [Out],
+    parallel: bool,
+) -> Result<()> {
+    check(rig, d.len(), out.len())?;
+    run::<K, QlbKernel>(rig, &rows(d, rig.centres()), out, parallel)
+}
+
+/// Spherical blend skinning into `out` with the joints' unit dual quaternions: the rotation
+/// centre of each of `clusters` (made once for the rig with [`clusters`]) is solved for this
+/// pose, and each vertex is blended by QLB about its cluster's; on all threads when
+/// `parallel`.
+pub fn sbs<const K: usize>(
+    rig: &FastRig<K>,
+    clusters: &Clusters,
+    d: &[DualQuat<f32>],
+    out: &mut [Out],
+    parallel: bool,
+) -> Result<()> {
+    check(rig, d.len(), out.len())?;
+    if clusters.of_vertex().len() != rig.vertices().len() {
+        return invalid(format!(
+            "clusters of {} vertices for a rig of {}",
+            clusters.of_vertex().len(),
+            rig.vertices().len()
+        ));
+    }
+    // Centres padded to 8 floats: the SIMD kernel loads each as one register.
+    let centres: Vec<[f32; 8]> = clusters
+        .centres(d, rig.centres())
+        .into_iter()
+        .map(|c| [c.x, c.y, c.z, 0.0, 0.0, 0.0, 0.0, 0.0])
+        .collect();
+    let rows = rows(d, rig.centres());
+    let simd = super::simd(K);
+    let table = if simd {
+        Antipodes::new(&rows, rig.vertices().len())
+    } else {
+        Antipodes::default()
+    };
+    let chunk = |(o, (v, cl)): (&mut [Out], (&[Vertex<K>], &[u32]))| {
+        let mut done = 0;
+        #[cfg(target_arch = "x86_64")]
+        if simd {
+            // SAFETY: `simd` holds only for K == 4 on a processor with AVX2 and FMA; the
+            // joint indices were checked when the rig was built and `check` matched `rows`
+            // to the joint count; every cluster index is below `centres.len()` (both from
+            // `clusters`); `table` was made from `rows`; `o` is as long as `v` and `cl`.
+            done = unsafe {
+                let v4 = &*(v as *const [Vertex<K>] as *const [Vertex<4>]);
+                super::avx2::qlb::sbs(v4, &rows, &table, cl, &centres, o)
+            };
+        }
+        for ((o, v), c) in o.iter_mut().zip(v).zip(cl).skip(done) {
+            let c = &centres[*c as usize];
+            *o = about(v, &blend(v, &rows), [c[0], c[1], c[2]]);
+        }
+    };
+    let (v, c) = (rig.vertices(), clusters.of_vertex());
+    if parallel {
+        out.par_chunks_mut(CHUNK)
+            .zip(v.par_chunks(CHUNK).zip(c.par_chunks(CHUNK)))
+            .for_each(chunk);
+    } else {
+        out.chunks_mut(CHUNK)
+            .zip(v.chunks(CHUNK).zip(c.chunks(CHUNK)))
+            .for_each(chunk);
+    }
+    Ok(())
+}
+
+/// The SBS clusters of a fast rig: its vertices grouped by the joints of positive weight.
+pub fn clusters<const K: usize>(rig: &FastRig<K>) -> Clusters {
+    let v = rig.vertices();
+    Clusters::new(v.len(), |i| {
+        (0..K)
+            .filter(|k| v[i].w[*k] > 0.0)
+            .map(|k| v[i].j[k])
+            .collect::<Vec<_>>()
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::synthetic;
+
+    /// QLB rows of random joints, and the same with every odd joint's quaternion negated
+    /// (the same rotations: antipodal pairs everywhere).
+    fn flipped(rig: &FastRig<4>) -> (Vec<Row>, Vec<Row>) {
+        let r = rows(
+            &synthetic::joints(rig.joints(), 5).dual_quats,
+            rig.centres(),
+        );
+        let mut f = r.clone();
+        for row in f.iter_mut().skip(1).step_by(2) {
+            row[..4].iter_mut().for_each(|x| *x = -*x);
+        }
+        (r, f)
+    }
+
+    #[test]
+    fn negated_quaternions_skin_the_same_on_every_kernel() {
+        let rig = synthetic::rig(1003, 54, 5);
+        let (r, f) = flipped(&rig);
+        let scalar = |rows: &[Row]| -> Vec<Out> {
+            rig.vertices()
+                .iter()
+                .map(|v| QlbKernel::vertex(v, rows))
+                .collect()
+        };
+        let (want, got) = (scalar(&r), scalar(&f));
+        let close = |a: &[Out], b: &[Out], tol: f32| {
+            for (a, b) in a.iter().zip(b) {
+                for k in 0..6 {
+                    assert!((a[k] - b[k]).abs() < tol, "{a:?} {b:?}");
+                }
+            }
+        };
+        close(&want, &got, 1e-5);
+        #[cfg(target_arch = "x86_64")]
+        if super::super::simd(4) {
+            let run = |table: &Antipodes| {
+                let mut out = vec![[f32::NAN; 6]; 1003];
+                // SAFETY: AVX2 and FMA are present (`simd`), the synthetic rig's joint
+                // indices are below 54 = f.len(), the table is empty or made from `f`.
+                let done =
+                    unsafe { super::super::avx2::qlb::qlb(rig.vertices(), &f, table, &mut out) };
+                assert_eq!(done, 1000);
+                out.truncate(done);
+                out
+            };
+            let (dots, looked_up) = (
+                run(&Antipodes::default()),
+                run(&Antipodes::new(&f, usize::MAX)),
+            );
+            // The two ways to the signs give the same numbers, bit for bit, and the SIMD
+            // kernel (fused multiply-adds) is the scalar one to rounding.
+            assert_eq!(dots, looked_up);
+            close(&looked_up, &got[..1000], 4e-6);
+        } else {
+            eprintln!("no AVX2+FMA here: only the scalar kernel is checked");
+        }
+    }
+
+    #[test]
+    fn one_joint_moves_rigidly_and_the_centre_does_not_matter() {
+        // A vertex bound to one joint moves by that joint's transform, whatever the centre.
+        let rig = synthetic::rig(8, 54, 9);
+        let d = synthetic::joints(54, 9).dual_quats;
+        let r = rows(&d, rig.centres());
+        for v in rig.vertices() {
+            let one = Vertex {
+                w: [1.0, 0.0, 0.0, 0.0],
+                ..*v
+            };
+            let b = blend(&one, &r);
+            let want = d[usize::from(v.j[0])].transform_point(chasles::Vec3::from_array(v.p));
+            for c in [[0.0; 3], [10.0, -3.0, 2.0]] {
+                let o = about(&one, &b, c);
+                let got = chasles::Vec3::new(o[0], o[1], o[2]);
+                assert!((got - want).norm() < 1e-4, "{got:?} vs {want:?}");
+            }
+        }
+    }
+}
