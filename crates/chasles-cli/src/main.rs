@@ -153,53 +153,7 @@ enum Command {
     ///   chasles skin --rig CesiumMan.glb --all-frames --fps 24 --method lbs --out frames/
     ///   chasles skin --artifacts      (the candy-wrapper table on a twisted cylinder)
     #[command(verbatim_doc_comment)]
-    Skin {
-        /// The rig: .gltf, .glb, or .json (the plain format of chasles_skin::json_rig).
-        #[arg(long)]
-        rig: Option<std::path::PathBuf>,
-        /// The clip, by name or index (default: the first, when --time or --all-frames is given).
-        #[arg(long)]
-        anim: Option<String>,
-        /// Time in the clip, seconds (default 0; without --anim and --time: the rest pose).
-        #[arg(long, allow_negative_numbers = true)]
-        time: Option<f32>,
-        /// A JSON pose, {"joints": {name or index: {rotation, translation, scale}}}, instead of a clip.
-        #[arg(long)]
-        pose: Option<std::path::PathBuf>,
-        /// lbs, dqs, dib, log, qlb or sbs.
-        #[arg(long, default_value = "dqs")]
-        method: String,
-        /// Output .obj, .ply, .glb or .json; with --all-frames, a folder for frame_NNNNN.obj files.
-        #[arg(long)]
-        out: Option<std::path::PathBuf>,
-        /// Skin every frame of the clip.
-        #[arg(long)]
-        all_frames: bool,
-        /// Frames per second for --all-frames.
-        #[arg(long, default_value_t = 30.0)]
-        fps: f32,
-        /// Print the candy-wrapper table (twist and bend of a two-bone cylinder, every method).
-        #[arg(long)]
-        artifacts: bool,
-        /// Measure LBS and DQS speed on synthetic meshes of 10^5 and 10^6 vertices.
-        #[arg(long)]
-        bench: bool,
-        /// Also write the pose skinned by every method, side by side, as PNG (with --artifacts: the cylinder twisted 180°).
-        #[arg(long)]
-        render: Option<std::path::PathBuf>,
-        /// Also write an animated GIF of LBS beside DQS: the clip at --fps (with --artifacts: the twist sweep).
-        #[arg(long)]
-        gif: Option<std::path::PathBuf>,
-        /// Also write a line plot, SVG: LBS's smallest local volume over the clip (with --artifacts: middle radius against twist, every method).
-        #[arg(long)]
-        plot: Option<std::path::PathBuf>,
-        /// Also write the clip's most-turning joint rotation on the unit sphere (Dam et al. §5.3), PNG.
-        #[arg(long)]
-        sphere: Option<std::path::PathBuf>,
-        /// Where to skin: cpu, gpu (any adapter, lavapipe included) or auto (a hardware GPU for lbs/dqs/dib when there is one).
-        #[arg(long, value_enum, default_value_t = device::Device::Auto)]
-        device: device::Device,
-    },
+    Skin(skin::SkinArgs),
     /// Convert one rotation or rigid motion between representations.
     ///
     /// Representations: quat (w x y z), matrix (9 or 16 numbers, row-major), matrix3,
@@ -266,40 +220,7 @@ fn main() {
         Command::Tour { samples, seed, out } => {
             tour::run(tour::TourArgs { samples, seed, out }).map(|_| 0)
         }
-        Command::Skin {
-            rig,
-            anim,
-            time,
-            pose,
-            method,
-            out,
-            all_frames,
-            fps,
-            artifacts,
-            bench,
-            render,
-            gif,
-            plot,
-            sphere,
-            device,
-        } => skin::run(skin::SkinArgs {
-            rig,
-            anim,
-            time,
-            pose,
-            method,
-            out,
-            all_frames,
-            fps,
-            artifacts,
-            bench,
-            render,
-            gif,
-            plot,
-            sphere,
-            device,
-        })
-        .map(|_| 0),
+        Command::Skin(args) => skin::run(args).map(|_| 0),
         Command::Blend {
             method,
             input,

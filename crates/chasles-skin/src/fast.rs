@@ -207,7 +207,7 @@ fn dqs_vertex<const K: usize>(v: &Vertex<K>, d: &[[f32; 8]]) -> Out {
     }
     // The unit dual quaternion is b / ‖b0‖; every term below is quadratic in b, so the
     // normalization is one factor s = 2 / ‖b0‖² (no square root, no eight divisions):
-    // p' = p + s (v0 × (v0 × p + w0 p) + w0 vε − wε v0 + v0 × vε)
+    // p' = p + s (v0 × (v0 × p + w0 p) + w0 vε − wε v0 + v0 × vε), n' = n + s v0 × (v0 × n + w0 n)
     let s = 2.0 / (b[0] * b[0] + b[1] * b[1] + b[2] * b[2] + b[3] * b[3]);
     let [w0, x0, y0, z0, we, xe, ye, ze] = b;
     let [px, py, pz] = v.p;
@@ -219,17 +219,33 @@ fn dqs_vertex<const K: usize>(v: &Vertex<K>, d: &[[f32; 8]]) -> Out {
     let qx = px + s * ((y0 * tz - z0 * ty) + (w0 * xe - we * x0 + y0 * ze - z0 * ye));
     let qy = py + s * ((z0 * tx - x0 * tz) + (w0 * ye - we * y0 + z0 * xe - x0 * ze));
     let qz = pz + s * ((x0 * ty - y0 * tx) + (w0 * ze - we * z0 + x0 * ye - y0 * xe));
-    // n' = n + s v0 × (v0 × n + w0 n)
-    let [nx, ny, nz] = v.n;
+    let [mx, my, mz] = rotate_scaled([w0, x0, y0, z0], s, v.n);
+    [qx, qy, qz, mx, my, mz]
+}
+
+/// `x + s v × (v × x + w x)` for a quaternion `(w, v)` and `s = 2 / ‖(w, v)‖²`: x rotated by
+/// the unit quaternion `(w, v) / ‖(w, v)‖` with no square root (the normals of DQS, and
+/// QLB's rotation about a centre).
+#[inline(always)]
+fn rotate_scaled([w0, x0, y0, z0]: [f32; 4], s: f32, x: [f32; 3]) -> [f32; 3] {
+    let [nx, ny, nz] = x;
     let (sx, sy, sz) = (
         y0 * nz - z0 * ny + w0 * nx,
         z0 * nx - x0 * nz + w0 * ny,
         x0 * ny - y0 * nx + w0 * nz,
     );
-    let mx = nx + s * (y0 * sz - z0 * sy);
-    let my = ny + s * (z0 * sx - x0 * sz);
-    let mz = nz + s * (x0 * sy - y0 * sx);
-    [qx, qy, qz, mx, my, mz]
+    [
+        nx + s * (y0 * sz - z0 * sy),
+        ny + s * (z0 * sx - x0 * sz),
+        nz + s * (x0 * sy - y0 * sx),
+    ]
+}
+
+/// A vertex's output from its position and normal.
+#[inline(always)]
+fn out_of(p: Vec3<f32>, n: Vec3<f32>) -> Out {
+    let ([px, py, pz], [nx, ny, nz]) = (p.to_array(), n.to_array());
+    [px, py, pz, nx, ny, nz]
 }
 
 /// Vertices per parallel task.
@@ -343,20 +359,43 @@ fn run<const K: usize, F: Kernel<K>>(
     parallel: bool,
 ) -> Result<()> {
     check(rig, joints.len(), out.len())?;
+    let (simd, table) = pose_table::<K, F>(joints, rig.vertices.len());
+    for_chunks(out, &rig.vertices, parallel, |_, o, v| {
+        F::chunk(o, v, joints, &table, simd)
+    });
+    Ok(())
+}
+
+/// Whether the SIMD kernels run here, and the per-pose table of kernel `F` for `joints`
+/// (made only for them: the scalar kernels do not read it).
+fn pose_table<const K: usize, F: Kernel<K>>(
+    joints: &[F::Joint],
+    vertices: usize,
+) -> (bool, F::Table) {
     let simd = simd(K);
-    // Only the SIMD kernels read the table.
-    let table = F::table(if simd { joints } else { &[] }, rig.vertices.len());
-    let table = &table;
+    (simd, F::table(if simd { joints } else { &[] }, vertices))
+}
+
+/// `chunk(first, out, vertices)` over chunks of [`CHUNK`] vertices (`first`: the index of
+/// the chunk's first vertex), on all threads when `parallel`.
+fn for_chunks<const K: usize>(
+    out: &mut [Out],
+    vertices: &[Vertex<K>],
+    parallel: bool,
+    chunk: impl Fn(usize, &mut [Out], &[Vertex<K>]) + Sync,
+) {
+    let each = |(c, (o, v)): (usize, (&mut [Out], &[Vertex<K>]))| chunk(c * CHUNK, o, v);
     if parallel {
         out.par_chunks_mut(CHUNK)
-            .zip(rig.vertices.par_chunks(CHUNK))
-            .for_each(|(o, v)| F::chunk(o, v, joints, table, simd));
+            .zip(vertices.par_chunks(CHUNK))
+            .enumerate()
+            .for_each(each);
     } else {
         out.chunks_mut(CHUNK)
-            .zip(rig.vertices.chunks(CHUNK))
-            .for_each(|(o, v)| F::chunk(o, v, joints, table, simd));
+            .zip(vertices.chunks(CHUNK))
+            .enumerate()
+            .for_each(each);
     }
-    Ok(())
 }
 
 /// Linear blend skinning into `out`, on all threads when `parallel`.

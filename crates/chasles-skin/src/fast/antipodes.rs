@@ -48,6 +48,29 @@ impl Antipodes {
     }
 }
 
+/// Runs a SIMD kernel over 1003 vertices with no sign table (dot products) and with the
+/// table of `joints`, checks that it did the 1000 in whole blocks and that the two ways to
+/// the signs gave the same numbers bit for bit, and returns those 1000 results.
+#[cfg(all(test, target_arch = "x86_64"))]
+pub(super) fn both_ways<const N: usize>(
+    joints: &[[f32; N]],
+    run: impl Fn(&Antipodes, &mut [super::Out]) -> usize,
+) -> Vec<super::Out> {
+    let go = |table: &Antipodes| {
+        let mut out = vec![[f32::NAN; 6]; 1003];
+        assert_eq!(run(table, &mut out), 1000);
+        out.truncate(1000);
+        out
+    };
+    let dots = go(&Antipodes::default());
+    let looked_up = go(&Antipodes::new(joints, usize::MAX));
+    assert_eq!(
+        dots, looked_up,
+        "the sign table and the dot products disagree"
+    );
+    looked_up
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -98,22 +121,13 @@ mod tests {
         }
         #[cfg(target_arch = "x86_64")]
         if crate::fast::simd(4) {
-            let run = |table: &Antipodes| {
-                let mut out = vec![[f32::NAN; 6]; 1003];
-                // SAFETY: the processor has AVX2 and FMA (`simd`), the synthetic rig's joint
-                // indices are below 54, the table is empty or made from `f`.
-                let done = unsafe { crate::fast::avx2::dqs(rig.vertices(), &f, table, &mut out) };
-                assert_eq!(done, 1000);
-                out.truncate(done);
-                out
-            };
-            let (dots, looked_up) = (
-                run(&Antipodes::default()),
-                run(&Antipodes::new(&f, usize::MAX)),
-            );
-            // The two ways to the signs give the same blends, bit for bit ...
-            assert_eq!(dots, looked_up);
-            // ... and the SIMD kernel (fused multiply-adds) is the scalar one to rounding.
+            // SAFETY: the processor has AVX2 and FMA (`simd`), the synthetic rig's joint
+            // indices are below 54, the table is empty or made from `f`.
+            let looked_up = both_ways(&f, |table, out| unsafe {
+                crate::fast::avx2::dqs(rig.vertices(), &f, table, out)
+            });
+            // The two ways to the signs gave the same blends, bit for bit (`both_ways`), and
+            // the SIMD kernel (fused multiply-adds) is the scalar one to rounding.
             for (a, b) in looked_up.iter().zip(&scalar) {
                 for k in 0..6 {
                     assert!((a[k] - b[k]).abs() < 2e-6, "{a:?} {b:?}");

@@ -102,6 +102,32 @@ unsafe fn blend_one(vx: &Vertex<4>, db: *const f32) -> __m256 {
     _mm256_fmadd_ps(_mm256_permute_ps::<0xFF>(w), q[3], b)
 }
 
+/// Component c of `a × b`: `a_j b_k − a_k b_j`, (c, j, k) cyclic, with one fused
+/// multiply-subtract. Shared by the kernels' lane math, which calls it only from AVX2+FMA
+/// code: `inline(always)` (it cannot also carry `target_feature`) puts it and its intrinsics
+/// there.
+#[inline(always)]
+unsafe fn cross(a: [__m256; 3], b: [__m256; 3], c: usize) -> __m256 {
+    let (j, k) = ((c + 1) % 3, (c + 2) % 3);
+    _mm256_fmsub_ps(a[j], b[k], _mm256_mul_ps(a[k], b[j]))
+}
+
+/// `v × x + w x`, lane by lane: the inner step of rotating x by the quaternion (w, v).
+#[inline(always)]
+unsafe fn inner(w: __m256, v: [__m256; 3], x: [__m256; 3]) -> [__m256; 3] {
+    let e = |c: usize| _mm256_fmadd_ps(w, x[c], cross(v, x, c));
+    [e(0), e(1), e(2)]
+}
+
+/// `x + s v × (v × x + w x)`, lane by lane: x rotated by the unit quaternion
+/// `(w, v) / ‖(w, v)‖` given `s = 2 / ‖(w, v)‖²` (no square root).
+#[inline(always)]
+unsafe fn rotate(w: __m256, v: [__m256; 3], s: __m256, x: [__m256; 3]) -> [__m256; 3] {
+    let t = inner(w, v, x);
+    let f = |c: usize| _mm256_fmadd_ps(s, cross(v, t, c), x[c]);
+    [f(0), f(1), f(2)]
+}
+
 /// `[f(0), …, f(7)]`, written out: through `array::from_fn` the kernels' per-vertex blends
 /// stayed calls, one per vertex.
 #[inline(always)]
@@ -221,17 +247,7 @@ unsafe fn dqs_blocks(
         let (v0, ve, p, n) = ([x0, y0, z0], [xe, ye, ze], [px, py, pz], [nx, ny, nz]);
         // s = 2 / ‖b0‖² normalizes (see `dqs_vertex`).
         let s = _mm256_div_ps(two, fma(z0, z0, fma(y0, y0, fma(x0, x0, mul(w0, w0)))));
-        // Component c of a × b: a_j b_k − a_k b_j, (c, j, k) cyclic.
-        let cross = |a: [__m256; 3], b: [__m256; 3], c: usize| {
-            let (j, k) = ((c + 1) % 3, (c + 2) % 3);
-            fms(a[j], b[k], mul(a[k], b[j]))
-        };
-        // v0 × x + w0 x, the rotation's inner step (written out: no array::from_fn).
-        let inner = |x: [__m256; 3]| {
-            let e = |c: usize| fma(w0, x[c], cross(v0, x, c));
-            [e(0), e(1), e(2)]
-        };
-        let (t, u) = (inner(p), inner(n));
+        let t = inner(w0, v0, p);
         // p' = p + s (v0 × t + w0 vε − wε v0 + v0 × vε)
         let q = |c: usize| {
             let (j, k) = ((c + 1) % 3, (c + 2) % 3);
@@ -242,9 +258,9 @@ unsafe fn dqs_blocks(
             );
             fma(s, add(cross(v0, t, c), tr), p[c])
         };
-        // n' = n + s v0 × u
-        let m = |c: usize| fma(s, cross(v0, u, c), n[c]);
-        store_rows(o, i, [q(0), q(1), q(2), m(0), m(1), m(2)]);
+        // n' = n + s v0 × (v0 × n + w0 n)
+        let m = rotate(w0, v0, s, n);
+        store_rows(o, i, [q(0), q(1), q(2), m[0], m[1], m[2]]);
     }
     blocks * 8
 }

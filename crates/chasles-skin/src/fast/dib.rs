@@ -6,22 +6,21 @@
 //! ([`crate::skinning`]), so the two give equal numbers (a test checks it on every model and
 //! clip).
 
-use super::{run, FastRig, Kernel, Out, Vertex};
+use super::{out_of, run, FastRig, Kernel, Out, Vertex};
 use crate::error::Result;
-use crate::skinning::{DIB_PRECISION, DIB_UPDATES};
+use crate::skinning::{dual_quat_vertex, DIB_PRECISION, DIB_UPDATES};
 use chasles::blend::dib::dib_convex;
 use chasles::{DualQuat, Vec3};
 
 /// A vertex's influences of positive weight, in order, with their weights scaled to sum to 1
 /// the way `convex_weights` does (the same sum, the same division: equal bits), on the
-/// stack: the inputs of the library's allocation-free `*_convex` blends. Returns how many.
+/// stack: the inputs of the library's allocation-free [`dib_convex`]. Returns how many.
 #[inline(always)]
-fn gather<const K: usize, J: Copy>(
+fn gather<const K: usize>(
     v: &Vertex<K>,
-    joints: &[J],
-    fill: J,
-) -> ([J; K], [f32; K], usize) {
-    let (mut q, mut w, mut n) = ([fill; K], [0f32; K], 0);
+    joints: &[DualQuat<f32>],
+) -> ([DualQuat<f32>; K], [f32; K], usize) {
+    let (mut q, mut w, mut n) = ([DualQuat::identity(); K], [0f32; K], 0);
     for k in 0..K {
         if v.w[k] > 0.0 {
             q[n] = joints[usize::from(v.j[k])];
@@ -35,21 +34,6 @@ fn gather<const K: usize, J: Copy>(
     (q, w, n)
 }
 
-/// A blended unit dual quaternion applied to a vertex (the reference path's last step), or
-/// NaN where the blend failed (non-finite joints).
-#[inline(always)]
-fn dual_quat_out<const K: usize>(b: chasles::Result<chasles::DualQuat<f32>>, v: &Vertex<K>) -> Out {
-    match b {
-        Ok(b) => {
-            let (p, n) =
-                crate::skinning::dual_quat_vertex(&b, Vec3::from_array(v.p), Vec3::from_array(v.n));
-            let ([px, py, pz], [nx, ny, nz]) = (p.to_array(), n.to_array());
-            [px, py, pz, nx, ny, nz]
-        }
-        Err(_) => [f32::NAN; 6],
-    }
-}
-
 struct DibKernel;
 impl<const K: usize> Kernel<K> for DibKernel {
     type Joint = DualQuat<f32>;
@@ -59,9 +43,15 @@ impl<const K: usize> Kernel<K> for DibKernel {
     const AVX2: Option<super::SimdKernel<DualQuat<f32>, ()>> = None;
     #[inline(always)]
     fn vertex(v: &Vertex<K>, joints: &[DualQuat<f32>]) -> Out {
-        let (q, w, n) = gather(v, joints, DualQuat::identity());
-        let b = dib_convex(&q[..n], &w[..n], DIB_PRECISION, DIB_UPDATES).map(|(b, _)| b);
-        dual_quat_out(b, v)
+        let (q, w, n) = gather(v, joints);
+        match dib_convex(&q[..n], &w[..n], DIB_PRECISION, DIB_UPDATES) {
+            Ok((b, _)) => {
+                let (p, n) = dual_quat_vertex(&b, Vec3::from_array(v.p), Vec3::from_array(v.n));
+                out_of(p, n)
+            }
+            // Non-finite joints.
+            Err(_) => [f32::NAN; 6],
+        }
     }
 }
 

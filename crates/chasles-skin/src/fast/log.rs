@@ -7,7 +7,7 @@
 //! trigonometric calls). The scalar kernel runs the reference path's formulas
 //! ([`crate::skinning`]); tests check both against it to 1e-5 on every model and clip.
 
-use super::{run, Kernel, Out, Vertex};
+use super::{out_of, run, Kernel, Out, Vertex};
 use crate::error::Result;
 use crate::skinning::exp_twist_vertex;
 pub use crate::skinning::twists;
@@ -31,8 +31,7 @@ fn log_vertex<const K: usize>(v: &Vertex<K>, t: &[Row]) -> Out {
         v: Vec3::new(b[3], b[4], b[5]),
     };
     let (p, n) = exp_twist_vertex(&x, Vec3::from_array(v.p), Vec3::from_array(v.n));
-    let ([px, py, pz], [nx, ny, nz]) = (p.to_array(), n.to_array());
-    [px, py, pz, nx, ny, nz]
+    out_of(p, n)
 }
 
 pub(super) struct LogKernel;

@@ -21,11 +21,12 @@
 //! `avx2::qlb`), the scalar kernel below elsewhere; rayon over chunks. Agrees with the
 //! reference path to 1e-5 (a test checks every model and clip).
 
-use super::{check, run, Antipodes, FastRig, Kernel, Out, Vertex, CHUNK};
+use super::{
+    check, for_chunks, pose_table, rotate_scaled, run, Antipodes, FastRig, Kernel, Out, Vertex,
+};
 use crate::error::{invalid, Result};
 use crate::rotation_centre::Clusters;
 use chasles::DualQuat;
-use rayon::prelude::*;
 
 /// A joint for QLB and SBS: `[w, x, y, z]` of its rotation, the rows of `[R | t]` (12),
 /// its bind origin (3), then 5 zeros — three 8-float registers.
@@ -81,19 +82,8 @@ fn about<const K: usize>(v: &Vertex<K>, b: &[f32; 19], c: [f32; 3]) -> Out {
     let y: [f32; 3] = core::array::from_fn(|i| {
         b[4 + 4 * i] * c[0] + b[5 + 4 * i] * c[1] + b[6 + 4 * i] * c[2] + b[7 + 4 * i]
     });
-    // x + s v × (v × x + w x): x rotated by the unit r̂ = r / ‖r‖.
-    let rotate = |x: [f32; 3]| {
-        let t = [
-            y0 * x[2] - z0 * x[1] + w0 * x[0],
-            z0 * x[0] - x0 * x[2] + w0 * x[1],
-            x0 * x[1] - y0 * x[0] + w0 * x[2],
-        ];
-        [
-            x[0] + s * (y0 * t[2] - z0 * t[1]),
-            x[1] + s * (z0 * t[0] - x0 * t[2]),
-            x[2] + s * (x0 * t[1] - y0 * t[0]),
-        ]
-    };
+    // x rotated by the unit r̂ = r / ‖r‖.
+    let rotate = |x| rotate_scaled([w0, x0, y0, z0], s, x);
     let d = rotate([v.p[0] - c[0], v.p[1] - c[1], v.p[2] - c[2]]);
     let n = rotate(v.n);
     [y[0] + d[0], y[1] + d[1], y[2] + d[2], n[0], n[1], n[2]]
@@ -155,13 +145,10 @@ pub fn sbs<const K: usize>(
         .map(|c| [c.x, c.y, c.z, 0.0, 0.0, 0.0, 0.0, 0.0])
         .collect();
     let rows = rows(d, rig.centres());
-    let simd = super::simd(K);
-    let table = if simd {
-        Antipodes::new(&rows, rig.vertices().len())
-    } else {
-        Antipodes::default()
-    };
-    let chunk = |(o, (v, cl)): (&mut [Out], (&[Vertex<K>], &[u32]))| {
+    let (simd, table) = pose_table::<K, QlbKernel>(&rows, rig.vertices().len());
+    let cluster = clusters.of_vertex();
+    for_chunks(out, rig.vertices(), parallel, |first, o, v| {
+        let cl = &cluster[first..first + v.len()];
         let mut done = 0;
         #[cfg(target_arch = "x86_64")]
         if simd {
@@ -178,17 +165,7 @@ pub fn sbs<const K: usize>(
             let c = &centres[*c as usize];
             *o = about(v, &blend(v, &rows), [c[0], c[1], c[2]]);
         }
-    };
-    let (v, c) = (rig.vertices(), clusters.of_vertex());
-    if parallel {
-        out.par_chunks_mut(CHUNK)
-            .zip(v.par_chunks(CHUNK).zip(c.par_chunks(CHUNK)))
-            .for_each(chunk);
-    } else {
-        out.chunks_mut(CHUNK)
-            .zip(v.chunks(CHUNK).zip(c.chunks(CHUNK)))
-            .for_each(chunk);
-    }
+    });
     Ok(())
 }
 
@@ -243,23 +220,13 @@ mod tests {
         close(&want, &got, 1e-5);
         #[cfg(target_arch = "x86_64")]
         if super::super::simd(4) {
-            let run = |table: &Antipodes| {
-                let mut out = vec![[f32::NAN; 6]; 1003];
-                // SAFETY: AVX2 and FMA are present (`simd`), the synthetic rig's joint
-                // indices are below 54 = f.len(), the table is empty or made from `f`.
-                let done =
-                    unsafe { super::super::avx2::qlb::qlb(rig.vertices(), &f, table, &mut out) };
-                assert_eq!(done, 1000);
-                out.truncate(done);
-                out
-            };
-            let (dots, looked_up) = (
-                run(&Antipodes::default()),
-                run(&Antipodes::new(&f, usize::MAX)),
-            );
-            // The two ways to the signs give the same numbers, bit for bit, and the SIMD
-            // kernel (fused multiply-adds) is the scalar one to rounding.
-            assert_eq!(dots, looked_up);
+            // SAFETY: AVX2 and FMA are present (`simd`), the synthetic rig's joint indices
+            // are below 54 = f.len(), the table is empty or made from `f`.
+            let looked_up = super::super::antipodes::both_ways(&f, |table, out| unsafe {
+                super::super::avx2::qlb::qlb(rig.vertices(), &f, table, out)
+            });
+            // The two ways to the signs gave the same numbers, bit for bit (`both_ways`),
+            // and the SIMD kernel (fused multiply-adds) is the scalar one to rounding.
             close(&looked_up, &got[..1000], 4e-6);
         } else {
             eprintln!("no AVX2+FMA here: only the scalar kernel is checked");

@@ -14,7 +14,7 @@
 //! scalar kernel to rounding.
 
 use super::super::Out;
-use super::{eight, load_head, store_rows, transpose8};
+use super::{cross, eight, load_head, store_rows, transpose8};
 use crate::fast::Vertex;
 use std::arch::x86_64::*;
 
@@ -81,15 +81,11 @@ pub unsafe fn log(v: &[Vertex<4>], t: &[[f32; 8]], _: &(), o: &mut [Out]) -> usi
         let mul = |a, b| _mm256_mul_ps(a, b);
         let add = |a, b| _mm256_add_ps(a, b);
         let fma = |a, b, c| _mm256_fmadd_ps(a, b, c);
-        let fms = |a, b, c| _mm256_fmsub_ps(a, b, c);
         let s = fma(wz, wz, fma(wy, wy, mul(wx, wx)));
         let (ca, cb, cc) = (horner(&A, s), horner(&B, s), horner(&C, s));
         let w = [wx, wy, wz];
         // Component c of ω × x.
-        let cross = |x: [__m256; 3], c: usize| {
-            let (j, k) = ((c + 1) % 3, (c + 2) % 3);
-            fms(w[j], x[k], mul(w[k], x[j]))
-        };
+        let cross = |x: [__m256; 3], c: usize| cross(w, x, c);
         let (p, n, t) = ([px, py, pz], [nx, ny, nz], [vx_, vy, vz]);
         // u = B p + C v; e = A p + B v + ω × u; p' = p + v + ω × e (each written out: no
         // array maps, which can stay calls).

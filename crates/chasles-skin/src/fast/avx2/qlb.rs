@@ -7,7 +7,7 @@
 //! kernel's formulas, so the two agree to rounding).
 
 use super::super::{real_dot, Antipodes, Out, Vertex};
-use super::{eight, load_head, store_rows, transpose8};
+use super::{eight, load_head, rotate, store_rows, transpose8};
 use std::arch::x86_64::*;
 
 /// Floats per joint row (`super::super::qlb::Row`).
@@ -137,7 +137,6 @@ unsafe fn blocks<const SBS: bool>(
         let add = |a, b| _mm256_add_ps(a, b);
         let sub = |a, b| _mm256_sub_ps(a, b);
         let fma = |a, b, c| _mm256_fmadd_ps(a, b, c);
-        let fms = |a, b, c| _mm256_fmsub_ps(a, b, c);
         let s = _mm256_div_ps(two, fma(z0, z0, fma(y0, y0, fma(x0, x0, mul(w0, w0)))));
         // y = Σ wₖ (Rₖ c + tₖ), the blended matrix applied to c.
         let y = [
@@ -146,18 +145,8 @@ unsafe fn blocks<const SBS: bool>(
             fma(m22, cz, fma(m21, cy, fma(m20, cx, m23))),
         ];
         let v0 = [x0, y0, z0];
-        // Component c of a × b.
-        let cross = |a: [__m256; 3], b: [__m256; 3], c: usize| {
-            let (j, k) = ((c + 1) % 3, (c + 2) % 3);
-            fms(a[j], b[k], mul(a[k], b[j]))
-        };
-        // x + s v × (v × x + w x): x rotated by r / ‖r‖ (written out: no array::from_fn).
-        let rotate = |x: [__m256; 3]| {
-            let e = |c: usize| fma(w0, x[c], cross(v0, x, c));
-            let t = [e(0), e(1), e(2)];
-            let f = |c: usize| fma(s, cross(v0, t, c), x[c]);
-            [f(0), f(1), f(2)]
-        };
+        // x rotated by r / ‖r‖.
+        let rotate = |x| rotate(w0, v0, s, x);
         let d = rotate([sub(px, cx), sub(py, cy), sub(pz, cz)]);
         let n = rotate([nx, ny, nz]);
         store_rows(
