@@ -127,7 +127,7 @@ pub fn skin_joints(rig: &Rig, jt: &JointTransforms, method: Method) -> Result<Sk
     let centres = joint_centres(&rig.inverse_bind);
     let (clusters, rotation_centres) = if method == Method::Sbs {
         let c = Clusters::new(n, |v| rig.influences.of(v).map(|(j, _)| j as u16));
-        let r = c.centres(&jt.dual_quats, &centres);
+        let r = c.centres(&jt.dual_quats, &centres, false);
         (c, r)
     } else {
         (Clusters::default(), Vec::new())

@@ -140,7 +140,7 @@ pub fn sbs<const K: usize>(
     }
     // Centres padded to 8 floats: the SIMD kernel loads each as one register.
     let centres: Vec<[f32; 8]> = clusters
-        .centres(d, rig.centres())
+        .centres(d, rig.centres(), parallel)
         .into_iter()
         .map(|c| [c.x, c.y, c.z, 0.0, 0.0, 0.0, 0.0, 0.0])
         .collect();
