@@ -5,9 +5,10 @@
 //! antipodality signs looked up in a per-pose table (`Antipodes`) or, for rigs too large
 //! for one, from dot products; eight blends, and eight vertices' positions and normals, are
 //! transposed into lanes for the transformation, normalized by one division (no square
-//! root). LBS: the vertex fields are transposed in the same way (weights gathered) and the
-//! joints' matrices gathered into lanes. Both prefetch the input ahead and write their
-//! results back by a transpose and masked stores.
+//! root). LBS likewise: each vertex's four joint matrices are whole-register loads blended in
+//! two registers (in the scalar kernel's order, so bit for bit), eight blends transposed into
+//! lanes for the transformation. Both prefetch the input ahead and write their results back
+//! by a transpose and masked stores.
 
 use super::{Antipodes, Out, Vertex};
 use std::arch::x86_64::*;
@@ -21,14 +22,6 @@ const STRIDE: i32 = 12;
 
 /// How many vertices ahead the kernels prefetch their input (tried: 32, 64, 128).
 const PREFETCH: usize = 64;
-
-/// Eight vertices' fields in lanes: position, normal, joint indices, weights.
-struct Block {
-    p: [__m256; 3],
-    n: [__m256; 3],
-    j: [__m256i; 4],
-    w: [__m256; 4],
-}
 
 /// The first 8 floats of vertices `i … i + 7` in lanes, by eight loads and a transpose:
 /// x, y, z, nx, ny, nz and the two words of joint indices (as float bits). Also asks for the
@@ -46,39 +39,6 @@ unsafe fn load_head(v: &[Vertex<4>], i: usize) -> [__m256; 8] {
     transpose8(core::array::from_fn(|l| {
         _mm256_loadu_ps(vb.add(l * STRIDE as usize))
     }))
-}
-
-/// Vertices `i … i + 7` in lanes: the head by [`load_head`], the weights gathered.
-#[inline]
-#[target_feature(enable = "avx2,fma")]
-unsafe fn load(v: &[Vertex<4>], i: usize) -> Block {
-    let [x, y, z, nx, ny, nz, j01, j23] = load_head(v, i);
-    let (j01, j23) = (_mm256_castps_si256(j01), _mm256_castps_si256(j23));
-    let lo16 = _mm256_set1_epi32(0xFFFF);
-    let vb = v.as_ptr() as *const f32;
-    let lane = _mm256_setr_epi32(
-        0,
-        STRIDE,
-        2 * STRIDE,
-        3 * STRIDE,
-        4 * STRIDE,
-        5 * STRIDE,
-        6 * STRIDE,
-        7 * STRIDE,
-    );
-    let vi = _mm256_add_epi32(_mm256_set1_epi32(i as i32 * STRIDE), lane);
-    let g = |off: i32| _mm256_i32gather_ps::<4>(vb, _mm256_add_epi32(vi, _mm256_set1_epi32(off)));
-    Block {
-        p: [x, y, z],
-        n: [nx, ny, nz],
-        j: [
-            _mm256_and_si256(j01, lo16),
-            _mm256_srli_epi32::<16>(j01),
-            _mm256_and_si256(j23, lo16),
-            _mm256_srli_epi32::<16>(j23),
-        ],
-        w: [g(8), g(9), g(10), g(11)],
-    }
 }
 
 /// One vertex's blended dual quaternion `Σ ±wₖ q̂ₖ` (8 floats in one register): its four
@@ -265,8 +225,28 @@ unsafe fn dqs_blocks(
     blocks * 8
 }
 
+/// One vertex's blended matrix `Σ wₖ Mₖ` in two registers, rows 0–1 (8 floats) and row 2
+/// (4): its four joints' rows are whole-register loads, not gathers; each product rounded,
+/// then summed in the scalar kernel's order, so the matrix is the same bit for bit.
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn lbs_blend(vx: &Vertex<4>, mb: *const f32) -> (__m256, __m128) {
+    let j = vx.j.map(|j| usize::from(j) * 12);
+    let w = |k: usize| _mm256_broadcast_ss(&vx.w[k]);
+    let rows01 = |k: usize| _mm256_mul_ps(w(k), _mm256_loadu_ps(mb.add(j[k])));
+    let row2 = |k: usize| _mm_mul_ps(_mm256_castps256_ps128(w(k)), _mm_loadu_ps(mb.add(j[k] + 8)));
+    let a = _mm256_add_ps(
+        _mm256_add_ps(_mm256_add_ps(rows01(0), rows01(1)), rows01(2)),
+        rows01(3),
+    );
+    let b = _mm_add_ps(_mm_add_ps(_mm_add_ps(row2(0), row2(1)), row2(2)), row2(3));
+    (a, b)
+}
+
 /// LBS for the first `v.len() / 8 * 8` vertices, in the order of operations of
-/// [`super::lbs_vertex`]; returns how many were done.
+/// [`super::lbs_vertex`]; returns how many were done. Each vertex's matrix is blended in
+/// registers ([`lbs_blend`]); eight are transposed into twelve lane vectors (rows 0–1 by
+/// [`transpose8`], row 2 by a 4×4 transpose in each 128-bit half) for the transformation.
 ///
 /// # Safety
 /// As for [`dqs`], with `m` the joints' 3×4 matrices.
@@ -274,27 +254,25 @@ unsafe fn dqs_blocks(
 pub unsafe fn lbs(v: &[Vertex<4>], m: &[[f32; 12]], _: &(), o: &mut [Out]) -> usize {
     let mb = m.as_ptr() as *const f32;
     let zero = _mm256_setzero_ps();
-    let twelve = _mm256_set1_epi32(12);
     let blocks = v.len() / 8;
     for blk in 0..blocks {
         let i = blk * 8;
-        let Block {
-            p: [x, y, z],
-            n: [nx, ny, nz],
-            j: js,
-            w: ws,
-        } = load(v, i);
-        let mut a = [zero; 12];
-        for k in 0..4 {
-            let base = _mm256_mullo_epi32(js[k], twelve);
-            for (c, ac) in a.iter_mut().enumerate() {
-                let g = _mm256_i32gather_ps::<4>(
-                    mb,
-                    _mm256_add_epi32(base, _mm256_set1_epi32(c as i32)),
-                );
-                *ac = _mm256_add_ps(*ac, _mm256_mul_ps(ws[k], g));
-            }
-        }
+        let [x, y, z, nx, ny, nz, _, _] = load_head(v, i);
+        let b = eight(|l| lbs_blend(v.get_unchecked(i + l), mb));
+        let [a0, a1, a2, a3, a4, a5, a6, a7] = transpose8(eight(|l| b[l].0));
+        // Row 2 of vertices l and l + 4 side by side, then 4×4 transposes per half.
+        let mut h = [0, 1, 2, 3].map(|l| _mm256_set_m128(b[l + 4].1, b[l].1));
+        let t0 = _mm256_unpacklo_ps(h[0], h[1]);
+        let t1 = _mm256_unpackhi_ps(h[0], h[1]);
+        let t2 = _mm256_unpacklo_ps(h[2], h[3]);
+        let t3 = _mm256_unpackhi_ps(h[2], h[3]);
+        h = [
+            _mm256_shuffle_ps::<0x44>(t0, t2),
+            _mm256_shuffle_ps::<0xEE>(t0, t2),
+            _mm256_shuffle_ps::<0x44>(t1, t3),
+            _mm256_shuffle_ps::<0xEE>(t1, t3),
+        ];
+        let a = [a0, a1, a2, a3, a4, a5, a6, a7, h[0], h[1], h[2], h[3]];
         let mul = |p, q| _mm256_mul_ps(p, q);
         let add = |p, q| _mm256_add_ps(p, q);
         let sub = |p, q| _mm256_sub_ps(p, q);
@@ -321,4 +299,32 @@ pub unsafe fn lbs(v: &[Vertex<4>], m: &[[f32; 12]], _: &(), o: &mut [Out]) -> us
         store_rows(o, i, [px, py, pz, mx, my, mz]);
     }
     blocks * 8
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::fast::{lbs_vertex, matrices12, simd, Out};
+    use crate::synthetic;
+
+    /// The SIMD LBS kernel against the scalar one, bit for bit: random rigid joints, and
+    /// all-zero matrices (every normal's cofactor vanishes: the normal is kept).
+    #[test]
+    fn the_simd_lbs_is_the_scalar_one_bit_for_bit() {
+        if !simd(4) {
+            eprintln!("no AVX2+FMA here: nothing to check");
+            return;
+        }
+        let rig = synthetic::rig(1003, 54, 5);
+        let rigid = matrices12(&synthetic::joints(54, 5));
+        for m in [rigid, vec![[0.0; 12]; 54]] {
+            let mut out: Vec<Out> = vec![[f32::NAN; 6]; 1003];
+            // SAFETY: the processor has AVX2 and FMA (`simd`), the synthetic rig's joint
+            // indices are below 54 and `out` is as long as the vertices.
+            let done = unsafe { super::lbs(rig.vertices(), &m, &(), &mut out) };
+            assert_eq!(done, 1000);
+            for (v, o) in rig.vertices().iter().zip(&out[..done]) {
+                assert_eq!(*o, lbs_vertex(v, &m));
+            }
+        }
+    }
 }
