@@ -169,14 +169,13 @@ pub(crate) fn median_secs(runs: usize, mut f: impl FnMut() -> Result<()>) -> Res
 }
 
 /// `chasles skin --bench`: vertices per second of every method's fast path on synthetic
-/// meshes (54 joints, 4 influences), one thread and all threads, each against a memory copy
+/// meshes (54 joints, 4 influences; the pose's joint data made in each run), one thread and
+/// all threads, each against a memory copy
 /// of the 72 bytes each vertex must move on as many threads (the bandwidth bound); medians
 /// of 31 runs (5 for a method slower than 50 ms a run). The random joints make nearly every
 /// vertex its own SBS cluster: SBS's worst case, a rotation centre solved per vertex.
 pub fn bench() -> Result<()> {
-    use chasles_skin::fast::{
-        clusters, dib, dqs, dual_quats8, lbs, log, matrices12, qlb, sbs, twists,
-    };
+    use chasles_skin::fast::{clusters, skin_pose};
     use chasles_skin::synthetic;
     use rayon::prelude::*;
     // Runs per median: this many keeps a shared machine's hiccups out of 10⁵-vertex runs
@@ -188,12 +187,7 @@ pub fn bench() -> Result<()> {
     for n in [100_000usize, 1_000_000] {
         let rig = synthetic::rig(n, 54, 7);
         let jt = synthetic::joints(54, 7);
-        let (m12, d8, tw, cl) = (
-            matrices12(&jt),
-            dual_quats8(&jt),
-            twists(&jt)?,
-            clusters(&rig),
-        );
+        let cl = clusters(&rig);
         let mut out = vec![[0f32; 6]; n];
         let src = vec![1u8; n * 36];
         let mut dst = vec![0u8; n * 36];
@@ -221,17 +215,8 @@ pub fn bench() -> Result<()> {
                 bound / 1e6
             );
             let mut rate = |m: Method| -> Result<f64> {
-                let mut once = || -> Result<()> {
-                    match m {
-                        Method::Lbs => lbs(&rig, &m12, &mut out, parallel),
-                        Method::Dqs => dqs(&rig, &d8, &mut out, parallel),
-                        Method::Log => log(&rig, &tw, &mut out, parallel),
-                        Method::Qlb => qlb(&rig, &jt.dual_quats, &mut out, parallel),
-                        Method::Sbs => sbs(&rig, &cl, &jt.dual_quats, &mut out, parallel),
-                        Method::Dib => dib(&rig, &jt.dual_quats, &mut out, parallel),
-                    }?;
-                    Ok(())
-                };
+                let mut once =
+                    || -> Result<()> { Ok(skin_pose(&rig, &jt, m, || &cl, &mut out, parallel)?) };
                 // DIB takes a second a run at 10⁶ vertices: fewer runs for slow methods.
                 let start = std::time::Instant::now();
                 once()?;

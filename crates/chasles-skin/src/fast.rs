@@ -53,7 +53,7 @@ use antipodes::Antipodes;
 pub use dib::dib;
 pub use log::{log, twists};
 pub use qlb::{clusters, qlb, sbs, Row};
-pub use skinner::Skinner;
+pub use skinner::{skin_pose, Skinner};
 
 /// A rig laid out for the fast path. Its joint indices are checked on construction (the
 /// SIMD kernels rely on it), so the fields are private.

@@ -156,10 +156,8 @@ pub struct Motions(Vec<Motion>);
 
 impl Motions {
     /// The motions of joint transforms `d` (one per joint: `[R | t]` of each dual
-    /// quaternion) with the joints' bind origins `bind`, in f64.
-    ///
-    /// # Panics
-    /// If `bind` is shorter than `d`.
+    /// quaternion) with the joints' bind origins `bind`, in f64; as many as the shorter of
+    /// the two has (the callers pass one per joint in both).
     pub fn new(d: &[DualQuat<f32>], bind: &[Vec3<f32>]) -> Self {
         Motions(
             d.iter()

@@ -1,7 +1,8 @@
 //! Every method on the fast path behind one call, for tools that skin whole clips
 //! (`chasles skin --all-frames`): the rig's layout made once — 4 influences, else 8, else
 //! the reference path ([`crate::skinning`]) — the SBS clusters on first use, and each pose's
-//! joint data per call; all threads.
+//! joint data per call; all threads. Beneath it, [`skin_pose`]: one pose by any method into
+//! a caller's buffer, on one thread or all (the benchmarks and tests call it).
 
 use super::{
     clusters, dib, dqs, dual_quats8, lbs, log, matrices12, qlb, sbs, twists, FastRig, Out,
@@ -81,21 +82,31 @@ impl Skinner {
         method: Method,
     ) -> Result<Vec<Out>> {
         let mut out = vec![[0f32; 6]; f.vertices().len()];
-        let d = &jt.dual_quats;
-        match method {
-            Method::Lbs => lbs(f, &matrices12(jt), &mut out, true),
-            Method::Dqs => dqs(f, &dual_quats8(jt), &mut out, true),
-            Method::Dib => dib(f, d, &mut out, true),
-            Method::Log => log(f, &twists(jt)?, &mut out, true),
-            Method::Qlb => qlb(f, d, &mut out, true),
-            Method::Sbs => sbs(
-                f,
-                self.clusters.get_or_init(|| clusters(f)),
-                d,
-                &mut out,
-                true,
-            ),
-        }?;
+        let clusters = || self.clusters.get_or_init(|| clusters(f));
+        skin_pose(f, jt, method, clusters, &mut out, true)?;
         Ok(out)
+    }
+}
+
+/// One pose skinned by `method` on the fast path into `out`: the joints' data the method's
+/// kernel reads (matrices, dual quaternions, twists or rows) made from `jt` here, and
+/// `clusters` asked for by SBS only (the [`clusters`] of this rig, made once); on all threads
+/// when `parallel`.
+pub fn skin_pose<'c, const K: usize>(
+    rig: &FastRig<K>,
+    jt: &JointTransforms,
+    method: Method,
+    clusters: impl FnOnce() -> &'c Clusters,
+    out: &mut [Out],
+    parallel: bool,
+) -> Result<()> {
+    let d = &jt.dual_quats;
+    match method {
+        Method::Lbs => lbs(rig, &matrices12(jt), out, parallel),
+        Method::Dqs => dqs(rig, &dual_quats8(jt), out, parallel),
+        Method::Dib => dib(rig, d, out, parallel),
+        Method::Log => log(rig, &twists(jt)?, out, parallel),
+        Method::Qlb => qlb(rig, d, out, parallel),
+        Method::Sbs => sbs(rig, clusters(), d, out, parallel),
     }
 }
