@@ -170,9 +170,9 @@ pub(crate) fn median_secs(runs: usize, mut f: impl FnMut() -> Result<()>) -> Res
 
 /// `chasles skin --bench`: vertices per second of every method's fast path on synthetic
 /// meshes (54 joints, 4 influences; the pose's joint data made in each run), one thread and
-/// all threads, each against a memory copy
-/// of the 72 bytes each vertex must move on as many threads (the bandwidth bound); medians
-/// of 31 runs (5 for a method slower than 50 ms a run). The random joints make nearly every
+/// all threads, each against a memory copy of the 72 bytes each vertex must move on as many
+/// threads (the bandwidth bound); medians of 31 runs (5 for a method slower than 50 ms a
+/// run). The random joints make nearly every
 /// vertex its own SBS cluster: SBS's worst case, a rotation centre solved per vertex.
 pub fn bench() -> Result<()> {
     use chasles_skin::fast::{clusters, skin_pose};

@@ -1,5 +1,5 @@
 //! The fast path for every method: a compact vertex layout, fixed influence counts (4 or
-//! 8), eight-vertex AVX2+FMA kernels chosen at run time (LBS, DQS, QLB and SBS with 4
+//! 8), eight-vertex AVX2+FMA kernels chosen at run time (LBS, DQS, Log, QLB and SBS with 4
 //! influences; elsewhere, and for the last few vertices, the scalar kernels), joint
 //! transforms as flat arrays made once per pose (12 floats per matrix, 8 per dual
 //! quaternion — the register saving Kavan et al. 2006 note in §6; a 24-float row for QLB and
@@ -211,11 +211,7 @@ fn dqs_vertex<const K: usize>(v: &Vertex<K>, d: &[[f32; 8]]) -> Out {
     let s = 2.0 / (b[0] * b[0] + b[1] * b[1] + b[2] * b[2] + b[3] * b[3]);
     let [w0, x0, y0, z0, we, xe, ye, ze] = b;
     let [px, py, pz] = v.p;
-    let (tx, ty, tz) = (
-        y0 * pz - z0 * py + w0 * px,
-        z0 * px - x0 * pz + w0 * py,
-        x0 * py - y0 * px + w0 * pz,
-    );
+    let [tx, ty, tz] = inner([w0, x0, y0, z0], v.p);
     let qx = px + s * ((y0 * tz - z0 * ty) + (w0 * xe - we * x0 + y0 * ze - z0 * ye));
     let qy = py + s * ((z0 * tx - x0 * tz) + (w0 * ye - we * y0 + z0 * xe - x0 * ze));
     let qz = pz + s * ((x0 * ty - y0 * tx) + (w0 * ze - we * z0 + x0 * ye - y0 * xe));
@@ -227,17 +223,24 @@ fn dqs_vertex<const K: usize>(v: &Vertex<K>, d: &[[f32; 8]]) -> Out {
 /// the unit quaternion `(w, v) / ‖(w, v)‖` with no square root (the normals of DQS, and
 /// QLB's rotation about a centre).
 #[inline(always)]
-fn rotate_scaled([w0, x0, y0, z0]: [f32; 4], s: f32, x: [f32; 3]) -> [f32; 3] {
+fn rotate_scaled(q: [f32; 4], s: f32, x: [f32; 3]) -> [f32; 3] {
+    let [_, x0, y0, z0] = q;
     let [nx, ny, nz] = x;
-    let (sx, sy, sz) = (
-        y0 * nz - z0 * ny + w0 * nx,
-        z0 * nx - x0 * nz + w0 * ny,
-        x0 * ny - y0 * nx + w0 * nz,
-    );
+    let [sx, sy, sz] = inner(q, x);
     [
         nx + s * (y0 * sz - z0 * sy),
         ny + s * (z0 * sx - x0 * sz),
         nz + s * (x0 * sy - y0 * sx),
+    ]
+}
+
+/// `v × x + w x` for a quaternion `(w, v)`: the inner step of rotating x by it.
+#[inline(always)]
+fn inner([w0, x0, y0, z0]: [f32; 4], [x, y, z]: [f32; 3]) -> [f32; 3] {
+    [
+        y0 * z - z0 * y + w0 * x,
+        z0 * x - x0 * z + w0 * y,
+        x0 * y - y0 * x + w0 * z,
     ]
 }
 

@@ -17,6 +17,14 @@ fn data(name: &str) -> PathBuf {
         .join(name)
 }
 
+/// The scale positions are compared at: the farthest vertex from the origin, at least 1.
+fn size(rig: &chasles_skin::Rig) -> f32 {
+    rig.mesh
+        .positions
+        .iter()
+        .fold(1.0f32, |m, p| m.max(p.norm()))
+}
+
 /// (file, vertices, joints, clips) from the data README.
 const MODELS: [(&str, usize, usize, usize); 5] = [
     ("CesiumMan.glb", 3273, 19, 1),
@@ -299,11 +307,7 @@ fn the_fast_path_agrees_with_the_reference() {
     use chasles_skin::fast::{clusters, dib, dqs, lbs, qlb, sbs, skin_pose, FastRig};
     for (file, _, _, _) in MODELS {
         let rig = gltf_load::load(&data(file)).unwrap();
-        let size = rig
-            .mesh
-            .positions
-            .iter()
-            .fold(1.0f32, |m, p| m.max(p.norm()));
+        let size = size(&rig);
         let fast = FastRig::<4>::new(&rig).unwrap();
         let fast8 = FastRig::<8>::new(&rig).unwrap();
         let (c4, c8) = (clusters(&fast), clusters(&fast8));
@@ -400,11 +404,7 @@ fn the_fast_path_agrees_with_the_reference() {
 fn the_skinner_takes_every_method_to_the_fast_path_or_the_reference() {
     use chasles_skin::fast::Skinner;
     let close = |rig: &chasles_skin::Rig, a: &chasles_skin::Skinned, b: &chasles_skin::Skinned| {
-        let size = rig
-            .mesh
-            .positions
-            .iter()
-            .fold(1.0f32, |m, p| m.max(p.norm()));
+        let size = size(rig);
         for v in 0..a.positions.len() {
             assert!(
                 (a.positions[v] - b.positions[v]).norm() <= 1e-5 * size,

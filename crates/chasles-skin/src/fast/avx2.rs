@@ -99,22 +99,8 @@ fn eight<R>(f: impl Fn(usize) -> R) -> [R; 8] {
 #[inline]
 #[target_feature(enable = "avx2,fma")]
 fn transpose8(r: [__m256; 8]) -> [__m256; 8] {
-    let t0 = _mm256_unpacklo_ps(r[0], r[1]);
-    let t1 = _mm256_unpackhi_ps(r[0], r[1]);
-    let t2 = _mm256_unpacklo_ps(r[2], r[3]);
-    let t3 = _mm256_unpackhi_ps(r[2], r[3]);
-    let t4 = _mm256_unpacklo_ps(r[4], r[5]);
-    let t5 = _mm256_unpackhi_ps(r[4], r[5]);
-    let t6 = _mm256_unpacklo_ps(r[6], r[7]);
-    let t7 = _mm256_unpackhi_ps(r[6], r[7]);
-    let s0 = _mm256_shuffle_ps::<0x44>(t0, t2);
-    let s1 = _mm256_shuffle_ps::<0xEE>(t0, t2);
-    let s2 = _mm256_shuffle_ps::<0x44>(t1, t3);
-    let s3 = _mm256_shuffle_ps::<0xEE>(t1, t3);
-    let s4 = _mm256_shuffle_ps::<0x44>(t4, t6);
-    let s5 = _mm256_shuffle_ps::<0xEE>(t4, t6);
-    let s6 = _mm256_shuffle_ps::<0x44>(t5, t7);
-    let s7 = _mm256_shuffle_ps::<0xEE>(t5, t7);
+    let [s0, s1, s2, s3] = transpose4_halves([r[0], r[1], r[2], r[3]]);
+    let [s4, s5, s6, s7] = transpose4_halves([r[4], r[5], r[6], r[7]]);
     [
         _mm256_permute2f128_ps::<0x20>(s0, s4),
         _mm256_permute2f128_ps::<0x20>(s1, s5),
@@ -124,6 +110,23 @@ fn transpose8(r: [__m256; 8]) -> [__m256; 8] {
         _mm256_permute2f128_ps::<0x31>(s1, s5),
         _mm256_permute2f128_ps::<0x31>(s2, s6),
         _mm256_permute2f128_ps::<0x31>(s3, s7),
+    ]
+}
+
+/// Transposes the 4×4 blocks of 4 registers in each 128-bit half: element k of result row c
+/// is element c of input k, within the low half and within the high half.
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+fn transpose4_halves(r: [__m256; 4]) -> [__m256; 4] {
+    let t0 = _mm256_unpacklo_ps(r[0], r[1]);
+    let t1 = _mm256_unpackhi_ps(r[0], r[1]);
+    let t2 = _mm256_unpacklo_ps(r[2], r[3]);
+    let t3 = _mm256_unpackhi_ps(r[2], r[3]);
+    [
+        _mm256_shuffle_ps::<0x44>(t0, t2),
+        _mm256_shuffle_ps::<0xEE>(t0, t2),
+        _mm256_shuffle_ps::<0x44>(t1, t3),
+        _mm256_shuffle_ps::<0xEE>(t1, t3),
     ]
 }
 
@@ -246,7 +249,7 @@ unsafe fn lbs_blend(vx: &Vertex<4>, mb: *const f32) -> (__m256, __m128) {
 /// LBS for the first `v.len() / 8 * 8` vertices, in the order of operations of
 /// [`super::lbs_vertex`]; returns how many were done. Each vertex's matrix is blended in
 /// registers ([`lbs_blend`]); eight are transposed into twelve lane vectors (rows 0–1 by
-/// [`transpose8`], row 2 by a 4×4 transpose in each 128-bit half) for the transformation.
+/// [`transpose8`], row 2 by [`transpose4_halves`]) for the transformation.
 ///
 /// # Safety
 /// As for [`dqs`], with `m` the joints' 3×4 matrices.
@@ -261,17 +264,7 @@ pub unsafe fn lbs(v: &[Vertex<4>], m: &[[f32; 12]], _: &(), o: &mut [Out]) -> us
         let b = eight(|l| lbs_blend(v.get_unchecked(i + l), mb));
         let [a0, a1, a2, a3, a4, a5, a6, a7] = transpose8(eight(|l| b[l].0));
         // Row 2 of vertices l and l + 4 side by side, then 4×4 transposes per half.
-        let mut h = [0, 1, 2, 3].map(|l| _mm256_set_m128(b[l + 4].1, b[l].1));
-        let t0 = _mm256_unpacklo_ps(h[0], h[1]);
-        let t1 = _mm256_unpackhi_ps(h[0], h[1]);
-        let t2 = _mm256_unpacklo_ps(h[2], h[3]);
-        let t3 = _mm256_unpackhi_ps(h[2], h[3]);
-        h = [
-            _mm256_shuffle_ps::<0x44>(t0, t2),
-            _mm256_shuffle_ps::<0xEE>(t0, t2),
-            _mm256_shuffle_ps::<0x44>(t1, t3),
-            _mm256_shuffle_ps::<0xEE>(t1, t3),
-        ];
+        let h = transpose4_halves([0, 1, 2, 3].map(|l| _mm256_set_m128(b[l + 4].1, b[l].1)));
         let a = [a0, a1, a2, a3, a4, a5, a6, a7, h[0], h[1], h[2], h[3]];
         let mul = |p, q| _mm256_mul_ps(p, q);
         let add = |p, q| _mm256_add_ps(p, q);

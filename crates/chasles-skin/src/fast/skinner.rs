@@ -82,8 +82,8 @@ impl Skinner {
         method: Method,
     ) -> Result<Vec<Out>> {
         let mut out = vec![[0f32; 6]; f.vertices().len()];
-        let clusters = || self.clusters.get_or_init(|| clusters(f));
-        skin_pose(f, jt, method, clusters, &mut out, true)?;
+        let sbs_clusters = || self.clusters.get_or_init(|| clusters(f));
+        skin_pose(f, jt, method, sbs_clusters, &mut out, true)?;
         Ok(out)
     }
 }

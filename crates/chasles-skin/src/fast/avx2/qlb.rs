@@ -125,11 +125,7 @@ unsafe fn blocks<const SBS: bool>(
                 }
             },
         );
-        let lanes = |k: usize| {
-            transpose8([
-                r[0][k], r[1][k], r[2][k], r[3][k], r[4][k], r[5][k], r[6][k], r[7][k],
-            ])
-        };
+        let lanes = |k: usize| transpose8(eight(|l| r[l][k]));
         let [w0, x0, y0, z0, m00, m01, m02, m03] = lanes(0);
         let [m10, m11, m12, m13, m20, m21, m22, m23] = lanes(1);
         let [cx, cy, cz, _, _, _, _, _] = lanes(2);
