@@ -1,10 +1,10 @@
 //! The fast path for every method: a compact vertex layout, fixed influence counts (4 or
-//! 8), eight-vertex AVX2+FMA kernels chosen at run time (LBS, DQS, Log, QLB and SBS with 4
-//! influences; elsewhere, and for the last few vertices, the scalar kernels), joint
+//! 8), eight-vertex AVX2+FMA kernels chosen at run time (every method, with 4 influences;
+//! elsewhere, and for the last few vertices, the scalar kernels), joint
 //! transforms as flat arrays made once per pose (12 floats per matrix, 8 per dual
 //! quaternion — the register saving Kavan et al. 2006 note in §6; a 24-float row for QLB and
 //! SBS, module `qlb`; twists for Log, module `log`), one pass per vertex with no allocation
-//! (DIB, module `dib`, runs the library's allocation-free blend on the stack), and rayon
+//! (DIB, module `dib`: in lanes, or the library's allocation-free blend on the stack), and rayon
 //! over chunks of vertices. It agrees with [`crate::skinning`]'s reference path to 1e-5
 //! (tests check it on the real models). [`Skinner`] puts every method behind one call.
 //!

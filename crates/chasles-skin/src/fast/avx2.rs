@@ -8,11 +8,13 @@
 //! root). LBS likewise: each vertex's four joint matrices are whole-register loads blended in
 //! two registers (in the scalar kernel's order, so bit for bit), eight blends transposed into
 //! lanes for the transformation. Both prefetch the input ahead and write their results back
-//! by a transpose and masked stores.
+//! by a transpose and masked stores. Log, QLB/SBS and DIB are in the submodules; DIB ends
+//! with DQS's transformation (`transform`).
 
 use super::{Antipodes, Out, Vertex};
 use std::arch::x86_64::*;
 
+pub mod dib;
 pub mod log;
 pub mod qlb;
 
@@ -93,6 +95,34 @@ unsafe fn rotate(w: __m256, v: [__m256; 3], s: __m256, x: [__m256; 3]) -> [__m25
 #[inline(always)]
 fn eight<R>(f: impl Fn(usize) -> R) -> [R; 8] {
     [f(0), f(1), f(2), f(3), f(4), f(5), f(6), f(7)]
+}
+
+/// `(−1)ᵏ / (2k + first)!` for k = 0, 1, …
+pub(super) const fn taylor<const N: usize>(first: u32) -> [f32; N] {
+    let mut out = [0f32; N];
+    let mut k = 0;
+    while k < N {
+        let mut f = 1f64;
+        let mut i = 2;
+        while i <= 2 * k as u32 + first {
+            f *= i as f64;
+            i += 1;
+        }
+        out[k] = (if k % 2 == 0 { 1.0 } else { -1.0 } / f) as f32;
+        k += 1;
+    }
+    out
+}
+
+/// `Σ cₖ sᵏ` by Horner's rule with fused multiply-adds.
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+pub(super) fn horner<const N: usize>(c: &[f32; N], s: __m256) -> __m256 {
+    let mut a = _mm256_set1_ps(c[N - 1]);
+    for k in (0..N - 1).rev() {
+        a = _mm256_fmadd_ps(a, s, _mm256_set1_ps(c[k]));
+    }
+    a
 }
 
 /// Transposes 8 registers of 8 floats: row k of the result is element k of every input.
@@ -194,24 +224,38 @@ unsafe fn dqs_blocks(
     o: &mut [Out],
     blend: impl Fn(&Vertex<4>) -> __m256,
 ) -> usize {
-    let two = _mm256_set1_ps(2.0);
     let blocks = v.len() / 8;
     for blk in 0..blocks {
         let i = blk * 8;
         let [px, py, pz, nx, ny, nz, _, _] = load_head(v, i);
         let b = transpose8(eight(|l| blend(v.get_unchecked(i + l))));
-        let mul = |a, b| _mm256_mul_ps(a, b);
-        let add = |a, b| _mm256_add_ps(a, b);
-        // a·b + c, a·b − c, c − a·b, each rounded once.
-        let fma = |a, b, c| _mm256_fmadd_ps(a, b, c);
-        let fms = |a, b, c| _mm256_fmsub_ps(a, b, c);
-        let fnma = |a, b, c| _mm256_fnmadd_ps(a, b, c);
-        let [w0, x0, y0, z0, we, xe, ye, ze] = b;
-        let (v0, ve, p, n) = ([x0, y0, z0], [xe, ye, ze], [px, py, pz], [nx, ny, nz]);
-        // s = 2 / ‖b0‖² normalizes (see `dqs_vertex`).
-        let s = _mm256_div_ps(two, fma(z0, z0, fma(y0, y0, fma(x0, x0, mul(w0, w0)))));
+        store_rows(o, i, transform(b, [px, py, pz], [nx, ny, nz]));
+    }
+    blocks * 8
+}
+
+/// Eight positions and normals moved by eight blended dual quaternions `b` (lane by lane,
+/// `[w0, x0, y0, z0, wε, xε, yε, zε]`, not necessarily unit): normalized by `s = 2 / ‖b0‖²`
+/// (see `dqs_vertex`), `p' = p + s (v0 × (v0 × p + w0 p) + w0 vε − wε v0 + v0 × vε)` and
+/// `n' = n + s v0 × (v0 × n + w0 n)`. The last step of DQS and DIB.
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+fn transform(b: [__m256; 8], p: [__m256; 3], n: [__m256; 3]) -> [__m256; 6] {
+    let mul = |a, b| _mm256_mul_ps(a, b);
+    let add = |a, b| _mm256_add_ps(a, b);
+    // a·b + c, a·b − c, c − a·b, each rounded once.
+    let fma = |a, b, c| _mm256_fmadd_ps(a, b, c);
+    let fms = |a, b, c| _mm256_fmsub_ps(a, b, c);
+    let fnma = |a, b, c| _mm256_fnmadd_ps(a, b, c);
+    let [w0, x0, y0, z0, we, xe, ye, ze] = b;
+    let (v0, ve) = ([x0, y0, z0], [xe, ye, ze]);
+    let s = _mm256_div_ps(
+        _mm256_set1_ps(2.0),
+        fma(z0, z0, fma(y0, y0, fma(x0, x0, mul(w0, w0)))),
+    );
+    // SAFETY (of the helpers below): this function has AVX2 and FMA.
+    unsafe {
         let t = inner(w0, v0, p);
-        // p' = p + s (v0 × t + w0 vε − wε v0 + v0 × vε)
         let q = |c: usize| {
             let (j, k) = ((c + 1) % 3, (c + 2) % 3);
             let tr = fnma(
@@ -221,11 +265,9 @@ unsafe fn dqs_blocks(
             );
             fma(s, add(cross(v0, t, c), tr), p[c])
         };
-        // n' = n + s v0 × (v0 × n + w0 n)
         let m = rotate(w0, v0, s, n);
-        store_rows(o, i, [q(0), q(1), q(2), m[0], m[1], m[2]]);
+        [q(0), q(1), q(2), m[0], m[1], m[2]]
     }
-    blocks * 8
 }
 
 /// One vertex's blended matrix `Σ wₖ Mₖ` in two registers, rows 0–1 (8 floats) and row 2

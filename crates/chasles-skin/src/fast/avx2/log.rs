@@ -14,7 +14,7 @@
 //! scalar kernel to rounding.
 
 use super::super::Out;
-use super::{cross, eight, load_head, store_rows, transpose8};
+use super::{cross, eight, horner, load_head, store_rows, taylor, transpose8};
 use crate::fast::Vertex;
 use std::arch::x86_64::*;
 
@@ -23,34 +23,6 @@ use std::arch::x86_64::*;
 const A: [f32; 10] = taylor(1);
 const B: [f32; 9] = taylor(2);
 const C: [f32; 9] = taylor(3);
-
-/// `(−1)ᵏ / (2k + first)!` for k = 0, 1, …
-const fn taylor<const N: usize>(first: u32) -> [f32; N] {
-    let mut out = [0f32; N];
-    let mut k = 0;
-    while k < N {
-        let mut f = 1f64;
-        let mut i = 2;
-        while i <= 2 * k as u32 + first {
-            f *= i as f64;
-            i += 1;
-        }
-        out[k] = (if k % 2 == 0 { 1.0 } else { -1.0 } / f) as f32;
-        k += 1;
-    }
-    out
-}
-
-/// `Σ cₖ sᵏ` by Horner's rule with fused multiply-adds.
-#[inline]
-#[target_feature(enable = "avx2,fma")]
-fn horner<const N: usize>(c: &[f32; N], s: __m256) -> __m256 {
-    let mut a = _mm256_set1_ps(c[N - 1]);
-    for k in (0..N - 1).rev() {
-        a = _mm256_fmadd_ps(a, s, _mm256_set1_ps(c[k]));
-    }
-    a
-}
 
 /// One vertex's blended twist `Σ wₖ (ωₖ, vₖ)` in one register (`[ω, v, 0, 0]`).
 #[inline]
