@@ -179,6 +179,25 @@ fn bench(c: &mut Criterion) {
     }
 }
 
+/// The layout with 8 influences (glTF's JOINTS_0 and JOINTS_1), every method on one thread:
+/// 10⁵ vertices of 8 random joints each, the pose's joint data made in each run.
+fn eight_influences(c: &mut Criterion) {
+    let n = 100_000;
+    let rig = synthetic::rig_with::<8>(n, 54, 7);
+    let jt = synthetic::joints(54, 7);
+    let cl = clusters(&rig);
+    let mut out = vec![[0f32; 6]; n];
+    let mut g = c.benchmark_group(format!("skin {n} vertices, 54 joints, 8 influences"));
+    g.throughput(Throughput::Elements(n as u64));
+    g.sample_size(20);
+    for m in chasles_skin::Method::ALL {
+        g.bench_function(format!("chasles {}, 1 thread", m.name()), |b| {
+            b.iter(|| skin_pose(&rig, &jt, m, || &cl, black_box(&mut out), false).unwrap())
+        });
+    }
+    g.finish();
+}
+
 /// Kavan et al.'s Figure 1 comparison on a real character: every method on CesiumMan
 /// (3273 vertices, 19 joints) mid-walk, one thread: the reference path, and the fast path
 /// with the pose's joint data made in each run.
@@ -212,5 +231,5 @@ fn figure_1(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, bench, figure_1);
+criterion_group!(benches, bench, eight_influences, figure_1);
 criterion_main!(benches);

@@ -1,5 +1,5 @@
 //! The fast path for every method: a compact vertex layout, fixed influence counts (4 or
-//! 8), eight-vertex AVX2+FMA kernels chosen at run time (every method, with 4 influences;
+//! 8), eight-vertex AVX2+FMA kernels chosen at run time (every method, for 4 and 8 influences;
 //! elsewhere, and for the last few vertices, the scalar kernels), joint
 //! transforms as flat arrays made once per pose (12 floats per matrix, 8 per dual
 //! quaternion — the register saving Kavan et al. 2006 note in §6; a 24-float row for QLB and
@@ -256,12 +256,16 @@ const CHUNK: usize = 4096;
 
 /// The 8-vertex SIMD kernel of a method, if this processor has one: it skins a prefix of
 /// whole blocks and returns how many vertices it did.
-type SimdKernel<J, T> = unsafe fn(&[Vertex<4>], &[J], &T, &mut [Out]) -> usize;
+type SimdKernel<const K: usize, J, T> = unsafe fn(&[Vertex<K>], &[J], &T, &mut [Out]) -> usize;
 
-/// Whether the AVX2+FMA kernels run here: x86-64 with both features, and 4 influences.
+/// Whether the AVX2+FMA kernels run here: x86-64 with both features, and 4 or 8 influences
+/// (the layouts they are written for: whole groups of four weights).
 fn simd(k: usize) -> bool {
     #[cfg(target_arch = "x86_64")]
-    if k == 4 && std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma") {
+    if (k == 4 || k == 8)
+        && std::is_x86_feature_detected!("avx2")
+        && std::is_x86_feature_detected!("fma")
+    {
         return true;
     }
     let _ = k;
@@ -275,9 +279,9 @@ trait Kernel<const K: usize> {
     type Table: Sync;
     fn table(joints: &[Self::Joint], vertices: usize) -> Self::Table;
     fn vertex(v: &Vertex<K>, joints: &[Self::Joint]) -> Out;
-    /// The AVX2+FMA kernel for 4 influences (x86-64 only), if the method has one.
+    /// The AVX2+FMA kernel (x86-64 only), if the method has one.
     #[cfg(target_arch = "x86_64")]
-    const AVX2: Option<SimdKernel<Self::Joint, Self::Table>>;
+    const AVX2: Option<SimdKernel<K, Self::Joint, Self::Table>>;
     /// A chunk of vertices (joint indices already checked against `joints`): the SIMD kernel
     /// where `simd` says so, the scalar kernel for the rest.
     fn chunk(
@@ -290,15 +294,11 @@ trait Kernel<const K: usize> {
         let mut done = 0;
         #[cfg(target_arch = "x86_64")]
         if let (true, Some(kernel)) = (simd, Self::AVX2) {
-            // SAFETY: `simd` is only true when K == 4 and the processor has AVX2 and FMA
-            // (see `simd`), so `Vertex<K>` is `Vertex<4>`; the joint indices were checked
-            // against the joint count when the FastRig was built and `run` checked that
-            // `joints` has that many entries; `table` was made from `joints`; `o` is as
-            // long as `v`.
-            done = unsafe {
-                let v4 = &*(v as *const [Vertex<K>] as *const [Vertex<4>]);
-                kernel(v4, joints, table, o)
-            };
+            // SAFETY: `simd` is only true when K is 4 or 8 and the processor has AVX2 and
+            // FMA (see `simd`); the joint indices were checked against the joint count
+            // when the FastRig was built and `run` checked that `joints` has that many
+            // entries; `table` was made from `joints`; `o` is as long as `v`.
+            done = unsafe { kernel(v, joints, table, o) };
         }
         let _ = (simd, table);
         o[done..]
@@ -314,7 +314,7 @@ impl<const K: usize> Kernel<K> for LbsKernel {
     type Table = ();
     fn table(_: &[[f32; 12]], _: usize) {}
     #[cfg(target_arch = "x86_64")]
-    const AVX2: Option<SimdKernel<[f32; 12], ()>> = Some(avx2::lbs);
+    const AVX2: Option<SimdKernel<K, [f32; 12], ()>> = Some(avx2::lbs::<K>);
     #[inline(always)]
     fn vertex(v: &Vertex<K>, joints: &[[f32; 12]]) -> Out {
         lbs_vertex(v, joints)
@@ -329,7 +329,7 @@ impl<const K: usize> Kernel<K> for DqsKernel {
         Antipodes::new(joints, vertices)
     }
     #[cfg(target_arch = "x86_64")]
-    const AVX2: Option<SimdKernel<[f32; 8], Antipodes>> = Some(avx2::dqs);
+    const AVX2: Option<SimdKernel<K, [f32; 8], Antipodes>> = Some(avx2::dqs::<K>);
     #[inline(always)]
     fn vertex(v: &Vertex<K>, joints: &[[f32; 8]]) -> Out {
         dqs_vertex(v, joints)
@@ -419,4 +419,88 @@ pub fn dqs<const K: usize>(
     parallel: bool,
 ) -> Result<()> {
     run::<K, DqsKernel>(rig, d, out, parallel)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::synthetic;
+
+    /// A method's kernel over `rig` with the SIMD kernel and with the scalar one only.
+    fn both<const K: usize, F: Kernel<K>>(rig: &FastRig<K>, joints: &[F::Joint]) -> [Vec<Out>; 2] {
+        let n = rig.vertices.len();
+        let table = F::table(joints, n);
+        [true, false].map(|simd| {
+            let mut o = vec![[f32::NAN; 6]; n];
+            F::chunk(&mut o, &rig.vertices, joints, &table, simd);
+            o
+        })
+    }
+
+    /// The largest difference of two outputs, and the share of vertices within `tol`.
+    fn apart(a: &[Out], b: &[Out], tol: f32) -> (f32, f64) {
+        let d: Vec<f32> = a
+            .iter()
+            .zip(b)
+            .map(|(a, b)| (0..6).map(|k| (a[k] - b[k]).abs()).fold(0f32, f32::max))
+            .collect();
+        let within = d.iter().filter(|x| **x <= tol).count() as f64 / d.len() as f64;
+        (d.iter().copied().fold(0f32, f32::max), within)
+    }
+
+    /// 8 influences: the SIMD kernels are the scalar ones (LBS bit for bit, the others to
+    /// rounding; DIB apart only where an update's norm falls on either side of the
+    /// precision), SBS included.
+    #[test]
+    fn the_simd_kernels_take_8_influences() {
+        if !simd(8) {
+            eprintln!("no AVX2+FMA here: nothing to compare");
+            return;
+        }
+        let rig = synthetic::rig_with::<8>(1003, 54, 7);
+        let jt = synthetic::joints(54, 7);
+        let [a, b] = both::<8, LbsKernel>(&rig, &matrices12(&jt));
+        assert_eq!(a, b);
+        let [a, b] = both::<8, DqsKernel>(&rig, &dual_quats8(&jt));
+        assert!(
+            apart(&a, &b, 2e-6).1 == 1.0,
+            "DQS {:?}",
+            apart(&a, &b, 2e-6)
+        );
+        let [a, b] = both::<8, log::LogKernel>(&rig, &log::rows(&twists(&jt).unwrap()));
+        assert!(
+            apart(&a, &b, 2e-6).1 == 1.0,
+            "Log {:?}",
+            apart(&a, &b, 2e-6)
+        );
+        let rows = qlb::rows(&jt.dual_quats, rig.centres());
+        let [a, b] = both::<8, qlb::QlbKernel>(&rig, &rows);
+        assert!(
+            apart(&a, &b, 4e-6).1 == 1.0,
+            "QLB {:?}",
+            apart(&a, &b, 4e-6)
+        );
+        let [a, b] = both::<8, dib::DibKernel>(&rig, &dual_quats8(&jt));
+        let (most, within) = apart(&a, &b, 2e-6);
+        assert!(within >= 0.99 && most < 1e-4, "DIB {most} {within}");
+        // SBS: the fast path (SIMD here) against the scalar kernel about the same centres.
+        let cl = clusters(&rig);
+        let mut o = vec![[f32::NAN; 6]; 1003];
+        sbs(&rig, &cl, &jt.dual_quats, &mut o, false).unwrap();
+        let centres = cl.centres(&jt.dual_quats, rig.centres(), false);
+        let want: Vec<Out> = rig
+            .vertices
+            .iter()
+            .zip(cl.of_vertex())
+            .map(|(v, c)| {
+                let c = centres[*c as usize];
+                qlb::about(v, &qlb::blend(v, &rows), [c.x, c.y, c.z])
+            })
+            .collect();
+        assert!(
+            apart(&o, &want, 4e-6).1 == 1.0,
+            "SBS {:?}",
+            apart(&o, &want, 4e-6)
+        );
+    }
 }

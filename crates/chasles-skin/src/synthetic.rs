@@ -1,5 +1,5 @@
-//! Synthetic rigs for benchmarks: n vertices with random positions and normals, 4 random
-//! distinct joints per vertex with random convex weights, and random rigid joint
+//! Synthetic rigs for benchmarks: n vertices with random positions and normals, 4 (or K)
+//! random distinct joints per vertex with random convex weights, and random rigid joint
 //! transforms within 60° of the identity (as in skinning). Deterministic for a seed.
 
 use crate::fast::{FastRig, Vertex};
@@ -21,6 +21,13 @@ impl Mix {
 
 /// A fast-path rig of `n` vertices and `joints` joints (4 influences per vertex).
 pub fn rig(n: usize, joints: usize, seed: u64) -> FastRig<4> {
+    rig_with(n, joints, seed)
+}
+
+/// A fast-path rig of `n` vertices and `joints` (at least K) joints with K influences per
+/// vertex (random convex weights, the first the heaviest on average); for K = 4 the same
+/// as [`rig`].
+pub fn rig_with<const K: usize>(n: usize, joints: usize, seed: u64) -> FastRig<K> {
     let mut r = Mix(seed);
     let vertices = (0..n)
         .map(|_| {
@@ -32,8 +39,8 @@ pub fn rig(n: usize, joints: usize, seed: u64) -> FastRig<4> {
             let nn = Vec3::new(r.next() - 0.5, r.next() - 0.5, r.next() - 0.5)
                 .normalize()
                 .unwrap_or(Vec3::new(0.0, 0.0, 1.0));
-            let mut j = [0u16; 4];
-            for k in 0..4 {
+            let mut j = [0u16; K];
+            for k in 0..K {
                 loop {
                     let c = ((r.next() * joints as f32) as usize).min(joints - 1) as u16;
                     if !j[..k].contains(&c) {
@@ -42,12 +49,11 @@ pub fn rig(n: usize, joints: usize, seed: u64) -> FastRig<4> {
                     }
                 }
             }
-            let mut w = [
-                r.next() + 0.1,
-                r.next() * 0.5,
-                r.next() * 0.3,
-                r.next() * 0.1,
-            ];
+            let mut w: [f32; K] = core::array::from_fn(|k| match k {
+                0 => r.next() + 0.1,
+                1..=3 => r.next() * [0.5, 0.3, 0.1][k - 1],
+                _ => r.next() * 0.05 + 1e-3,
+            });
             let s: f32 = w.iter().sum();
             w.iter_mut().for_each(|x| *x /= s);
             Vertex {

@@ -1,11 +1,11 @@
 //! Eight vertices at a time with AVX2 and FMA (x86-64, chosen at run time), the formulas
 //! of the scalar kernels, so the results agree with them to rounding (LBS in their very
-//! order of operations; DQS with fused multiply-adds). DQS: each vertex's four joint dual
+//! order of operations; DQS with fused multiply-adds). DQS: each vertex's K (4 or 8) joint dual
 //! quaternions are whole-register loads and its blend runs in one register, the
 //! antipodality signs looked up in a per-pose table (`Antipodes`) or, for rigs too large
 //! for one, from dot products; eight blends, and eight vertices' positions and normals, are
 //! transposed into lanes for the transformation, normalized by one division (no square
-//! root). LBS likewise: each vertex's four joint matrices are whole-register loads blended in
+//! root). LBS likewise: each vertex's K joint matrices are whole-register loads blended in
 //! two registers (in the scalar kernel's order, so bit for bit), eight blends transposed into
 //! lanes for the transformation. Both prefetch the input ahead and write their results back
 //! by a transpose and masked stores. Log, QLB/SBS and DIB are in the submodules; DIB ends
@@ -18,50 +18,53 @@ pub mod dib;
 pub mod log;
 pub mod qlb;
 
-/// Vertex stride in floats (`Vertex<4>` is 48 bytes: p 0–2, n 3–5, joints 6–7 as two u32
-/// words of u16 pairs, weights 8–11).
-const STRIDE: i32 = 12;
-
 /// How many vertices ahead the kernels prefetch their input (tried: 32, 64, 128).
 const PREFETCH: usize = 64;
 
 /// The first 8 floats of vertices `i … i + 7` in lanes, by eight loads and a transpose:
-/// x, y, z, nx, ny, nz and the two words of joint indices (as float bits). Also asks for the
-/// six cache lines of the block [`PREFETCH`] vertices ahead: meshes streamed from memory
-/// skin about 1.4 times faster for it (measured at 10⁶ vertices).
+/// x, y, z, nx, ny, nz and the first two words of joint indices (as float bits). A
+/// `Vertex<K>` is `6 + K/2 + K` floats: p 0–2, n 3–5, joints as u32 words of u16 pairs,
+/// weights. Also asks for the cache lines of the block [`PREFETCH`] vertices ahead: meshes
+/// streamed from memory skin about 1.4 times faster for it (measured at 10⁶ vertices).
 #[inline]
 #[target_feature(enable = "avx2,fma")]
-unsafe fn load_head(v: &[Vertex<4>], i: usize) -> [__m256; 8] {
+unsafe fn load_head<const K: usize>(v: &[Vertex<K>], i: usize) -> [__m256; 8] {
+    let stride = size_of::<Vertex<K>>() / 4;
     // A prefetch past the end of the mesh is harmless; the pointer is never read.
     let ahead = v.as_ptr().wrapping_add(i + PREFETCH) as *const i8;
-    for line in 0..6 {
+    for line in 0..(8 * size_of::<Vertex<K>>()).div_ceil(64) {
         _mm_prefetch::<_MM_HINT_T0>(ahead.wrapping_add(line * 64));
     }
     let vb = v.as_ptr().add(i) as *const f32;
     transpose8(core::array::from_fn(|l| {
-        _mm256_loadu_ps(vb.add(l * STRIDE as usize))
+        _mm256_loadu_ps(vb.add(l * stride))
     }))
 }
 
-/// One vertex's blended dual quaternion `Σ ±wₖ q̂ₖ` (8 floats in one register): its four
+/// One vertex's blended dual quaternion `Σ ±wₖ q̂ₖ` (8 floats in one register): its K
 /// joints' dual quaternions are whole-register loads, not gathers; the antipodality signs
-/// come from the four dot products with the pivot (the heaviest influence), summed in the
-/// scalar kernel's order after a 4×4 transpose, so the signs are the same.
+/// come from the dot products with the pivot (the heaviest influence), four at a time,
+/// summed in the scalar kernel's order after a 4×4 transpose, so the signs are the same.
 #[inline]
 #[target_feature(enable = "avx2,fma")]
-unsafe fn blend_one(vx: &Vertex<4>, db: *const f32) -> __m256 {
+unsafe fn blend_one<const K: usize>(vx: &Vertex<K>, db: *const f32) -> __m256 {
     let q = vx.j.map(|j| _mm256_loadu_ps(db.add(usize::from(j) * 8)));
     let pivot = _mm256_castps256_ps128(q[0]);
-    let [mut m0, mut m1, mut m2, mut m3] = q.map(|q| _mm_mul_ps(_mm256_castps256_ps128(q), pivot));
-    _MM_TRANSPOSE4_PS(&mut m0, &mut m1, &mut m2, &mut m3);
-    let dots = _mm_add_ps(_mm_add_ps(_mm_add_ps(m0, m1), m2), m3);
-    let neg = _mm_and_ps(_mm_cmplt_ps(dots, _mm_setzero_ps()), _mm_set1_ps(-0.0));
-    let w = _mm_xor_ps(_mm_loadu_ps(vx.w.as_ptr()), neg);
-    let w = _mm256_set_m128(w, w);
-    let b = _mm256_mul_ps(_mm256_permute_ps::<0x00>(w), q[0]);
-    let b = _mm256_fmadd_ps(_mm256_permute_ps::<0x55>(w), q[1], b);
-    let b = _mm256_fmadd_ps(_mm256_permute_ps::<0xAA>(w), q[2], b);
-    _mm256_fmadd_ps(_mm256_permute_ps::<0xFF>(w), q[3], b)
+    let mut b = _mm256_setzero_ps();
+    for g in 0..K / 4 {
+        let m = |k: usize| _mm_mul_ps(_mm256_castps256_ps128(q[4 * g + k]), pivot);
+        let (mut m0, mut m1, mut m2, mut m3) = (m(0), m(1), m(2), m(3));
+        _MM_TRANSPOSE4_PS(&mut m0, &mut m1, &mut m2, &mut m3);
+        let dots = _mm_add_ps(_mm_add_ps(_mm_add_ps(m0, m1), m2), m3);
+        let neg = _mm_and_ps(_mm_cmplt_ps(dots, _mm_setzero_ps()), _mm_set1_ps(-0.0));
+        let w = _mm_xor_ps(_mm_loadu_ps(vx.w.as_ptr().add(4 * g)), neg);
+        let w = _mm256_set_m128(w, w);
+        b = _mm256_fmadd_ps(_mm256_permute_ps::<0x00>(w), q[4 * g], b);
+        b = _mm256_fmadd_ps(_mm256_permute_ps::<0x55>(w), q[4 * g + 1], b);
+        b = _mm256_fmadd_ps(_mm256_permute_ps::<0xAA>(w), q[4 * g + 2], b);
+        b = _mm256_fmadd_ps(_mm256_permute_ps::<0xFF>(w), q[4 * g + 3], b);
+    }
+    b
 }
 
 /// Component c of `a × b`: `a_j b_k − a_k b_j`, (c, j, k) cyclic, with one fused
@@ -180,20 +183,24 @@ unsafe fn store_rows(o: &mut [Out], i: usize, r: [__m256; 6]) {
 /// blend has no shuffles. The first weight is never negated (`⟨q̂₀, q̂₀⟩ ≥ 0`).
 #[inline]
 #[target_feature(enable = "avx2,fma")]
-unsafe fn blend_signed(vx: &Vertex<4>, db: *const f32, signs: *const f32, joints: usize) -> __m256 {
+unsafe fn blend_signed<const K: usize>(
+    vx: &Vertex<K>,
+    db: *const f32,
+    signs: *const f32,
+    joints: usize,
+) -> __m256 {
     let j = vx.j.map(usize::from);
     let q = j.map(|j| _mm256_loadu_ps(db.add(j * 8)));
     let row = signs.add(j[0] * joints);
-    let w = |k: usize| {
-        _mm256_xor_ps(
-            _mm256_broadcast_ss(&vx.w[k]),
-            _mm256_broadcast_ss(&*row.add(j[k])),
-        )
-    };
-    let b = _mm256_mul_ps(_mm256_broadcast_ss(&vx.w[0]), q[0]);
-    let b = _mm256_fmadd_ps(w(1), q[1], b);
-    let b = _mm256_fmadd_ps(w(2), q[2], b);
-    _mm256_fmadd_ps(w(3), q[3], b)
+    let mut b = _mm256_mul_ps(_mm256_broadcast_ss(&vx.w[0]), q[0]);
+    // By index, as in the other kernels' blends: zipped iterators can compile slower.
+    #[allow(clippy::needless_range_loop)]
+    for k in 1..K {
+        let sign = _mm256_broadcast_ss(&*row.add(j[k]));
+        let w = _mm256_xor_ps(_mm256_broadcast_ss(&vx.w[k]), sign);
+        b = _mm256_fmadd_ps(w, q[k], b);
+    }
+    b
 }
 
 /// DQS for the first `v.len() / 8 * 8` vertices; returns how many were done. Each
@@ -202,10 +209,15 @@ unsafe fn blend_signed(vx: &Vertex<4>, db: *const f32, signs: *const f32, joints
 /// transformation run lane-parallel.
 ///
 /// # Safety
-/// The processor must have AVX2 and FMA, every joint index in `v` must be below
+/// The processor must have AVX2 and FMA, K must be 4 or 8, every joint index in `v` must be below
 /// `d.len()`, `antipodes` must be empty or made from `d`, and `o.len() >= v.len()`.
 #[target_feature(enable = "avx2,fma")]
-pub unsafe fn dqs(v: &[Vertex<4>], d: &[[f32; 8]], antipodes: &Antipodes, o: &mut [Out]) -> usize {
+pub unsafe fn dqs<const K: usize>(
+    v: &[Vertex<K>],
+    d: &[[f32; 8]],
+    antipodes: &Antipodes,
+    o: &mut [Out],
+) -> usize {
     let db = d.as_ptr() as *const f32;
     if antipodes.is_empty() {
         dqs_blocks(v, o, |vx| blend_one(vx, db))
@@ -219,10 +231,10 @@ pub unsafe fn dqs(v: &[Vertex<4>], d: &[[f32; 8]], antipodes: &Antipodes, o: &mu
 /// blended dual quaternion.
 #[inline]
 #[target_feature(enable = "avx2,fma")]
-unsafe fn dqs_blocks(
-    v: &[Vertex<4>],
+unsafe fn dqs_blocks<const K: usize>(
+    v: &[Vertex<K>],
     o: &mut [Out],
-    blend: impl Fn(&Vertex<4>) -> __m256,
+    blend: impl Fn(&Vertex<K>) -> __m256,
 ) -> usize {
     let blocks = v.len() / 8;
     for blk in 0..blocks {
@@ -271,20 +283,20 @@ fn transform(b: [__m256; 8], p: [__m256; 3], n: [__m256; 3]) -> [__m256; 6] {
 }
 
 /// One vertex's blended matrix `Σ wₖ Mₖ` in two registers, rows 0–1 (8 floats) and row 2
-/// (4): its four joints' rows are whole-register loads, not gathers; each product rounded,
+/// (4): its K joints' rows are whole-register loads, not gathers; each product rounded,
 /// then summed in the scalar kernel's order, so the matrix is the same bit for bit.
 #[inline]
 #[target_feature(enable = "avx2,fma")]
-unsafe fn lbs_blend(vx: &Vertex<4>, mb: *const f32) -> (__m256, __m128) {
+unsafe fn lbs_blend<const K: usize>(vx: &Vertex<K>, mb: *const f32) -> (__m256, __m128) {
     let j = vx.j.map(|j| usize::from(j) * 12);
     let w = |k: usize| _mm256_broadcast_ss(&vx.w[k]);
     let rows01 = |k: usize| _mm256_mul_ps(w(k), _mm256_loadu_ps(mb.add(j[k])));
     let row2 = |k: usize| _mm_mul_ps(_mm256_castps256_ps128(w(k)), _mm_loadu_ps(mb.add(j[k] + 8)));
-    let a = _mm256_add_ps(
-        _mm256_add_ps(_mm256_add_ps(rows01(0), rows01(1)), rows01(2)),
-        rows01(3),
-    );
-    let b = _mm_add_ps(_mm_add_ps(_mm_add_ps(row2(0), row2(1)), row2(2)), row2(3));
+    let (mut a, mut b) = (rows01(0), row2(0));
+    for k in 1..K {
+        a = _mm256_add_ps(a, rows01(k));
+        b = _mm_add_ps(b, row2(k));
+    }
     (a, b)
 }
 
@@ -296,7 +308,12 @@ unsafe fn lbs_blend(vx: &Vertex<4>, mb: *const f32) -> (__m256, __m128) {
 /// # Safety
 /// As for [`dqs`], with `m` the joints' 3×4 matrices.
 #[target_feature(enable = "avx2,fma")]
-pub unsafe fn lbs(v: &[Vertex<4>], m: &[[f32; 12]], _: &(), o: &mut [Out]) -> usize {
+pub unsafe fn lbs<const K: usize>(
+    v: &[Vertex<K>],
+    m: &[[f32; 12]],
+    _: &(),
+    o: &mut [Out],
+) -> usize {
     let mb = m.as_ptr() as *const f32;
     let zero = _mm256_setzero_ps();
     let blocks = v.len() / 8;

@@ -1,7 +1,7 @@
 //! The fast path for DIB skinning (Kavan et al. 2006, §4, the DIB algorithm box, per vertex):
 //! the DLB start, then `b̂ ← b̂ exp(Σ wᵢ log(b̂* q̂ᵢ))` until the update is below
 //! [`DIB_PRECISION`] or [`DIB_UPDATES`] were made, with rayon over chunks of vertices. With
-//! AVX2+FMA and 4 influences, eight vertices at a time (`avx2::dib`: the algorithm in lanes,
+//! AVX2+FMA (4 or 8 influences), eight vertices at a time (`avx2::dib`: the algorithm in lanes,
 //! the logarithm and exponential by series; it agrees with the scalar kernel to rounding,
 //! except where an update's norm falls on either side of the precision, and then both stay
 //! within the stopping rule's reach of the exact blend). Elsewhere, and for the last few
@@ -43,7 +43,7 @@ impl<const K: usize> Kernel<K> for DibKernel {
     type Table = ();
     fn table(_: &[[f32; 8]], _: usize) {}
     #[cfg(target_arch = "x86_64")]
-    const AVX2: Option<super::SimdKernel<[f32; 8], ()>> = Some(super::avx2::dib::dib);
+    const AVX2: Option<super::SimdKernel<K, [f32; 8], ()>> = Some(super::avx2::dib::dib::<K>);
     #[inline(always)]
     fn vertex(v: &Vertex<K>, joints: &[[f32; 8]]) -> Out {
         let (q, w, n) = gather(v, joints);
@@ -69,4 +69,37 @@ pub fn dib<const K: usize>(
 ) -> Result<()> {
     let d: Vec<[f32; 8]> = d.iter().map(|q| q.to_array()).collect();
     run::<K, DibKernel>(rig, &d, out, parallel)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::cylinder::{pose, twisted_cylinder, Motion};
+    use crate::{joint_transforms, skin_joints, Method};
+
+    /// The scalar kernel (the fast path without AVX2, and the last few vertices of a chunk)
+    /// is the reference path bit for bit: the same calls on the same numbers in order.
+    #[test]
+    fn the_scalar_kernel_is_the_reference_bit_for_bit() {
+        let rig = twisted_cylinder();
+        let (four, eight) = (
+            super::super::FastRig::<4>::new(&rig).unwrap(),
+            super::super::FastRig::<8>::new(&rig).unwrap(),
+        );
+        for (motion, angle) in [
+            (Motion::Twist, 0.0),
+            (Motion::Twist, 3.0),
+            (Motion::Bend, 2.1),
+        ] {
+            let jt = joint_transforms(&rig, &pose(&rig, motion, angle)).unwrap();
+            let want = skin_joints(&rig, &jt, Method::Dib).unwrap();
+            let d: Vec<[f32; 8]> = jt.dual_quats.iter().map(|q| q.to_array()).collect();
+            for v in 0..want.positions.len() {
+                let (p, n) = (want.positions[v], want.normals[v]);
+                let want = [p.x, p.y, p.z, n.x, n.y, n.z];
+                assert_eq!(DibKernel::vertex(&four.vertices()[v], &d), want, "{v}");
+                assert_eq!(DibKernel::vertex(&eight.vertices()[v], &d), want, "{v}");
+            }
+        }
+    }
 }

@@ -2,8 +2,8 @@
 //! 2006, Table 1 and Figure 1): each joint's rigid transform is taken to its twist
 //! `log Cⱼ = (ω, v)` once per pose, and each vertex blends its K twists linearly and maps
 //! the sum back by the closed-form exponential — no allocation, rayon over chunks, as for
-//! LBS and DQS; eight vertices at a time with AVX2 and FMA where the processor has them (4
-//! influences: `avx2::log`, the exponential's coefficients by their Taylor series, no
+//! LBS and DQS; eight vertices at a time with AVX2 and FMA where the processor has them (4 or
+//! 8 influences: `avx2::log`, the exponential's coefficients by their Taylor series, no
 //! trigonometric calls). The scalar kernel runs the reference path's formulas
 //! ([`crate::skinning`]); tests check both against it to 1e-5 on every model and clip.
 
@@ -40,7 +40,7 @@ impl<const K: usize> Kernel<K> for LogKernel {
     type Table = ();
     fn table(_: &[Row], _: usize) {}
     #[cfg(target_arch = "x86_64")]
-    const AVX2: Option<super::SimdKernel<Row, ()>> = Some(super::avx2::log::log);
+    const AVX2: Option<super::SimdKernel<K, Row, ()>> = Some(super::avx2::log::log::<K>);
     #[inline(always)]
     fn vertex(v: &Vertex<K>, joints: &[Row]) -> Out {
         log_vertex(v, joints)
@@ -55,12 +55,16 @@ pub fn log<const K: usize>(
     out: &mut [Out],
     parallel: bool,
 ) -> Result<()> {
-    let rows: Vec<Row> = twists
+    run::<K, LogKernel>(rig, &rows(twists), out, parallel)
+}
+
+/// The twists as the kernels read them, `[ω, v, 0, 0]`.
+pub(super) fn rows(twists: &[Twist<f32>]) -> Vec<Row> {
+    twists
         .iter()
         .map(|t| {
             let ([a, b, c], [d, e, f]) = (t.w.to_array(), t.v.to_array());
             [a, b, c, d, e, f, 0.0, 0.0]
         })
-        .collect();
-    run::<K, LogKernel>(rig, &rows, out, parallel)
+        .collect()
 }

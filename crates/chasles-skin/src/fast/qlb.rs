@@ -17,8 +17,8 @@
 //! rest rotated by the QLB rotation) written out: `Σ wₖ (Rₖ c + tₖ)` is the blended matrix
 //! applied to c, and the rotation by r̂ takes no square root (every term is quadratic in r:
 //! one factor 2/‖r‖², as in DQS). QLB's c is the blended origins; SBS's is its cluster's.
-//! Eight vertices at a time with AVX2 and FMA where the processor has them (4 influences;
-//! `avx2::qlb`), the scalar kernel below elsewhere; rayon over chunks. Agrees with the
+//! Eight vertices at a time with AVX2 and FMA where the processor has them (4 or 8
+//! influences; `avx2::qlb`), the scalar kernel below elsewhere; rayon over chunks. Agrees with the
 //! reference path to 1e-5 (a test checks every model and clip).
 
 use super::{
@@ -33,7 +33,7 @@ use chasles::DualQuat;
 pub type Row = [f32; 24];
 
 /// The rows of joint transforms `d` with bind origins `centres`.
-fn rows(d: &[DualQuat<f32>], centres: &[chasles::Vec3<f32>]) -> Vec<Row> {
+pub(super) fn rows(d: &[DualQuat<f32>], centres: &[chasles::Vec3<f32>]) -> Vec<Row> {
     d.iter()
         .zip(centres)
         .map(|(d, c)| {
@@ -52,7 +52,7 @@ fn rows(d: &[DualQuat<f32>], centres: &[chasles::Vec3<f32>]) -> Vec<Row> {
 /// A vertex's blended row: `Σ ±wₖ qₖ` (signs against the pivot, the heaviest influence),
 /// then `Σ wₖ [Rₖ | tₖ]` and `Σ wₖ cₖ`.
 #[inline(always)]
-fn blend<const K: usize>(v: &Vertex<K>, rows: &[Row]) -> [f32; 19] {
+pub(super) fn blend<const K: usize>(v: &Vertex<K>, rows: &[Row]) -> [f32; 19] {
     let pivot = &rows[usize::from(v.j[0])];
     let mut b = [0f32; 19];
     for k in 0..K {
@@ -75,7 +75,7 @@ fn blend<const K: usize>(v: &Vertex<K>, rows: &[Row]) -> [f32; 19] {
 
 /// The vertex moved by a blended row about the centre `c` (see the module's formula).
 #[inline(always)]
-fn about<const K: usize>(v: &Vertex<K>, b: &[f32; 19], c: [f32; 3]) -> Out {
+pub(super) fn about<const K: usize>(v: &Vertex<K>, b: &[f32; 19], c: [f32; 3]) -> Out {
     let [w0, x0, y0, z0] = [b[0], b[1], b[2], b[3]];
     let s = 2.0 / (w0 * w0 + x0 * x0 + y0 * y0 + z0 * z0);
     // y = Σ wₖ (Rₖ c + tₖ): the blended matrix applied to c.
@@ -90,7 +90,7 @@ fn about<const K: usize>(v: &Vertex<K>, b: &[f32; 19], c: [f32; 3]) -> Out {
 }
 
 /// Decomposed QLB; a joint is a [`Row`].
-struct QlbKernel;
+pub(super) struct QlbKernel;
 impl<const K: usize> Kernel<K> for QlbKernel {
     type Joint = Row;
     type Table = Antipodes;
@@ -98,7 +98,7 @@ impl<const K: usize> Kernel<K> for QlbKernel {
         Antipodes::new(joints, vertices)
     }
     #[cfg(target_arch = "x86_64")]
-    const AVX2: Option<super::SimdKernel<Row, Antipodes>> = Some(super::avx2::qlb::qlb);
+    const AVX2: Option<super::SimdKernel<K, Row, Antipodes>> = Some(super::avx2::qlb::qlb::<K>);
     #[inline(always)]
     fn vertex(v: &Vertex<K>, joints: &[Row]) -> Out {
         let b = blend(v, joints);
@@ -152,14 +152,11 @@ pub fn sbs<const K: usize>(
         let mut done = 0;
         #[cfg(target_arch = "x86_64")]
         if simd {
-            // SAFETY: `simd` holds only for K == 4 on a processor with AVX2 and FMA; the
-            // joint indices were checked when the rig was built and `check` matched `rows`
-            // to the joint count; every cluster index is below `centres.len()` (both from
-            // `clusters`); `table` was made from `rows`; `o` is as long as `v` and `cl`.
-            done = unsafe {
-                let v4 = &*(v as *const [Vertex<K>] as *const [Vertex<4>]);
-                super::avx2::qlb::sbs(v4, &rows, &table, cl, &centres, o)
-            };
+            // SAFETY: `simd` holds only for K = 4 or 8 on a processor with AVX2 and FMA;
+            // the joint indices were checked when the rig was built and `check` matched
+            // `rows` to the joint count; every cluster index is below `centres.len()` (both
+            // from `clusters`); `table` was made from `rows`; `o` is as long as `v` and `cl`.
+            done = unsafe { super::avx2::qlb::sbs(v, &rows, &table, cl, &centres, o) };
         }
         for ((o, v), c) in o.iter_mut().zip(v).zip(cl).skip(done) {
             let c = &centres[*c as usize];

@@ -237,10 +237,10 @@ fn keep_going(norm: __m256, last: __m256) -> __m256 {
 /// scalar kernel does.
 ///
 /// # Safety
-/// The processor must have AVX2 and FMA, every joint index in `v` must be below
+/// The processor must have AVX2 and FMA, K must be 4 or 8, every joint index in `v` must be below
 /// `d.len()`, and `o.len() >= v.len()`.
 #[target_feature(enable = "avx2,fma")]
-pub unsafe fn dib(v: &[Vertex<4>], d: &[[f32; 8]], _: &(), o: &mut [Out]) -> usize {
+pub unsafe fn dib<const K: usize>(v: &[Vertex<K>], d: &[[f32; 8]], _: &(), o: &mut [Out]) -> usize {
     let db = d.as_ptr() as *const f32;
     let zero = _mm256_setzero_ps();
     let identity: Dq = eight(|c| if c == 0 { set(1.0) } else { zero });
@@ -249,26 +249,31 @@ pub unsafe fn dib(v: &[Vertex<4>], d: &[[f32; 8]], _: &(), o: &mut [Out]) -> usi
         let i = blk * 8;
         let [px, py, pz, nx, ny, nz, _, _] = load_head(v, i);
         let vs = eight(|l| v.get_unchecked(i + l));
-        // Weights in lanes (vertex l in lane l), the positive ones scaled to sum to 1.
-        let raw = transpose4_halves([0, 1, 2, 3].map(|l| {
-            _mm256_set_m128(
-                _mm_loadu_ps(vs[l + 4].w.as_ptr()),
-                _mm_loadu_ps(vs[l].w.as_ptr()),
-            )
-        }));
+        // Weights in lanes (vertex l in lane l), four slots at a time; the positive ones
+        // scaled to sum to 1, in the scalar kernel's order.
+        let mut raw = [zero; K];
+        for g in 0..K / 4 {
+            let w = |l: usize| _mm_loadu_ps(vs[l].w.as_ptr().add(4 * g));
+            let t = transpose4_halves([0, 1, 2, 3].map(|l| _mm256_set_m128(w(l + 4), w(l))));
+            raw[4 * g..4 * g + 4].copy_from_slice(&t);
+        }
         let used = raw.map(|w| _mm256_cmp_ps::<_CMP_GT_OQ>(w, zero));
-        let wp: [__m256; 4] = core::array::from_fn(|k| _mm256_and_ps(raw[k], used[k]));
-        let sum = _mm256_add_ps(_mm256_add_ps(_mm256_add_ps(wp[0], wp[1]), wp[2]), wp[3]);
+        let mut wp = [zero; K];
+        let mut sum = zero;
+        for k in 0..K {
+            wp[k] = _mm256_and_ps(raw[k], used[k]);
+            sum = _mm256_add_ps(sum, wp[k]);
+        }
         let w = wp.map(|x| _mm256_div_ps(x, sum));
         // Trailing slots of weight 0 in all eight vertices (neighbours in a mesh tend to
         // have as many influences) are skipped: their terms would be exact zeros.
-        let slots = (0..4)
+        let slots = (0..K)
             .rev()
             .find(|&k| _mm256_movemask_ps(used[k]) != 0)
             .map_or(0, |k| k + 1);
         // Joints in lanes; unused ones replaced by the identity.
-        let mut q = [identity; 4];
-        for k in 0..4 {
+        let mut q = [identity; K];
+        for k in 0..slots {
             let t = transpose8(eight(|l| {
                 _mm256_loadu_ps(db.add(usize::from(vs[l].j[k]) * 8))
             }));
@@ -276,7 +281,7 @@ pub unsafe fn dib(v: &[Vertex<4>], d: &[[f32; 8]], _: &(), o: &mut [Out]) -> usi
         }
         // DLB against the pivot: the first of the heaviest (slot 0 in a `FastRig::new`).
         let (mut pivot, mut heaviest) = (q[0], w[0]);
-        for k in 1..4 {
+        for k in 1..slots {
             let more = _mm256_cmp_ps::<_CMP_GT_OQ>(w[k], heaviest);
             pivot = eight(|c| _mm256_blendv_ps(pivot[c], q[k][c], more));
             heaviest = _mm256_blendv_ps(heaviest, w[k], more);

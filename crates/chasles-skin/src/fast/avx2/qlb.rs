@@ -1,5 +1,5 @@
 //! QLB and SBS (`super::super::qlb`) eight vertices at a time with AVX2 and FMA: each
-//! vertex's four joint rows are whole-register loads (three registers a row) and blended in
+//! vertex's K joint rows are whole-register loads (three registers a row) and blended in
 //! registers — the rotation quaternions with the antipodality signs of the pivot's row of
 //! the sign table (`Antipodes`; the scalar kernel's dot products where there is no table),
 //! the matrices and origins with the plain weights — then eight blends are transposed into
@@ -17,20 +17,21 @@ const ROW: usize = 24;
 /// from the table's row for the vertex's pivot, or the scalar kernel's dot products.
 #[inline]
 #[target_feature(enable = "avx2,fma")]
-unsafe fn signs(vx: &Vertex<4>, rows: &[[f32; ROW]], table: &Antipodes) -> [__m256; 4] {
-    let j = [0, 1, 2, 3].map(|k| usize::from(vx.j[k]));
-    // Written out, as everywhere in these kernels: array maps of closures can stay calls.
+unsafe fn signs<const K: usize>(
+    vx: &Vertex<K>,
+    rows: &[[f32; ROW]],
+    table: &Antipodes,
+) -> [__m256; K] {
+    let j = vx.j.map(usize::from);
     if table.is_empty() {
         let pivot = rows.get_unchecked(j[0]);
-        let sign = |j: usize| {
+        j.map(|j| {
             let neg = real_dot(rows.get_unchecked(j), pivot) < 0.0;
             _mm256_set1_ps(if neg { -0.0 } else { 0.0 })
-        };
-        [sign(j[0]), sign(j[1]), sign(j[2]), sign(j[3])]
+        })
     } else {
         let row = table.signs.as_ptr().add(j[0] * table.joints);
-        let sign = |j: usize| _mm256_broadcast_ss(&*row.add(j));
-        [sign(j[0]), sign(j[1]), sign(j[2]), sign(j[3])]
+        j.map(|j| _mm256_broadcast_ss(&*row.add(j)))
     }
 }
 
@@ -41,8 +42,8 @@ unsafe fn signs(vx: &Vertex<4>, rows: &[[f32; ROW]], table: &Antipodes) -> [__m2
 /// `#[inline]` AVX2 function it stayed a call, one per vertex; it is only called from the
 /// AVX2 kernel body, into which it and its intrinsics are inlined.
 #[inline(always)]
-unsafe fn blend<const SBS: bool>(
-    vx: &Vertex<4>,
+unsafe fn blend<const K: usize, const SBS: bool>(
+    vx: &Vertex<K>,
     rows: &[[f32; ROW]],
     table: &Antipodes,
 ) -> [__m256; 3] {
@@ -52,7 +53,7 @@ unsafe fn blend<const SBS: bool>(
     let mut out = [_mm256_setzero_ps(); 3];
     // By index: zipped iterators over the three arrays compiled to slower code.
     #[allow(clippy::needless_range_loop)]
-    for k in 0..4 {
+    for k in 0..K {
         let r = rb.add(usize::from(vx.j[k]) * ROW);
         let w = _mm256_broadcast_ss(&vx.w[k]);
         // The sign touches the quaternion's four lanes only.
@@ -70,11 +71,16 @@ unsafe fn blend<const SBS: bool>(
 /// origins; returns how many were done.
 ///
 /// # Safety
-/// The processor must have AVX2 and FMA, every joint index in `v` must be below
+/// The processor must have AVX2 and FMA, K must be 4 or 8, every joint index in `v` must be below
 /// `rows.len()`, `table` must be empty or made from `rows`, and `o.len() >= v.len()`.
 #[target_feature(enable = "avx2,fma")]
-pub unsafe fn qlb(v: &[Vertex<4>], rows: &[[f32; ROW]], table: &Antipodes, o: &mut [Out]) -> usize {
-    blocks::<false>(v, rows, table, &[], &[], o)
+pub unsafe fn qlb<const K: usize>(
+    v: &[Vertex<K>],
+    rows: &[[f32; ROW]],
+    table: &Antipodes,
+    o: &mut [Out],
+) -> usize {
+    blocks::<K, false>(v, rows, table, &[], &[], o)
 }
 
 /// SBS for the first `v.len() / 8 * 8` vertices, each about its cluster's centre
@@ -84,15 +90,15 @@ pub unsafe fn qlb(v: &[Vertex<4>], rows: &[[f32; ROW]], table: &Antipodes, o: &m
 /// As for [`qlb`], and every `cluster[i]` (for `i < v.len()`) must be below
 /// `centres.len()`.
 #[target_feature(enable = "avx2,fma")]
-pub unsafe fn sbs(
-    v: &[Vertex<4>],
+pub unsafe fn sbs<const K: usize>(
+    v: &[Vertex<K>],
     rows: &[[f32; ROW]],
     table: &Antipodes,
     cluster: &[u32],
     centres: &[[f32; 8]],
     o: &mut [Out],
 ) -> usize {
-    blocks::<true>(v, rows, table, cluster, centres, o)
+    blocks::<K, true>(v, rows, table, cluster, centres, o)
 }
 
 /// The body over whole blocks of eight: each vertex's blended row, and its centre — its
@@ -100,8 +106,8 @@ pub unsafe fn sbs(
 /// Generic over `SBS` rather than taking the blend as a closure: the closure stayed a call.
 #[inline]
 #[target_feature(enable = "avx2,fma")]
-unsafe fn blocks<const SBS: bool>(
-    v: &[Vertex<4>],
+unsafe fn blocks<const K: usize, const SBS: bool>(
+    v: &[Vertex<K>],
     rows: &[[f32; ROW]],
     table: &Antipodes,
     cluster: &[u32],
@@ -116,7 +122,7 @@ unsafe fn blocks<const SBS: bool>(
         let r = eight(
             #[inline(always)]
             |l| {
-                let [a, b, c] = blend::<SBS>(v.get_unchecked(i + l), rows, table);
+                let [a, b, c] = blend::<K, SBS>(v.get_unchecked(i + l), rows, table);
                 if SBS {
                     let c = centres.get_unchecked(*cluster.get_unchecked(i + l) as usize);
                     [a, b, _mm256_loadu_ps(c.as_ptr())]
