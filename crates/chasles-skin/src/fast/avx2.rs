@@ -128,6 +128,12 @@ pub(super) fn horner<const N: usize>(c: &[f32; N], s: __m256) -> __m256 {
     a
 }
 
+/// `Σ cₖ sᵏ` in f64: the tests' value of a series' f32 coefficients.
+#[cfg(test)]
+fn sum64(c: &[f32], s: f64) -> f64 {
+    c.iter().rev().fold(0.0, |a, k| a * s + f64::from(*k))
+}
+
 /// Transposes 8 registers of 8 floats: row k of the result is element k of every input.
 #[inline]
 #[target_feature(enable = "avx2,fma")]

@@ -1,7 +1,8 @@
 //! DIB skinning (`super::super::dib`) eight vertices at a time with AVX2 and FMA: the DIB
 //! algorithm of Kavan et al. 2006 (§4, the box "DIB"), one vertex per lane. Each vertex's
-//! four joint dual quaternions are transposed into lanes; the start is DLB against the pivot
-//! (the heaviest influence); then `b̂ ← b̂ exp(Σ wᵢ log(b̂* q̂ᵢ))`, normalized, in all eight
+//! K (4 or 8) joint dual quaternions are transposed into lanes (slots of weight 0 in all
+//! eight vertices skipped at the end); the start is DLB against the pivot (the first of the
+//! heaviest influences); then `b̂ ← b̂ exp(Σ wᵢ log(b̂* q̂ᵢ))`, normalized, in all eight
 //! lanes until every lane has stopped by the scalar rule (the update's norm below
 //! [`DIB_PRECISION`], or no longer shrinking within 100× of it, or not finite: a lane that
 //! stops keeps its blend), at most [`DIB_UPDATES`] times. The last step is DQS's transform.
@@ -328,7 +329,7 @@ mod tests {
 
     #[test]
     fn the_series_are_the_closed_forms() {
-        let sum = |c: &[f32], s: f64| c.iter().rev().fold(0.0, |a, k| a * s + f64::from(*k));
+        let sum = super::super::sum64;
         for i in 0..=1000 {
             let f = f64::from(i) / 1000.0;
             // Q and G up to tan²(π/8).

@@ -88,7 +88,7 @@ mod tests {
 
     #[test]
     fn the_series_are_the_closed_forms_up_to_the_half_turn() {
-        let sum = |c: &[f32], s: f64| c.iter().rev().fold(0.0, |a, k| a * s + f64::from(*k));
+        let sum = super::super::sum64;
         for i in 0..=1000 {
             let t = std::f64::consts::PI * f64::from(i) / 1000.0;
             let s = t * t;
