@@ -24,7 +24,7 @@ use crate::error::{invalid, Result};
 use crate::pose::JointTransforms;
 use crate::rig::Rig;
 use crate::rotation_centre::joint_centres;
-use chasles::Vec3;
+use chasles::{DualQuat, Vec3};
 use rayon::prelude::*;
 
 /// One vertex with K influences (unused slots have weight 0).
@@ -142,7 +142,12 @@ pub fn matrices12(jt: &JointTransforms) -> Vec<[f32; 12]> {
 
 /// Joint dual quaternions as 8 floats `[w, x, y, z, wε, xε, yε, zε]`.
 pub fn dual_quats8(jt: &JointTransforms) -> Vec<[f32; 8]> {
-    jt.dual_quats.iter().map(|d| d.to_array()).collect()
+    arrays8(&jt.dual_quats)
+}
+
+/// Dual quaternions as 8 floats each, as the kernels read them.
+fn arrays8(d: &[DualQuat<f32>]) -> Vec<[f32; 8]> {
+    d.iter().map(|d| d.to_array()).collect()
 }
 
 #[inline(always)]
@@ -208,7 +213,7 @@ fn dqs_vertex<const K: usize>(v: &Vertex<K>, d: &[[f32; 8]]) -> Out {
     // The unit dual quaternion is b / ‖b0‖; every term below is quadratic in b, so the
     // normalization is one factor s = 2 / ‖b0‖² (no square root, no eight divisions):
     // p' = p + s (v0 × (v0 × p + w0 p) + w0 vε − wε v0 + v0 × vε), n' = n + s v0 × (v0 × n + w0 n)
-    let s = 2.0 / (b[0] * b[0] + b[1] * b[1] + b[2] * b[2] + b[3] * b[3]);
+    let s = 2.0 / real_dot(&b, &b);
     let [w0, x0, y0, z0, we, xe, ye, ze] = b;
     let [px, py, pz] = v.p;
     let [tx, ty, tz] = inner([w0, x0, y0, z0], v.p);
@@ -421,29 +426,42 @@ pub fn dqs<const K: usize>(
     run::<K, DqsKernel>(rig, d, out, parallel)
 }
 
+/// The largest difference between two outputs' six numbers.
 #[cfg(test)]
+fn max_diff(a: &Out, b: &Out) -> f32 {
+    (0..6).map(|k| (a[k] - b[k]).abs()).fold(0f32, f32::max)
+}
+
+#[cfg(all(test, target_arch = "x86_64"))]
 mod tests {
     use super::*;
     use crate::synthetic;
 
-    /// A method's kernel over `rig` with the SIMD kernel and with the scalar one only.
-    fn both<const K: usize, F: Kernel<K>>(rig: &FastRig<K>, joints: &[F::Joint]) -> [Vec<Out>; 2] {
+    /// A SIMD kernel's output on the whole blocks of `rig` (checked to be all of them but
+    /// the last few vertices), and the scalar kernel's on the same vertices.
+    fn both<const K: usize, F: Kernel<K>>(
+        rig: &FastRig<K>,
+        joints: &[F::Joint],
+        kernel: SimdKernel<K, F::Joint, F::Table>,
+    ) -> [Vec<Out>; 2] {
         let n = rig.vertices.len();
-        let table = F::table(joints, n);
-        [true, false].map(|simd| {
-            let mut o = vec![[f32::NAN; 6]; n];
-            F::chunk(&mut o, &rig.vertices, joints, &table, simd);
-            o
-        })
+        let mut simd = vec![[f32::NAN; 6]; n];
+        // SAFETY: the callers check `simd(K)`; the rig's joint indices are below its joint
+        // count, which is `joints.len()`; the table is made from `joints`; `simd` is as
+        // long as the vertices.
+        let done = unsafe { kernel(&rig.vertices, joints, &F::table(joints, n), &mut simd) };
+        assert_eq!(done, n / 8 * 8, "the SIMD kernel did every whole block");
+        simd.truncate(done);
+        let scalar = rig.vertices[..done]
+            .iter()
+            .map(|v| F::vertex(v, joints))
+            .collect();
+        [simd, scalar]
     }
 
     /// The largest difference of two outputs, and the share of vertices within `tol`.
     fn apart(a: &[Out], b: &[Out], tol: f32) -> (f32, f64) {
-        let d: Vec<f32> = a
-            .iter()
-            .zip(b)
-            .map(|(a, b)| (0..6).map(|k| (a[k] - b[k]).abs()).fold(0f32, f32::max))
-            .collect();
+        let d: Vec<f32> = a.iter().zip(b).map(|(a, b)| max_diff(a, b)).collect();
         let within = d.iter().filter(|x| **x <= tol).count() as f64 / d.len() as f64;
         (d.iter().copied().fold(0f32, f32::max), within)
     }
@@ -459,37 +477,51 @@ mod tests {
         }
         let rig = synthetic::rig_with::<8>(1003, 54, 7);
         let jt = synthetic::joints(54, 7);
-        let [a, b] = both::<8, LbsKernel>(&rig, &matrices12(&jt));
+        let d8 = dual_quats8(&jt);
+        let [a, b] = both::<8, LbsKernel>(&rig, &matrices12(&jt), avx2::lbs);
         assert_eq!(a, b);
-        let [a, b] = both::<8, DqsKernel>(&rig, &dual_quats8(&jt));
+        let [a, b] = both::<8, DqsKernel>(&rig, &d8, avx2::dqs);
         assert!(
             apart(&a, &b, 2e-6).1 == 1.0,
             "DQS {:?}",
             apart(&a, &b, 2e-6)
         );
-        let [a, b] = both::<8, log::LogKernel>(&rig, &log::rows(&twists(&jt).unwrap()));
+        let t = log::rows(&twists(&jt).unwrap());
+        let [a, b] = both::<8, log::LogKernel>(&rig, &t, avx2::log::log);
         assert!(
             apart(&a, &b, 2e-6).1 == 1.0,
             "Log {:?}",
             apart(&a, &b, 2e-6)
         );
         let rows = qlb::rows(&jt.dual_quats, rig.centres());
-        let [a, b] = both::<8, qlb::QlbKernel>(&rig, &rows);
+        let [a, b] = both::<8, qlb::QlbKernel>(&rig, &rows, avx2::qlb::qlb);
         assert!(
             apart(&a, &b, 4e-6).1 == 1.0,
             "QLB {:?}",
             apart(&a, &b, 4e-6)
         );
-        let [a, b] = both::<8, dib::DibKernel>(&rig, &dual_quats8(&jt));
+        let [a, b] = both::<8, dib::DibKernel>(&rig, &d8, avx2::dib::dib);
         let (most, within) = apart(&a, &b, 2e-6);
         assert!(within >= 0.99 && most < 1e-4, "DIB {most} {within}");
-        // SBS: the fast path (SIMD here) against the scalar kernel about the same centres.
+        // SBS: the SIMD kernel against the scalar one about the same cluster centres.
         let cl = clusters(&rig);
-        let mut o = vec![[f32::NAN; 6]; 1003];
-        sbs(&rig, &cl, &jt.dual_quats, &mut o, false).unwrap();
         let centres = cl.centres(&jt.dual_quats, rig.centres(), false);
-        let want: Vec<Out> = rig
-            .vertices
+        let padded = qlb::padded(&centres);
+        let mut o = vec![[f32::NAN; 6]; 1003];
+        let table = Antipodes::new(&rows, 1003);
+        // SAFETY: as in `both`, and every cluster index is below `padded.len()`.
+        let done = unsafe {
+            avx2::qlb::sbs(
+                &rig.vertices,
+                &rows,
+                &table,
+                cl.of_vertex(),
+                &padded,
+                &mut o,
+            )
+        };
+        assert_eq!(done, 1000);
+        let want: Vec<Out> = rig.vertices[..done]
             .iter()
             .zip(cl.of_vertex())
             .map(|(v, c)| {
@@ -497,10 +529,7 @@ mod tests {
                 qlb::about(v, &qlb::blend(v, &rows), [c.x, c.y, c.z])
             })
             .collect();
-        assert!(
-            apart(&o, &want, 4e-6).1 == 1.0,
-            "SBS {:?}",
-            apart(&o, &want, 4e-6)
-        );
+        let (most, within) = apart(&o[..done], &want, 4e-6);
+        assert!(within == 1.0, "SBS {most}");
     }
 }

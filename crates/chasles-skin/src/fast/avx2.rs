@@ -100,8 +100,27 @@ fn eight<R>(f: impl Fn(usize) -> R) -> [R; 8] {
     [f(0), f(1), f(2), f(3), f(4), f(5), f(6), f(7)]
 }
 
+/// `Σ x[c] y[c]`, lane by lane, over two equally long runs of components.
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+fn dot(x: &[__m256], y: &[__m256]) -> __m256 {
+    let mut a = _mm256_mul_ps(x[0], y[0]);
+    for c in 1..x.len() {
+        a = _mm256_fmadd_ps(x[c], y[c], a);
+    }
+    a
+}
+
+/// `s = 2 / ‖q‖²` of a quaternion `q` in lanes: the factor by which [`rotate`] and
+/// [`transform`] turn by `q / ‖q‖` without a square root.
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+fn two_over_norm2(q: &[__m256]) -> __m256 {
+    _mm256_div_ps(_mm256_set1_ps(2.0), dot(q, q))
+}
+
 /// `(−1)ᵏ / (2k + first)!` for k = 0, 1, …
-pub(super) const fn taylor<const N: usize>(first: u32) -> [f32; N] {
+const fn taylor<const N: usize>(first: u32) -> [f32; N] {
     let mut out = [0f32; N];
     let mut k = 0;
     while k < N {
@@ -120,7 +139,7 @@ pub(super) const fn taylor<const N: usize>(first: u32) -> [f32; N] {
 /// `Σ cₖ sᵏ` by Horner's rule with fused multiply-adds.
 #[inline]
 #[target_feature(enable = "avx2,fma")]
-pub(super) fn horner<const N: usize>(c: &[f32; N], s: __m256) -> __m256 {
+fn horner<const N: usize>(c: &[f32; N], s: __m256) -> __m256 {
     let mut a = _mm256_set1_ps(c[N - 1]);
     for k in (0..N - 1).rev() {
         a = _mm256_fmadd_ps(a, s, _mm256_set1_ps(c[k]));
@@ -265,12 +284,9 @@ fn transform(b: [__m256; 8], p: [__m256; 3], n: [__m256; 3]) -> [__m256; 6] {
     let fma = |a, b, c| _mm256_fmadd_ps(a, b, c);
     let fms = |a, b, c| _mm256_fmsub_ps(a, b, c);
     let fnma = |a, b, c| _mm256_fnmadd_ps(a, b, c);
+    let s = two_over_norm2(&b[..4]);
     let [w0, x0, y0, z0, we, xe, ye, ze] = b;
     let (v0, ve) = ([x0, y0, z0], [xe, ye, ze]);
-    let s = _mm256_div_ps(
-        _mm256_set1_ps(2.0),
-        fma(z0, z0, fma(y0, y0, fma(x0, x0, mul(w0, w0)))),
-    );
     // SAFETY (of the helpers below): this function has AVX2 and FMA.
     unsafe {
         let t = inner(w0, v0, p);

@@ -67,8 +67,7 @@ pub fn dib<const K: usize>(
     out: &mut [Out],
     parallel: bool,
 ) -> Result<()> {
-    let d: Vec<[f32; 8]> = d.iter().map(|q| q.to_array()).collect();
-    run::<K, DibKernel>(rig, &d, out, parallel)
+    run::<K, DibKernel>(rig, &super::arrays8(d), out, parallel)
 }
 
 #[cfg(test)]
@@ -93,7 +92,7 @@ mod tests {
         ] {
             let jt = joint_transforms(&rig, &pose(&rig, motion, angle)).unwrap();
             let want = skin_joints(&rig, &jt, Method::Dib).unwrap();
-            let d: Vec<[f32; 8]> = jt.dual_quats.iter().map(|q| q.to_array()).collect();
+            let d = super::super::dual_quats8(&jt);
             for v in 0..want.positions.len() {
                 let (p, n) = (want.positions[v], want.normals[v]);
                 let want = [p.x, p.y, p.z, n.x, n.y, n.z];

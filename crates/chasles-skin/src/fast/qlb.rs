@@ -77,7 +77,7 @@ pub(super) fn blend<const K: usize>(v: &Vertex<K>, rows: &[Row]) -> [f32; 19] {
 #[inline(always)]
 pub(super) fn about<const K: usize>(v: &Vertex<K>, b: &[f32; 19], c: [f32; 3]) -> Out {
     let [w0, x0, y0, z0] = [b[0], b[1], b[2], b[3]];
-    let s = 2.0 / (w0 * w0 + x0 * x0 + y0 * y0 + z0 * z0);
+    let s = 2.0 / super::real_dot(b, b);
     // y = Σ wₖ (Rₖ c + tₖ): the blended matrix applied to c.
     let y: [f32; 3] = core::array::from_fn(|i| {
         b[4 + 4 * i] * c[0] + b[5 + 4 * i] * c[1] + b[6 + 4 * i] * c[2] + b[7 + 4 * i]
@@ -138,12 +138,7 @@ pub fn sbs<const K: usize>(
             rig.vertices().len()
         ));
     }
-    // Centres padded to 8 floats: the SIMD kernel loads each as one register.
-    let centres: Vec<[f32; 8]> = clusters
-        .centres(d, rig.centres(), parallel)
-        .into_iter()
-        .map(|c| [c.x, c.y, c.z, 0.0, 0.0, 0.0, 0.0, 0.0])
-        .collect();
+    let centres = padded(&clusters.centres(d, rig.centres(), parallel));
     let rows = rows(d, rig.centres());
     let (simd, table) = pose_table::<K, QlbKernel>(&rows, rig.vertices().len());
     let cluster = clusters.of_vertex();
@@ -164,6 +159,14 @@ pub fn sbs<const K: usize>(
         }
     });
     Ok(())
+}
+
+/// Centres padded to 8 floats: the SIMD kernel loads each as one register.
+pub(super) fn padded(centres: &[chasles::Vec3<f32>]) -> Vec<[f32; 8]> {
+    centres
+        .iter()
+        .map(|c| [c.x, c.y, c.z, 0.0, 0.0, 0.0, 0.0, 0.0])
+        .collect()
 }
 
 /// The SBS clusters of a fast rig: its vertices grouped by the joints of positive weight.

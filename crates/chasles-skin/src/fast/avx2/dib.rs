@@ -35,7 +35,8 @@
 
 use super::super::{Out, Vertex};
 use super::{
-    eight, horner, load_head, store_rows, taylor, transform, transpose4_halves, transpose8,
+    cross, dot, eight, horner, load_head, store_rows, taylor, transform, transpose4_halves,
+    transpose8,
 };
 use crate::skinning::{DIB_PRECISION, DIB_UPDATES};
 use std::arch::x86_64::*;
@@ -93,19 +94,25 @@ fn set(x: f32) -> __m256 {
     _mm256_set1_ps(x)
 }
 
-/// The quaternion product `a b`, lane by lane.
+/// The quaternion product `a b = (a0 b0 − a⃗·b⃗, a0 b⃗ + b0 a⃗ + a⃗ × b⃗)`, lane by lane.
 #[inline]
 #[target_feature(enable = "avx2,fma")]
 fn qmul(a: &[__m256], b: &[__m256]) -> [__m256; 4] {
-    let (fma, fms, fnma) = (_mm256_fmadd_ps, _mm256_fmsub_ps, _mm256_fnmadd_ps);
-    let mul = |x, y| _mm256_mul_ps(x, y);
-    let (aw, ax, ay, az) = (a[0], a[1], a[2], a[3]);
-    let (bw, bx, by, bz) = (b[0], b[1], b[2], b[3]);
+    let fnma = _mm256_fnmadd_ps;
+    let (av, bv) = ([a[1], a[2], a[3]], [b[1], b[2], b[3]]);
+    // SAFETY (of `cross`): this function has AVX2 and FMA.
+    let v = |c: usize| unsafe {
+        _mm256_fmadd_ps(a[0], bv[c], _mm256_fmadd_ps(av[c], b[0], cross(av, bv, c)))
+    };
     [
-        fnma(az, bz, fnma(ay, by, fnma(ax, bx, mul(aw, bw)))),
-        fma(aw, bx, fma(ax, bw, fms(ay, bz, mul(az, by)))),
-        fma(aw, by, fma(ay, bw, fms(az, bx, mul(ax, bz)))),
-        fma(aw, bz, fma(az, bw, fms(ax, by, mul(ay, bx)))),
+        fnma(
+            a[3],
+            b[3],
+            fnma(a[2], b[2], fnma(a[1], b[1], _mm256_mul_ps(a[0], b[0]))),
+        ),
+        v(0),
+        v(1),
+        v(2),
     ]
 }
 
@@ -118,17 +125,6 @@ fn dqmul(a: &Dq, b: &Dq) -> Dq {
     let d2 = qmul(&a[4..], &b[..4]);
     let d = |c: usize| _mm256_add_ps(d1[c], d2[c]);
     [r[0], r[1], r[2], r[3], d(0), d(1), d(2), d(3)]
-}
-
-/// `Σ x[c] y[c]`, lane by lane, over two equally long runs of components.
-#[inline]
-#[target_feature(enable = "avx2,fma")]
-fn dot(x: &[__m256], y: &[__m256]) -> __m256 {
-    let mut a = _mm256_mul_ps(x[0], y[0]);
-    for c in 1..x.len() {
-        a = _mm256_fmadd_ps(x[c], y[c], a);
-    }
-    a
 }
 
 /// The unit dual quaternion of `q` (real part to unit length, dual part made orthogonal
@@ -396,7 +392,7 @@ mod tests {
         assert_eq!(done, n / 8 * 8);
         let each = |(v, o): (&Vertex<4>, &Out)| {
             let want = <crate::fast::dib::DibKernel as Kernel<4>>::vertex(v, d);
-            let apart = (0..6).map(|k| (o[k] - want[k]).abs()).fold(0f32, f32::max);
+            let apart = crate::fast::max_diff(o, &want);
             let used = (0..4).filter(|&k| v.w[k] > 0.0);
             let q: Vec<DualQuat<f64>> = used
                 .clone()

@@ -7,7 +7,7 @@
 //! kernel's formulas, so the two agree to rounding).
 
 use super::super::{real_dot, Antipodes, Out, Vertex};
-use super::{eight, load_head, rotate, store_rows, transpose8};
+use super::{eight, load_head, rotate, store_rows, transpose8, two_over_norm2};
 use std::arch::x86_64::*;
 
 /// Floats per joint row (`super::super::qlb::Row`).
@@ -114,7 +114,6 @@ unsafe fn blocks<const K: usize, const SBS: bool>(
     centres: &[[f32; 8]],
     o: &mut [Out],
 ) -> usize {
-    let two = _mm256_set1_ps(2.0);
     let blocks = v.len() / 8;
     for blk in 0..blocks {
         let i = blk * 8;
@@ -135,11 +134,10 @@ unsafe fn blocks<const K: usize, const SBS: bool>(
         let [w0, x0, y0, z0, m00, m01, m02, m03] = lanes(0);
         let [m10, m11, m12, m13, m20, m21, m22, m23] = lanes(1);
         let [cx, cy, cz, _, _, _, _, _] = lanes(2);
-        let mul = |a, b| _mm256_mul_ps(a, b);
         let add = |a, b| _mm256_add_ps(a, b);
         let sub = |a, b| _mm256_sub_ps(a, b);
         let fma = |a, b, c| _mm256_fmadd_ps(a, b, c);
-        let s = _mm256_div_ps(two, fma(z0, z0, fma(y0, y0, fma(x0, x0, mul(w0, w0)))));
+        let s = two_over_norm2(&[w0, x0, y0, z0]);
         // y = Σ wₖ (Rₖ c + tₖ), the blended matrix applied to c.
         let y = [
             fma(m02, cz, fma(m01, cy, fma(m00, cx, m03))),
