@@ -674,16 +674,62 @@ fn blending(rep: &mut Report) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// The folder of the shared glTF models, if present: $CHASLES_DATA, ./shared/data/gltf or
-/// ../shared/data/gltf.
-fn data_dir() -> Option<std::path::PathBuf> {
-    let mut c: Vec<std::path::PathBuf> = std::env::var_os("CHASLES_DATA")
-        .map(Into::into)
-        .into_iter()
+/// A character the tour skins: its file name (never a path), the clip to play, its credit.
+struct Character {
+    file: String,
+    clip: String,
+    credit: String,
+    rig: chasles_skin::Rig,
+}
+
+/// The characters: CesiumMan's walk and Fox's run, built in (`chasles-models`), then every
+/// other `.glb`/`.gltf` in `$CHASLES_DATA` if that is set (first clip). A file there that
+/// does not load is reported and left out.
+fn characters() -> anyhow::Result<Vec<Character>> {
+    use chasles_skin::gltf_load;
+    let mut out = Vec::new();
+    for (m, clip) in [(chasles_models::CESIUM_MAN, ""), (chasles_models::FOX, "Run")] {
+        out.push(Character {
+            file: m.file.into(),
+            clip: clip.into(),
+            credit: m.credit.into(),
+            rig: gltf_load::load_slice(m.bytes, m.file)?,
+        });
+    }
+    let Some(dir) = std::env::var_os("CHASLES_DATA") else {
+        return Ok(out);
+    };
+    let mut files: Vec<std::path::PathBuf> = std::fs::read_dir(&dir)
+        .map_err(|e| anyhow::anyhow!("CHASLES_DATA={}: {e}", dir.to_string_lossy()))?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| {
+            matches!(
+                p.extension().and_then(|e| e.to_str()),
+                Some("glb") | Some("gltf")
+            )
+        })
         .collect();
-    c.push("shared/data/gltf".into());
-    c.push("../shared/data/gltf".into());
-    c.into_iter().find(|p| p.join("CesiumMan.glb").is_file())
+    files.sort();
+    for path in files {
+        let file = path
+            .file_name()
+            .map(|f| f.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        if out.iter().any(|c| c.file == file) {
+            continue;
+        }
+        match gltf_load::load(&path) {
+            Ok(rig) if !rig.animations.is_empty() => out.push(Character {
+                credit: format!("{file} from $CHASLES_DATA (its own licence applies)"),
+                file,
+                clip: String::new(),
+                rig,
+            }),
+            Ok(_) => println!("  ($CHASLES_DATA/{file} has no animation: left out)"),
+            Err(e) => println!("  ($CHASLES_DATA/{file} does not load, left out: {e})"),
+        }
+    }
+    Ok(out)
 }
 
 /// Kavan et al. 2006, §6: the candy wrapper and the real characters.
@@ -749,21 +795,13 @@ fn skinning(rep: &mut Report) -> anyhow::Result<()> {
         ),
         l.volume < 0.97 && d.radius > 0.95 && d.bulge > 1.0,
     );
-    let Some(dir) = data_dir() else {
-        println!("  (the shared glTF models were not found: set CHASLES_DATA to their folder to see the real characters)");
-        rep.text("The shared glTF characters were not found (set CHASLES_DATA to their folder to add them to this report).");
-        return Ok(());
-    };
     stage("skinning: the characters");
     rep.section("Kavan et al. §6 on real characters");
     heading("Real characters: where linear blending loses volume (smallest det of the blended 3×3 over the clip)");
-    for (file, clip, credit) in [
-        ("CesiumMan.glb", "", "CesiumMan, CC-BY 4.0 with trademark limitations, © 2017 Cesium (Khronos glTF-Sample-Models)"),
-        ("Fox.glb", "Run", "Fox: mesh CC0 1.0 (PixelMannen), rigging and animation CC-BY 4.0 (@tomkranis)"),
-    ] {
-        let rig = gltf_load::load(&dir.join(file))?;
+    for ch in characters()? {
+        let (file, clip, credit, rig) = (&ch.file, ch.clip.as_str(), &ch.credit, &ch.rig);
         let c = rig.animations.iter().position(|a| a.name == clip).unwrap_or(0);
-        let over = chasles_skin::volume::lbs_volume_over_clip(&rig, c, 40)?;
+        let over = chasles_skin::volume::lbs_volume_over_clip(rig, c, 40)?;
         let (worst_t, worst) = over
             .iter()
             .copied()
@@ -779,27 +817,27 @@ fn skinning(rep: &mut Report) -> anyhow::Result<()> {
             format!("{file}: smallest det of LBS's blended 3×3 over the clip {worst:.2} (DQS: 1)"),
             worst < 0.95,
         );
-        let name = file.trim_end_matches(".glb").to_lowercase();
+        let name = file.rsplit_once('.').map_or(file.as_str(), |(s, _)| s).to_lowercase();
         rep.figure(
             &format!("{name}-volume.svg"),
-            pictures::volume_plot(&rig, c)?.as_bytes(),
-            &format!("{file}: LBS's smallest local volume at 41 times of its clip; rigid blends keep 1"),
+            pictures::volume_plot(rig, c)?.as_bytes(),
+            &format!("{file}: LBS's smallest local volume at 41 times of its clip; rigid blends keep 1. Credit: {credit}"),
         )?;
-        let (sphere, joint) = pictures::rotation_sphere(&rig, c)?;
+        let (sphere, joint) = pictures::rotation_sphere(rig, c)?;
         rep.figure(
             &format!("{name}-sphere.png"),
             &sphere.png(),
-            &format!("{file}: the rotation of {joint}, the joint that turns most in the clip, on the unit sphere (§5.3's plot on real data): its keys and the sampled curve"),
+            &format!("{file}: the rotation of {joint}, the joint that turns most in the clip, on the unit sphere (§5.3's plot on real data): its keys and the sampled curve. Credit: {credit}"),
         )?;
-        let pose = Pose::animated(&rig, c, worst_t)?;
+        let pose = Pose::animated(rig, c, worst_t)?;
         rep.figure(
             &format!("{name}.png"),
-            &pictures::methods_side_by_side(&rig, &pose, &Method::ALL)?.png(),
+            &pictures::methods_side_by_side(rig, &pose, &Method::ALL)?.png(),
             &format!("{file} at t = {worst_t:.2} s of its clip, where LBS loses the most volume, skinned by every method. Credit: {credit}"),
         )?;
         rep.figure(
             &format!("{name}-closeup.png"),
-            &pictures::methods_closeup(&rig, &pose, &Method::ALL)?.png(),
+            &pictures::methods_closeup(rig, &pose, &Method::ALL)?.png(),
             &format!("{file}, the same pose, close up around the vertex where LBS keeps the least volume ({worst:.2}): LBS pinches, the rigid blends keep the limb's thickness"),
         )?;
     }

@@ -431,6 +431,17 @@ fn tour_prints_computed_numbers_and_writes_the_report() {
     let out = stdout(&o);
     assert!(out.contains("report: "), "no report line");
     assert!(check_report(&report) >= 15, "too few pictures");
+    // The characters are built in: a fresh clone shows them with nothing beside it.
+    for (file, picture) in [("CesiumMan.glb", "cesiumman.png"), ("Fox.glb", "fox.png")] {
+        assert!(out.contains(file), "{file} not in the tour");
+        assert!(report.join(picture).is_file(), "{picture} not written");
+    }
+    assert!(!out.contains("not found"), "the tour missed its data");
+    // The page names files, never the folders they came from.
+    let html = std::fs::read_to_string(report.join("index.html")).unwrap();
+    let here = env!("CARGO_MANIFEST_DIR");
+    let tmp = dir.path().to_str().unwrap();
+    assert!(!html.contains(here) && !html.contains(tmp), "an absolute path in the page");
     for section in [
         "App. B.4",
         "gimbal lock",
@@ -856,11 +867,9 @@ fn properties_table_and_claims() {
     assert!(!o.status.success());
 }
 
+/// A built-in model's file on disk (`chasles skin` takes paths).
 fn gltf(name: &str) -> String {
-    format!(
-        "{}/../../../shared/data/gltf/{name}",
-        env!("CARGO_MANIFEST_DIR")
-    )
+    chasles_models::dir().join(name).display().to_string()
 }
 
 #[test]

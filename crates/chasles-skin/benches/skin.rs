@@ -203,12 +203,8 @@ fn eight_influences(c: &mut Criterion) {
 /// with the pose's joint data made in each run.
 fn figure_1(c: &mut Criterion) {
     use chasles_skin::{gltf_load, joint_transforms, skin, Method, Pose};
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../../shared/data/gltf/CesiumMan.glb");
-    let Ok(rig) = gltf_load::load(&path) else {
-        eprintln!("CesiumMan.glb not found next to the checkout: skipping the Figure 1 comparison");
-        return;
-    };
+    let m = chasles_models::CESIUM_MAN;
+    let rig = gltf_load::load_slice(m.bytes, m.file).expect("the built-in CesiumMan loads");
     let pose = Pose::animated(&rig, 0, 0.8).unwrap();
     let mut g = c.benchmark_group("CesiumMan, 3273 vertices, 1 thread");
     g.throughput(Throughput::Elements(rig.mesh.positions.len() as u64));

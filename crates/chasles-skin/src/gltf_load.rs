@@ -29,7 +29,7 @@ fn io(path: &Path, source: std::io::Error) -> SkinError {
 fn load_buffers(
     doc: &gltf::Document,
     blob: Option<Vec<u8>>,
-    base: &Path,
+    base: Option<&Path>,
     name: &str,
 ) -> Result<Vec<Vec<u8>>> {
     let mut blob = blob;
@@ -58,9 +58,14 @@ fn load_buffers(
                                     b.index()
                                 ))
                             })?
-                    } else {
+                    } else if let Some(base) = base {
                         let p = base.join(uri);
                         std::fs::read(&p).map_err(|e| io(&p, e))?
+                    } else {
+                        return invalid(format!(
+                            "{name}: buffer {} is in a separate file ({uri}), which bytes in memory cannot refer to",
+                            b.index()
+                        ));
                     }
                 }
             };
@@ -123,17 +128,36 @@ fn trs(node: &gltf::Node) -> Trs {
     }
 }
 
-/// Loads a rig from a `.gltf` or `.glb` file.
+/// Loads a rig from a `.gltf` or `.glb` file; external buffers are read next to it.
 pub fn load(path: &Path) -> Result<Rig> {
     let name = path.display().to_string();
     let bytes = std::fs::read(path).map_err(|e| io(path, e))?;
-    let g = gltf::Gltf::from_slice(&bytes).map_err(|e| SkinError::Gltf {
-        path: name.clone(),
+    let base = path.parent().unwrap_or(Path::new("."));
+    let mut rig = parse(&bytes, Some(base), &name)?;
+    rig.name = file_name(path);
+    Ok(rig)
+}
+
+/// The file name of `path`, for a rig's name (titles show no folders).
+pub(crate) fn file_name(path: &Path) -> String {
+    path.file_name()
+        .map_or_else(|| path.display().to_string(), |f| f.to_string_lossy().into_owned())
+}
+
+/// Loads a rig from the bytes of a `.glb`, or of a `.gltf` whose buffers are embedded
+/// (base64 data URIs); `name` names it in errors. A buffer in a separate file is an
+/// error here, since there is no folder to read it from: use [`load`] for those.
+pub fn load_slice(bytes: &[u8], name: &str) -> Result<Rig> {
+    parse(bytes, None, name)
+}
+
+fn parse(bytes: &[u8], base: Option<&Path>, name: &str) -> Result<Rig> {
+    let g = gltf::Gltf::from_slice(bytes).map_err(|e| SkinError::Gltf {
+        path: name.to_string(),
         reason: e.to_string(),
     })?;
-    let base = path.parent().unwrap_or(Path::new("."));
-    let buffers = load_buffers(&g.document, g.blob.clone(), base, &name)?;
-    from_document(&g.document, &buffers, &name)
+    let buffers = load_buffers(&g.document, g.blob.clone(), base, name)?;
+    from_document(&g.document, &buffers, name)
 }
 
 fn from_document(doc: &gltf::Document, buffers: &[Vec<u8>], name: &str) -> Result<Rig> {

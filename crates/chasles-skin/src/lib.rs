@@ -41,7 +41,9 @@ pub fn load(path: &std::path::Path) -> Result<Rig> {
                 path: path.display().to_string(),
                 source,
             })?;
-            json_rig::parse_rig(&text, &path.display().to_string())
+            let mut rig = json_rig::parse_rig(&text, &path.display().to_string())?;
+            rig.name = gltf_load::file_name(path);
+            Ok(rig)
         }
         _ => Err(SkinError::Invalid(format!(
             "{}: rigs are read from .gltf, .glb or .json files",

@@ -166,7 +166,8 @@ impl Influences {
 /// A rigged mesh.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Rig {
-    /// A name for messages (the file, or what built it).
+    /// A name for messages and picture titles: the file name (never its folder), or what
+    /// built it.
     pub name: String,
     /// The bind-pose mesh.
     pub mesh: Mesh,

@@ -7,7 +7,6 @@
 use chasles_skin::cylinder::{self, Motion};
 use chasles_skin::gpu::{GpuError, GpuSkinner};
 use chasles_skin::{gltf_load, joint_transforms, skin, Method, Pose, Rig};
-use std::path::PathBuf;
 
 fn gpu_for(rig: &Rig) -> Option<GpuSkinner> {
     match GpuSkinner::new(rig) {
@@ -78,13 +77,8 @@ fn gpu_matches_cpu_on_the_cylinder() {
 
 #[test]
 fn gpu_matches_cpu_on_a_real_character() {
-    let path =
-        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data/gltf/CesiumMan.glb");
-    if !path.is_file() {
-        eprintln!("skipping: {} not found", path.display());
-        return;
-    }
-    let rig = gltf_load::load(&path).unwrap();
+    let m = chasles_models::CESIUM_MAN;
+    let rig = gltf_load::load_slice(m.bytes, m.file).unwrap();
     let Some(gpu) = gpu_for(&rig) else { return };
     let d = rig.animations[0].duration();
     for k in 0..5 {

@@ -1,4 +1,4 @@
-//! The five real rigged models of ../shared/data/gltf (see its README): every one loads,
+//! The five real rigged models built into `chasles-models` (see its README): every one loads,
 //! plays its clips and skins with every method; the rest pose reproduces the bind mesh;
 //! linear blending loses volume where DQS does not; bad files get errors, not panics.
 
@@ -11,10 +11,9 @@ use chasles_skin::{
 };
 use std::path::PathBuf;
 
+/// A built-in model's file on disk (the tests load by path, as users do).
 fn data(name: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../../../shared/data/gltf")
-        .join(name)
+    chasles_models::dir().join(name)
 }
 
 /// The scale positions are compared at: the farthest vertex from the origin, at least 1.
@@ -25,19 +24,23 @@ fn size(rig: &chasles_skin::Rig) -> f32 {
         .fold(1.0f32, |m, p| m.max(p.norm()))
 }
 
-/// (file, vertices, joints, clips) from the data README.
-const MODELS: [(&str, usize, usize, usize); 5] = [
-    ("CesiumMan.glb", 3273, 19, 1),
-    ("RiggedFigure.glb", 370, 19, 1),
-    ("RiggedSimple.glb", 160, 2, 1),
-    ("Fox.glb", 1728, 24, 3),
-    ("SimpleSkin.gltf", 10, 2, 1),
-];
+/// (file, vertices, joints, clips) of every built-in model, from its README.
+fn models() -> impl Iterator<Item = (&'static str, usize, usize, usize)> {
+    chasles_models::ALL
+        .into_iter()
+        .map(|m| (m.file, m.vertices, m.joints, m.clips))
+}
 
 #[test]
 fn every_model_loads_plays_and_skins_with_every_method() {
-    for (file, verts, joints, clips) in MODELS {
+    for (file, verts, joints, clips) in models() {
         let rig = gltf_load::load(&data(file)).unwrap_or_else(|e| panic!("{file}: {e}"));
+        assert_eq!(rig.name, file, "a rig is named by its file name, not its path");
+        // The bytes built in load to the same rig as the file.
+        let built_in = chasles_models::by_file(file).unwrap();
+        let from_bytes = gltf_load::load_slice(built_in.bytes, file).unwrap();
+        assert_eq!(from_bytes.mesh.positions, rig.mesh.positions, "{file}");
+        assert_eq!(from_bytes.joints.len(), rig.joints.len(), "{file}");
         assert_eq!(
             (
                 rig.mesh.positions.len(),
@@ -292,6 +295,11 @@ fn bad_rigs_get_errors_naming_the_problem() {
         gltf_load::load(&dir.path().join("nope.glb")),
         Err(SkinError::Io { .. })
     ));
+    // Bytes in memory cannot refer to a buffer in a separate file.
+    let mut v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    v["buffers"][0]["uri"] = serde_json::Value::String("simple.bin".into());
+    let e = gltf_load::load_slice(v.to_string().as_bytes(), "external.gltf").unwrap_err();
+    assert!(e.to_string().contains("separate file"), "{e}");
     let p = dir.path().join("junk.glb");
     std::fs::write(&p, b"this is not gltf").unwrap();
     assert!(matches!(gltf_load::load(&p), Err(SkinError::Gltf { .. })));
@@ -305,7 +313,7 @@ fn bad_rigs_get_errors_naming_the_problem() {
 #[test]
 fn the_fast_path_agrees_with_the_reference() {
     use chasles_skin::fast::{clusters, dib, dqs, lbs, qlb, sbs, skin_pose, FastRig};
-    for (file, _, _, _) in MODELS {
+    for (file, _, _, _) in models() {
         let rig = gltf_load::load(&data(file)).unwrap();
         let size = size(&rig);
         let fast = FastRig::<4>::new(&rig).unwrap();
@@ -406,7 +414,7 @@ fn the_skinner_takes_every_method_to_the_fast_path_or_the_reference() {
             );
         }
     };
-    for (file, _, _, _) in MODELS {
+    for (file, _, _, _) in models() {
         let rig = gltf_load::load(&data(file)).unwrap();
         let s = Skinner::new(&rig).unwrap();
         assert_eq!(s.influences(), 4, "{file}");

@@ -8,8 +8,8 @@
 //!   `‖q0‖ = 1` and `⟨q0, qε⟩ = 0`.
 //! * Rigid transformation, eq. (1): rotation q0 then translation t is `q0 + ε ½ t q0`; back,
 //!   `t = 2 qε q0*`.
-//! * Normalization (design.md): divide by ‖q0‖ and remove from qε its part along q0, so the
-//!   result is exactly unit.
+//! * Normalization (a numerical trap: dividing by ‖q0‖ alone is not enough): divide by ‖q0‖
+//!   and remove from qε its part along q0, so the result is exactly unit.
 //!
 //! As 8 numbers: `[w, x, y, z, wε, xε, yε, zε]`. Exp, log, powers and screw parameters are
 //! in [`crate::screw`].

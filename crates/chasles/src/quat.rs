@@ -9,7 +9,7 @@
 //! * Power: Definition 16, `q^t = exp(t log q)` (Propositions 15–17 hold).
 //! * Rotation: Proposition 21, `v' = q v q*` for unit q rotates v by `2θ` about `n`.
 //!
-//! Numerical care (design.md, "numerical traps"): `sin‖v‖/‖v‖` and `atan2(‖v‖, w)/‖v‖`
+//! Numerical care (the traps of log/exp/pow near the identity and near 2π): `sin‖v‖/‖v‖` and `atan2(‖v‖, w)/‖v‖`
 //! are evaluated by series near ‖v‖ = 0, so exp, log and pow have no 0/0 at the identity;
 //! near the rotation angle 2π (q ≈ −1) the logarithm keeps the direction of `v`, and at
 //! exactly `q = −‖q‖` (no direction left) it picks the x axis, so `exp(log q) = q` still holds.

@@ -214,7 +214,7 @@ fn intrinsic_is_extrinsic_reversed() {
 
 #[test]
 fn trace_only_formula_fails_near_half_turn_and_shepperd_does_not() {
-    // The numerical trap of design.md: App. B.4 divides by 4s with s → 0 at 180°.
+    // The numerical trap of Dam et al. App. B.4: it divides by 4s with s → 0 at 180°.
     let axis = Vec3::new(1.0f64, 2.0, 3.0);
     let q = Quat::from_axis_angle(axis, PI - 1e-7).unwrap();
     let m = q.to_rotation_matrix();

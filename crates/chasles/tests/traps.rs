@@ -1,4 +1,5 @@
-//! The numerical traps listed in design.md that belong to the core algebra, each checked
+//! The numerical traps of the core algebra (log/exp/pow near the identity and 2π, the dual
+//! quaternion log of a pure translation, q̂ against −q̂, dual-quaternion normalization), each checked
 //! in f32 and f64 (tolerances of `common::Tol`: 1e-12 f64, 1e-5 f32, relative).
 //! (Matrix → quaternion near 180° is in convert.rs: `half_turns_convert_exactly` and
 //! `trace_only_formula_fails_near_half_turn_and_shepperd_does_not`.)
@@ -227,8 +228,8 @@ both_precisions!(
 );
 
 fn normalization_trap<T: Tol>((r, k, e): (Rigid, f64, f64), tol: f64) -> Result<(), TestCaseError> {
-    // Scale by k and push the dual part along q0 by e: normalizing must undo both (design.md:
-    // divide by |q0| and remove from qε its part along q0), not just divide by |q0|.
+    // Scale by k and push the dual part along q0 by e: normalizing must undo both (divide
+    // by |q0| and remove from qε its part along q0), not just divide by |q0|.
     let dq = dq_of::<T>(r);
     let (k, e) = (T::from_f64(k), T::from_f64(e));
     let bad = DualQuat::new(dq.real * k, (dq.dual + dq.real * e) * k);
