@@ -11,14 +11,14 @@
 //! ([`crate::blend_pictures`]).
 
 use crate::blend_pictures;
-use crate::output::{check_extension, write_atomic};
+use crate::output::write_atomic;
+use crate::picture_args::Pictures;
 use crate::repr::motion_from_json;
 use anyhow::{anyhow, bail, Context, Result};
 use chasles::blend::{blend_dual_quats, Method, Options};
 use chasles::{DualQuat, Vec3};
 use serde_json::{json, Map, Value};
 use std::io::Read;
-use std::path::PathBuf;
 
 fn number(o: &Map<String, Value>, name: &str) -> Result<Option<f64>> {
     match o.get(name) {
@@ -158,22 +158,8 @@ fn blend_all(method: Method, input: &str) -> Result<(Value, Option<Case>)> {
 /// Runs `chasles blend`; `pictures` are the `--plot` (SVG), `--render` (PNG), `--gif`
 /// (GIF) and `--sphere` (PNG) paths, drawn for the first case (see
 /// [`crate::blend_pictures`]).
-pub fn run(method: &str, input: &str, pictures: [Option<PathBuf>; 4]) -> Result<()> {
-    for (p, (flag, ext)) in pictures.iter().zip([
-        ("--plot", "svg"),
-        ("--render", "png"),
-        ("--gif", "gif"),
-        ("--sphere", "png"),
-    ]) {
-        check_extension(flag, p.as_deref(), &[ext])?;
-    }
-    let m = Method::from_name(method).ok_or_else(|| {
-        let names: Vec<&str> = Method::ALL.iter().map(|m| m.name()).collect();
-        anyhow!(
-            "unknown method '{method}'; use one of: {}",
-            names.join(", ")
-        )
-    })?;
+pub fn run(m: Method, input: &str, pictures: &Pictures) -> Result<()> {
+    pictures.check(&["svg"])?;
     let text = if input == "-" {
         let mut s = String::new();
         std::io::stdin()
@@ -185,14 +171,19 @@ pub fn run(method: &str, input: &str, pictures: [Option<PathBuf>; 4]) -> Result<
     };
     let (out, first) = blend_all(m, &text)?;
     println!("{}", serde_json::to_string_pretty(&out)?);
-    if pictures.iter().any(Option::is_some) {
+    if pictures.any() {
         let (x, w, opt) = first.ok_or_else(|| anyhow!("no cases to draw"))?;
         let c = blend_pictures::Case {
             x: &x,
             w: &w,
             opt: &opt,
         };
-        let [plot, render, gif, sphere] = &pictures;
+        let Pictures {
+            plot,
+            render,
+            gif,
+            sphere,
+        } = pictures;
         if let Some(p) = plot {
             write_atomic(p, blend_pictures::plot(&c)?.as_bytes())?;
             eprintln!("wrote {}", p.display());

@@ -1,8 +1,10 @@
 //! `chasles interp`: interpolate key frames with any of the report's methods (Dam et al.
 //! 1998, chapters 5–7) and write one row per frame.
 
+use crate::choice::InterpMethod;
 use crate::keyfile;
-use crate::output::{check_extension, extension, num, write_atomic};
+use crate::output::{extension, num, write_atomic};
+use crate::picture_args::Pictures;
 use anyhow::{bail, Context, Result};
 use chasles::analysis::curvature::{curvature_energy, Width};
 use chasles::analysis::velocity::velocity_chord;
@@ -16,23 +18,10 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::time::Instant;
 
-/// The methods, by their names in the report and App. C.
-pub const METHODS: &[&str] = &[
-    "lineuler",
-    "linmat",
-    "lerp",
-    "slerp",
-    "squad",
-    "spring",
-    "slerpsvupti",
-    "squadsvupti",
-    "justdoit",
-];
-
 /// Options of `chasles interp`.
 pub struct InterpArgs {
-    /// Method name (one of [`METHODS`]).
-    pub method: String,
+    /// The method.
+    pub method: InterpMethod,
     /// Key file or `builtin:NAME`.
     pub keys: String,
     /// Frames in total.
@@ -47,14 +36,8 @@ pub struct InterpArgs {
     pub key_weight: Option<f64>,
     /// Override of the Spring constant-velocity weight c_w.
     pub velocity_weight: Option<f64>,
-    /// Write the angular-velocity graph here (.svg).
-    pub plot: Option<PathBuf>,
-    /// Write the sphere plot here (.png).
-    pub sphere: Option<PathBuf>,
-    /// Write the animated R (§5.1) here (.gif).
-    pub gif: Option<PathBuf>,
-    /// Write a film strip of the R at evenly spread frames here (.png).
-    pub render: Option<PathBuf>,
+    /// The pictures asked for (`--plot` SVG or PNG).
+    pub pictures: Pictures,
 }
 
 enum Plan {
@@ -62,22 +45,18 @@ enum Plan {
     Spring(SpringConfig),
 }
 
-fn plan(name: &str) -> Result<Plan> {
-    Ok(match name {
-        "lineuler" => Plan::Piecewise(Method::LinEuler(EulerOrder::DAM)),
-        "linmat" => Plan::Piecewise(Method::LinMat),
-        "lerp" => Plan::Piecewise(Method::Nlerp),
-        "slerp" => Plan::Piecewise(Method::Slerp),
-        "squad" => Plan::Piecewise(Method::Squad),
-        "spring" => Plan::Spring(SpringConfig::spring()),
-        "slerpsvupti" => Plan::Spring(SpringConfig::slerpsvupti()),
-        "squadsvupti" => Plan::Spring(SpringConfig::squadsvupti()),
-        "justdoit" => Plan::Spring(SpringConfig::justdoit()),
-        other => bail!(
-            "unknown method '{other}'; use one of: {}",
-            METHODS.join(", ")
-        ),
-    })
+fn plan(method: InterpMethod) -> Plan {
+    match method {
+        InterpMethod::LinEuler => Plan::Piecewise(Method::LinEuler(EulerOrder::DAM)),
+        InterpMethod::LinMat => Plan::Piecewise(Method::LinMat),
+        InterpMethod::Lerp => Plan::Piecewise(Method::Nlerp),
+        InterpMethod::Slerp => Plan::Piecewise(Method::Slerp),
+        InterpMethod::Squad => Plan::Piecewise(Method::Squad),
+        InterpMethod::Spring => Plan::Spring(SpringConfig::spring()),
+        InterpMethod::SlerpSvupti => Plan::Spring(SpringConfig::slerpsvupti()),
+        InterpMethod::SquadSvupti => Plan::Spring(SpringConfig::squadsvupti()),
+        InterpMethod::JustDoIt => Plan::Spring(SpringConfig::justdoit()),
+    }
 }
 
 /// The result of a run, ready to write.
@@ -92,7 +71,7 @@ pub struct Run {
 
 /// Computes the curve and its summary.
 pub fn compute(args: &InterpArgs) -> Result<Run> {
-    let plan = plan(&args.method)?;
+    let plan = plan(args.method);
     let keys = keyfile::load(&args.keys)?;
     let hemisphere = if args.keep_signs {
         Hemisphere::AsGiven
@@ -120,7 +99,7 @@ pub fn compute(args: &InterpArgs) -> Result<Run> {
                 )
                 .unwrap_or_else(|_| ProgressStyle::default_bar()),
             );
-            bar.set_prefix(args.method.clone());
+            bar.set_prefix(args.method.name());
             let mut done_before = 0usize;
             let mut level_seen = 0usize;
             let mut level_iters = 0usize;
@@ -164,7 +143,7 @@ pub fn compute(args: &InterpArgs) -> Result<Run> {
     let _ = writeln!(
         summary,
         "{} through {} ({} keys): {} frames, timing {}",
-        args.method,
+        args.method.name(),
         keys.source,
         kf.len(),
         frames.len(),
@@ -228,16 +207,14 @@ pub fn run(args: InterpArgs) -> Result<()> {
             bail!("--out must end in .csv or .json, got {}", out.display());
         }
     }
-    check_extension("--plot", args.plot.as_deref(), &["svg", "png"])?;
-    check_extension("--sphere", args.sphere.as_deref(), &["png"])?;
-    check_extension("--gif", args.gif.as_deref(), &["gif"])?;
-    check_extension("--render", args.render.as_deref(), &["png"])?;
+    args.pictures.check(&["svg", "png"])?;
     let run = compute(&args)?;
-    if let Some(p) = &args.plot {
+    if let Some(p) = &args.pictures.plot {
         let keys = chasles_viz::graph::key_indices(&run.frames);
         let title = format!(
             "{} through {}: angular velocity (Dam et al. eq. 5.1)",
-            args.method, args.keys
+            args.method.name(),
+            args.keys
         );
         if extension(p) == "png" {
             let img = chasles_viz::graph::velocity_png(&run.velocity, &keys, 900, 420);
@@ -248,7 +225,7 @@ pub fn run(args: InterpArgs) -> Result<()> {
         }
         eprintln!("wrote {}", p.display());
     }
-    if let Some(p) = &args.sphere {
+    if let Some(p) = &args.pictures.sphere {
         let img = chasles_viz::sphere::render_frames(&run.frames, 600);
         write_atomic(p, &img.png())?;
         eprintln!("wrote {}", p.display());
@@ -259,12 +236,12 @@ pub fn run(args: InterpArgs) -> Result<()> {
         .iter()
         .map(|f| f.q.normalize().unwrap_or(Quat::identity()))
         .collect();
-    if let Some(p) = &args.gif {
+    if let Some(p) = &args.pictures.gif {
         let frames = chasles_viz::letter::animate(&turned, 240);
         write_atomic(p, &chasles_viz::gif(&frames, 4)?)?;
         eprintln!("wrote {} ({} frames)", p.display(), frames.len());
     }
-    if let Some(p) = &args.render {
+    if let Some(p) = &args.pictures.render {
         write_atomic(p, &chasles_viz::letter::strip(&turned, 8, 180).png())?;
         eprintln!("wrote {}", p.display());
     }

@@ -1,19 +1,29 @@
 //! The `chasles` command-line tool.
 //!
-//! * `chasles tour` — the main job: a walk through both papers on built-in data.
+//! * `chasles tour` — the main job: a walk through both papers on built-in data (the
+//!   characters included), written as one HTML page.
 //! * `chasles convert` — one rotation or rigid motion between representations
 //!   (Dam et al. 1998, App. B; Kavan et al. 2006, §3).
 //! * `chasles interp` — key-frame interpolation (Dam et al. 1998, chapters 5–7).
 //! * `chasles blend`, `chasles properties` — blending of rigid transformations and the
-//!   measured Table 1 (Kavan et al. 2006).
+//!   measured Table 1 (Kavan et al. 2006, §4–5).
+//! * `chasles skin` — skinning a glTF or JSON rig with any method, on the CPU or the GPU,
+//!   to meshes, pictures and benchmarks (Kavan et al. 2006, §6).
+//!
+//! Output piped into a program that stops reading (`chasles interp … | head -1`) ends the
+//! process quietly, as it does for other Unix tools: SIGPIPE is restored to its default.
+
+#![forbid(unsafe_code)]
 
 mod blend;
 mod blend_pictures;
+mod choice;
 mod convert;
 mod device;
 mod interp;
 mod keyfile;
 mod output;
+mod picture_args;
 mod pictures;
 mod properties;
 mod report;
@@ -63,9 +73,9 @@ enum Command {
     ///   chasles interp --method spring --keys keys.toml --frames 200 --out spring.json
     #[command(verbatim_doc_comment)]
     Interp {
-        /// lineuler, linmat, lerp, slerp, squad, spring, slerpsvupti, squadsvupti, justdoit.
-        #[arg(long)]
-        method: String,
+        /// The method, by its name in the report and App. C.
+        #[arg(long, value_enum)]
+        method: choice::InterpMethod,
         /// Key file (.toml or .json) or builtin:NAME.
         #[arg(long)]
         keys: String,
@@ -87,18 +97,8 @@ enum Command {
         /// Spring methods: weight c_w of the constant-velocity penalty (eq. 6.41).
         #[arg(long, allow_negative_numbers = true)]
         velocity_weight: Option<f64>,
-        /// Also write the angular-velocity graph (§5.2), as SVG or PNG by the extension.
-        #[arg(long)]
-        plot: Option<std::path::PathBuf>,
-        /// Also write the sphere plot of the curve (§5.3) as PNG.
-        #[arg(long)]
-        sphere: Option<std::path::PathBuf>,
-        /// Also write the direct visualisation (§5.1): an extruded R turned by every frame, as an animated GIF.
-        #[arg(long)]
-        gif: Option<std::path::PathBuf>,
-        /// Also write the R at eight evenly spread frames as a film strip, PNG.
-        #[arg(long)]
-        render: Option<std::path::PathBuf>,
+        #[command(flatten)]
+        pictures: picture_args::Pictures,
     },
     /// Blend rigid transformations: lin, dec, log, log-iter, qlb, sclerp, dlb, dib (Kavan et al. 2006).
     ///
@@ -112,24 +112,14 @@ enum Command {
     /// iterates).
     #[command(verbatim_doc_comment)]
     Blend {
-        /// lin, dec, log, log-iter, qlb, sclerp, dlb or dib.
-        #[arg(long)]
-        method: String,
+        /// The blending method.
+        #[arg(long, value_enum)]
+        method: choice::BlendMethod,
         /// JSON file, or - for stdin.
         #[arg(long)]
         input: String,
-        /// Also plot every method's rotation along the path of weights (first case), SVG.
-        #[arg(long)]
-        plot: Option<std::path::PathBuf>,
-        /// Also draw the inputs and every method's blend as letters R (first case), PNG.
-        #[arg(long)]
-        render: Option<std::path::PathBuf>,
-        /// Also animate the blend along the path of weights with --method (first case), GIF.
-        #[arg(long)]
-        gif: Option<std::path::PathBuf>,
-        /// Also plot --method's rotations along the path on the unit sphere (first case), PNG.
-        #[arg(long)]
-        sphere: Option<std::path::PathBuf>,
+        #[command(flatten)]
+        pictures: picture_args::Pictures,
     },
     /// Measure Kavan et al.'s Table 1 on random inputs, with exact FLOP counts (and --claims).
     Properties {
@@ -205,14 +195,28 @@ fn parse_repr(s: &str) -> Result<Repr, String> {
 }
 
 fn main() {
+    // Rust ignores SIGPIPE, which turns a closed pipe into a panic in println!.
+    sigpipe::reset();
     device::quiet_vulkan_loader();
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
         Err(e) if !e.use_stderr() => e.exit(), // --help, --version
         Err(e) => {
-            // One line naming the problem; clap's usage hint would make it three.
+            // One line naming the problem (and the choices, for a bad value); clap's usage
+            // hint would make it three.
             let text = e.render().to_string();
-            eprintln!("{}", text.lines().next().unwrap_or("error: bad arguments"));
+            let mut line = text
+                .lines()
+                .next()
+                .unwrap_or("error: bad arguments")
+                .to_string();
+            if let Some(choices) = text
+                .lines()
+                .find(|l| l.trim_start().starts_with("[possible values"))
+            {
+                line = format!("{line} {}", choices.trim());
+            }
+            eprintln!("{line}");
             std::process::exit(2);
         }
     };
@@ -224,11 +228,8 @@ fn main() {
         Command::Blend {
             method,
             input,
-            plot,
-            render,
-            gif,
-            sphere,
-        } => blend::run(&method, &input, [plot, render, gif, sphere]).map(|_| 0),
+            pictures,
+        } => blend::run(method.0, &input, &pictures).map(|_| 0),
         Command::Properties {
             samples,
             seed,
@@ -253,10 +254,7 @@ fn main() {
             keep_signs,
             key_weight,
             velocity_weight,
-            plot,
-            sphere,
-            gif,
-            render,
+            pictures,
         } => interp::run(interp::InterpArgs {
             method,
             keys,
@@ -269,10 +267,7 @@ fn main() {
             keep_signs,
             key_weight,
             velocity_weight,
-            plot,
-            sphere,
-            gif,
-            render,
+            pictures,
         })
         .map(|_| 0),
         Command::Convert {

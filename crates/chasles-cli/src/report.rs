@@ -100,11 +100,6 @@ impl Report {
         self.push(Item::Html(h));
     }
 
-    /// A paragraph of text (escaped).
-    pub fn text(&mut self, s: &str) {
-        self.push(Item::Html(format!("<p>{}</p>\n", esc(s))));
-    }
-
     /// Claims that agree and claims made.
     pub fn tally(&self) -> (usize, usize) {
         let claims = self

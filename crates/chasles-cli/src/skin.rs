@@ -1,7 +1,9 @@
 //! `chasles skin`: skin a rigged glTF mesh with any method (Kavan et al. 2006, §6), one pose
 //! or a whole clip, and the candy-wrapper table (`--artifacts`).
 
-use crate::output::{check_extension, extension, write_atomic};
+use crate::choice::SkinMethod;
+use crate::output::{extension, write_atomic};
+use crate::picture_args::Pictures;
 use crate::pictures;
 use anyhow::{anyhow, bail, Context, Result};
 use chasles_skin::cylinder::{self, Motion};
@@ -24,9 +26,9 @@ pub struct SkinArgs {
     /// A JSON pose, {"joints": {name or index: {rotation, translation, scale}}}, instead of a clip.
     #[arg(long)]
     pub pose: Option<PathBuf>,
-    /// lbs, dqs, dib, log, qlb or sbs.
-    #[arg(long, default_value = "dqs")]
-    pub method: String,
+    /// The skinning method.
+    #[arg(long, value_enum, default_value = "dqs")]
+    pub method: SkinMethod,
     /// Output .obj, .ply, .glb or .json; with --all-frames, a folder for frame_NNNNN.obj files.
     #[arg(long)]
     pub out: Option<PathBuf>,
@@ -42,28 +44,11 @@ pub struct SkinArgs {
     /// Measure every method's speed on synthetic meshes of 10^5 and 10^6 vertices.
     #[arg(long)]
     pub bench: bool,
-    /// Also write the pose skinned by every method, side by side, as PNG (with --artifacts: the cylinder twisted 180°).
-    #[arg(long)]
-    pub render: Option<PathBuf>,
-    /// Also write an animated GIF of LBS beside DQS: the clip at --fps (with --artifacts: the twist sweep).
-    #[arg(long)]
-    pub gif: Option<PathBuf>,
-    /// Also write a line plot, SVG: LBS's smallest local volume over the clip (with --artifacts: middle radius against twist, every method).
-    #[arg(long)]
-    pub plot: Option<PathBuf>,
-    /// Also write the clip's most-turning joint rotation on the unit sphere (Dam et al. §5.3), PNG.
-    #[arg(long)]
-    pub sphere: Option<PathBuf>,
+    #[command(flatten)]
+    pub pictures: Pictures,
     /// Where to skin: cpu, gpu (any adapter, lavapipe included) or auto (a hardware GPU for lbs/dqs/dib when there is one).
     #[arg(long, value_enum, default_value_t = crate::device::Device::Auto)]
     pub device: crate::device::Device,
-}
-
-fn method(name: &str) -> Result<Method> {
-    Method::from_name(name).ok_or_else(|| {
-        let names: Vec<&str> = Method::ALL.iter().map(|m| m.name()).collect();
-        anyhow!("unknown method '{name}'; use one of: {}", names.join(", "))
-    })
 }
 
 fn clip(rig: &Rig, anim: &Option<String>) -> Result<usize> {
@@ -262,14 +247,11 @@ pub fn run(a: SkinArgs) -> Result<()> {
             _ => bench(),
         };
     }
-    check_extension("--render", a.render.as_deref(), &["png"])?;
-    check_extension("--gif", a.gif.as_deref(), &["gif"])?;
-    check_extension("--plot", a.plot.as_deref(), &["svg"])?;
-    check_extension("--sphere", a.sphere.as_deref(), &["png"])?;
+    a.pictures.check(&["svg"])?;
     if a.artifacts {
         print!("{}", artifacts_table()?);
         let rig = cylinder::twisted_cylinder();
-        if let Some(p) = &a.render {
+        if let Some(p) = &a.pictures.render {
             let pose = cylinder::pose(&rig, Motion::Twist, std::f32::consts::PI);
             write_atomic(
                 p,
@@ -280,12 +262,12 @@ pub fn run(a: SkinArgs) -> Result<()> {
                 p.display()
             );
         }
-        if let Some(p) = &a.gif {
+        if let Some(p) = &a.pictures.gif {
             let frames = pictures::twist_sweep(25)?;
             write_atomic(p, &chasles_viz::gif(&frames, 6)?)?;
             println!("wrote {} (twist 0°→180°→0°, LBS beside DQS)", p.display());
         }
-        if let Some(p) = &a.plot {
+        if let Some(p) = &a.pictures.plot {
             write_atomic(p, pictures::twist_plot()?.as_bytes())?;
             println!(
                 "wrote {} (middle radius against twist, every method)",
@@ -294,13 +276,13 @@ pub fn run(a: SkinArgs) -> Result<()> {
         }
         return Ok(());
     }
-    let m = method(&a.method)?;
+    let m = a.method.0;
     let rig_path = a
         .rig
         .as_ref()
         .ok_or_else(|| anyhow!("--rig FILE is required (or --artifacts)"))?;
     let rig = chasles_skin::load(rig_path)?;
-    if let Some(p) = &a.plot {
+    if let Some(p) = &a.pictures.plot {
         let c = clip(&rig, &a.anim)?;
         write_atomic(p, pictures::volume_plot(&rig, c)?.as_bytes())?;
         println!(
@@ -308,7 +290,7 @@ pub fn run(a: SkinArgs) -> Result<()> {
             p.display()
         );
     }
-    if let Some(p) = &a.sphere {
+    if let Some(p) = &a.pictures.sphere {
         let c = clip(&rig, &a.anim)?;
         let (img, joint) = pictures::rotation_sphere(&rig, c)?;
         write_atomic(p, &img.png())?;
@@ -317,14 +299,14 @@ pub fn run(a: SkinArgs) -> Result<()> {
             p.display()
         );
     }
-    if (a.plot.is_some() || a.sphere.is_some())
+    if (a.pictures.plot.is_some() || a.pictures.sphere.is_some())
         && a.out.is_none()
-        && a.render.is_none()
-        && a.gif.is_none()
+        && a.pictures.render.is_none()
+        && a.pictures.gif.is_none()
     {
         return Ok(());
     }
-    if let Some(p) = &a.gif {
+    if let Some(p) = &a.pictures.gif {
         if a.all_frames || a.pose.is_some() || a.time.is_some() {
             bail!("--gif plays a whole clip: give --anim (or none for the first), not --pose, --time or --all-frames");
         }
@@ -342,13 +324,13 @@ pub fn run(a: SkinArgs) -> Result<()> {
             p.display(),
             frames.len()
         );
-        if a.out.is_none() && a.render.is_none() {
+        if a.out.is_none() && a.pictures.render.is_none() {
             return Ok(());
         }
     }
-    if a.render.is_some() && a.out.is_none() && !a.all_frames {
+    if a.pictures.render.is_some() && a.out.is_none() && !a.all_frames {
         let pose = chosen_pose(&rig, &a)?.0;
-        let p = a.render.as_ref().unwrap_or_else(|| unreachable!());
+        let p = a.pictures.render.as_ref().unwrap_or_else(|| unreachable!());
         write_atomic(
             p,
             &pictures::methods_side_by_side(&rig, &pose, &Method::ALL)?.png(),
@@ -392,7 +374,7 @@ pub fn run(a: SkinArgs) -> Result<()> {
         return Ok(());
     }
     let (pose, when) = chosen_pose(&rig, &a)?;
-    if let Some(p) = &a.render {
+    if let Some(p) = &a.pictures.render {
         write_atomic(
             p,
             &pictures::methods_side_by_side(&rig, &pose, &Method::ALL)?.png(),

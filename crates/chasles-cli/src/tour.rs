@@ -688,7 +688,10 @@ struct Character {
 fn characters() -> anyhow::Result<Vec<Character>> {
     use chasles_skin::gltf_load;
     let mut out = Vec::new();
-    for (m, clip) in [(chasles_models::CESIUM_MAN, ""), (chasles_models::FOX, "Run")] {
+    for (m, clip) in [
+        (chasles_models::CESIUM_MAN, ""),
+        (chasles_models::FOX, "Run"),
+    ] {
         out.push(Character {
             file: m.file.into(),
             clip: clip.into(),
@@ -736,7 +739,7 @@ fn characters() -> anyhow::Result<Vec<Character>> {
 fn skinning(rep: &mut Report) -> anyhow::Result<()> {
     use crate::pictures;
     use chasles_skin::cylinder::{self, Motion};
-    use chasles_skin::{gltf_load, Method, Pose};
+    use chasles_skin::{Method, Pose};
     stage("skinning: the candy wrapper");
     heading("Kavan et al. §6 / Figure 6: the candy wrapper on a two-bone cylinder");
     rep.section("Kavan et al. §6, Figures 1 and 6: skinning a two-bone cylinder");
@@ -800,12 +803,16 @@ fn skinning(rep: &mut Report) -> anyhow::Result<()> {
     heading("Real characters: where linear blending loses volume (smallest det of the blended 3×3 over the clip)");
     for ch in characters()? {
         let (file, clip, credit, rig) = (&ch.file, ch.clip.as_str(), &ch.credit, &ch.rig);
-        let c = rig.animations.iter().position(|a| a.name == clip).unwrap_or(0);
-        let over = chasles_skin::volume::lbs_volume_over_clip(rig, c, 40)?;
-        let (worst_t, worst) = over
+        let c = rig
+            .animations
             .iter()
-            .copied()
-            .fold((0.0, f32::INFINITY), |a, b| if b.1 < a.1 { b } else { a });
+            .position(|a| a.name == clip)
+            .unwrap_or(0);
+        let over = chasles_skin::volume::lbs_volume_over_clip(rig, c, 40)?;
+        let (worst_t, worst) =
+            over.iter()
+                .copied()
+                .fold((0.0, f32::INFINITY), |a, b| if b.1 < a.1 { b } else { a });
         println!(
             "  {file} ({} vertices, {} joints): LBS down to {worst:.2} of the local volume; DQS keeps 1 (rigid blends)",
             rig.mesh.positions.len(),
@@ -817,7 +824,10 @@ fn skinning(rep: &mut Report) -> anyhow::Result<()> {
             format!("{file}: smallest det of LBS's blended 3×3 over the clip {worst:.2} (DQS: 1)"),
             worst < 0.95,
         );
-        let name = file.rsplit_once('.').map_or(file.as_str(), |(s, _)| s).to_lowercase();
+        let name = file
+            .rsplit_once('.')
+            .map_or(file.as_str(), |(s, _)| s)
+            .to_lowercase();
         rep.figure(
             &format!("{name}-volume.svg"),
             pictures::volume_plot(rig, c)?.as_bytes(),

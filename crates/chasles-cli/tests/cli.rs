@@ -441,7 +441,10 @@ fn tour_prints_computed_numbers_and_writes_the_report() {
     let html = std::fs::read_to_string(report.join("index.html")).unwrap();
     let here = env!("CARGO_MANIFEST_DIR");
     let tmp = dir.path().to_str().unwrap();
-    assert!(!html.contains(here) && !html.contains(tmp), "an absolute path in the page");
+    assert!(
+        !html.contains(here) && !html.contains(tmp),
+        "an absolute path in the page"
+    );
     for section in [
         "App. B.4",
         "gimbal lock",
@@ -628,7 +631,7 @@ fn interp_key_files_json_output_and_errors() {
     for (args, needle) in [
         (
             vec!["--method", "bezier", "--keys", "builtin:cusp"],
-            "unknown method",
+            "invalid value 'bezier' for '--method <METHOD>' [possible values: lineuler, linmat, lerp, slerp, squad, spring, slerpsvupti, squadsvupti, justdoit]",
         ),
         (
             vec!["--method", "slerp", "--keys", "builtin:nothing"],
@@ -809,7 +812,11 @@ fn blend_errors_name_the_case_and_field() {
             "exactly two",
         ),
         ("dlb", "{not json", "not valid JSON"),
-        ("slerpy", "{}", "unknown method"),
+        (
+            "slerpy",
+            "{}",
+            "invalid value 'slerpy' for '--method <METHOD>' [possible values: lin, dec, log, log-iter, qlb, sclerp, dlb, dib]",
+        ),
     ];
     for (method, input, needle) in cases {
         let o = with_stdin(&["blend", "--method", method, "--input", "-"], input);
@@ -944,7 +951,7 @@ fn skin_errors_are_one_line_and_leave_no_file() {
                 "--out".into(),
                 o.into(),
             ],
-            "unknown method",
+            "invalid value 'blend' for '--method <METHOD>' [possible values: lbs, dqs, dib, log, qlb, sbs]",
         ),
         (
             vec![
@@ -1377,4 +1384,41 @@ fn skin_on_the_gpu_matches_the_cpu() {
     };
     assert!(String::from_utf8_lossy(&log.stderr).contains("log has no GPU path"));
     assert!(!dir.path().join("log.json").exists());
+}
+
+#[cfg(unix)]
+#[test]
+fn a_closed_pipe_ends_quietly() {
+    use std::io::{BufRead, BufReader};
+    use std::os::unix::process::ExitStatusExt;
+    // 10^5 CSV rows (several MB) into a pipe whose reader leaves after the first line.
+    let mut child = Command::new(env!("CARGO_BIN_EXE_chasles"))
+        .args([
+            "interp",
+            "--method",
+            "slerp",
+            "--keys",
+            "builtin:table5.1",
+            "--frames",
+            "100000",
+        ])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut first = String::new();
+    BufReader::new(child.stdout.take().unwrap())
+        .read_line(&mut first)
+        .unwrap();
+    assert!(first.starts_with("index,t,w,x,y,z"), "{first}");
+    // The reader is gone now.
+    let o = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!err.contains("panicked"), "{err}");
+    assert!(
+        o.status.success() || o.status.signal() == Some(13),
+        "ended with {:?}: {err}",
+        o.status
+    );
+    assert_ne!(o.status.code(), Some(101), "{err}");
 }

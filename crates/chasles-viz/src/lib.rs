@@ -12,6 +12,7 @@
 //! deviations and [`bars`] DIB's iteration counts. [`image`] holds the pictures
 //! and writes PNG and GIF; [`font`] labels them.
 
+#![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
 pub mod bars;

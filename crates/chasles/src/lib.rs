@@ -49,6 +49,7 @@
 //! assert!(((half * half).translation() - t).norm() < 1e-12);
 //! ```
 
+#![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
 pub mod analysis;

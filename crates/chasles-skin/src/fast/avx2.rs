@@ -29,16 +29,18 @@ const PREFETCH: usize = 64;
 #[inline]
 #[target_feature(enable = "avx2,fma")]
 unsafe fn load_head<const K: usize>(v: &[Vertex<K>], i: usize) -> [__m256; 8] {
-    let stride = size_of::<Vertex<K>>() / 4;
-    // A prefetch past the end of the mesh is harmless; the pointer is never read.
-    let ahead = v.as_ptr().wrapping_add(i + PREFETCH) as *const i8;
-    for line in 0..(8 * size_of::<Vertex<K>>()).div_ceil(64) {
-        _mm_prefetch::<_MM_HINT_T0>(ahead.wrapping_add(line * 64));
+    unsafe {
+        let stride = size_of::<Vertex<K>>() / 4;
+        // A prefetch past the end of the mesh is harmless; the pointer is never read.
+        let ahead = v.as_ptr().wrapping_add(i + PREFETCH) as *const i8;
+        for line in 0..(8 * size_of::<Vertex<K>>()).div_ceil(64) {
+            _mm_prefetch::<_MM_HINT_T0>(ahead.wrapping_add(line * 64));
+        }
+        let vb = v.as_ptr().add(i) as *const f32;
+        transpose8(core::array::from_fn(|l| {
+            _mm256_loadu_ps(vb.add(l * stride))
+        }))
     }
-    let vb = v.as_ptr().add(i) as *const f32;
-    transpose8(core::array::from_fn(|l| {
-        _mm256_loadu_ps(vb.add(l * stride))
-    }))
 }
 
 /// One vertex's blended dual quaternion `Σ ±wₖ q̂ₖ` (8 floats in one register): its K
@@ -48,23 +50,25 @@ unsafe fn load_head<const K: usize>(v: &[Vertex<K>], i: usize) -> [__m256; 8] {
 #[inline]
 #[target_feature(enable = "avx2,fma")]
 unsafe fn blend_one<const K: usize>(vx: &Vertex<K>, db: *const f32) -> __m256 {
-    let q = vx.j.map(|j| _mm256_loadu_ps(db.add(usize::from(j) * 8)));
-    let pivot = _mm256_castps256_ps128(q[0]);
-    let mut b = _mm256_setzero_ps();
-    for g in 0..K / 4 {
-        let m = |k: usize| _mm_mul_ps(_mm256_castps256_ps128(q[4 * g + k]), pivot);
-        let (mut m0, mut m1, mut m2, mut m3) = (m(0), m(1), m(2), m(3));
-        _MM_TRANSPOSE4_PS(&mut m0, &mut m1, &mut m2, &mut m3);
-        let dots = _mm_add_ps(_mm_add_ps(_mm_add_ps(m0, m1), m2), m3);
-        let neg = _mm_and_ps(_mm_cmplt_ps(dots, _mm_setzero_ps()), _mm_set1_ps(-0.0));
-        let w = _mm_xor_ps(_mm_loadu_ps(vx.w.as_ptr().add(4 * g)), neg);
-        let w = _mm256_set_m128(w, w);
-        b = _mm256_fmadd_ps(_mm256_permute_ps::<0x00>(w), q[4 * g], b);
-        b = _mm256_fmadd_ps(_mm256_permute_ps::<0x55>(w), q[4 * g + 1], b);
-        b = _mm256_fmadd_ps(_mm256_permute_ps::<0xAA>(w), q[4 * g + 2], b);
-        b = _mm256_fmadd_ps(_mm256_permute_ps::<0xFF>(w), q[4 * g + 3], b);
+    unsafe {
+        let q = vx.j.map(|j| _mm256_loadu_ps(db.add(usize::from(j) * 8)));
+        let pivot = _mm256_castps256_ps128(q[0]);
+        let mut b = _mm256_setzero_ps();
+        for g in 0..K / 4 {
+            let m = |k: usize| _mm_mul_ps(_mm256_castps256_ps128(q[4 * g + k]), pivot);
+            let (mut m0, mut m1, mut m2, mut m3) = (m(0), m(1), m(2), m(3));
+            _MM_TRANSPOSE4_PS(&mut m0, &mut m1, &mut m2, &mut m3);
+            let dots = _mm_add_ps(_mm_add_ps(_mm_add_ps(m0, m1), m2), m3);
+            let neg = _mm_and_ps(_mm_cmplt_ps(dots, _mm_setzero_ps()), _mm_set1_ps(-0.0));
+            let w = _mm_xor_ps(_mm_loadu_ps(vx.w.as_ptr().add(4 * g)), neg);
+            let w = _mm256_set_m128(w, w);
+            b = _mm256_fmadd_ps(_mm256_permute_ps::<0x00>(w), q[4 * g], b);
+            b = _mm256_fmadd_ps(_mm256_permute_ps::<0x55>(w), q[4 * g + 1], b);
+            b = _mm256_fmadd_ps(_mm256_permute_ps::<0xAA>(w), q[4 * g + 2], b);
+            b = _mm256_fmadd_ps(_mm256_permute_ps::<0xFF>(w), q[4 * g + 3], b);
+        }
+        b
     }
-    b
 }
 
 /// Component c of `a × b`: `a_j b_k − a_k b_j`, (c, j, k) cyclic, with one fused
@@ -73,24 +77,30 @@ unsafe fn blend_one<const K: usize>(vx: &Vertex<K>, db: *const f32) -> __m256 {
 /// there.
 #[inline(always)]
 unsafe fn cross(a: [__m256; 3], b: [__m256; 3], c: usize) -> __m256 {
-    let (j, k) = ((c + 1) % 3, (c + 2) % 3);
-    _mm256_fmsub_ps(a[j], b[k], _mm256_mul_ps(a[k], b[j]))
+    unsafe {
+        let (j, k) = ((c + 1) % 3, (c + 2) % 3);
+        _mm256_fmsub_ps(a[j], b[k], _mm256_mul_ps(a[k], b[j]))
+    }
 }
 
 /// `v × x + w x`, lane by lane: the inner step of rotating x by the quaternion (w, v).
 #[inline(always)]
 unsafe fn inner(w: __m256, v: [__m256; 3], x: [__m256; 3]) -> [__m256; 3] {
-    let e = |c: usize| _mm256_fmadd_ps(w, x[c], cross(v, x, c));
-    [e(0), e(1), e(2)]
+    unsafe {
+        let e = |c: usize| _mm256_fmadd_ps(w, x[c], cross(v, x, c));
+        [e(0), e(1), e(2)]
+    }
 }
 
 /// `x + s v × (v × x + w x)`, lane by lane: x rotated by the unit quaternion
 /// `(w, v) / ‖(w, v)‖` given `s = 2 / ‖(w, v)‖²` (no square root).
 #[inline(always)]
 unsafe fn rotate(w: __m256, v: [__m256; 3], s: __m256, x: [__m256; 3]) -> [__m256; 3] {
-    let t = inner(w, v, x);
-    let f = |c: usize| _mm256_fmadd_ps(s, cross(v, t, c), x[c]);
-    [f(0), f(1), f(2)]
+    unsafe {
+        let t = inner(w, v, x);
+        let f = |c: usize| _mm256_fmadd_ps(s, cross(v, t, c), x[c]);
+        [f(0), f(1), f(2)]
+    }
 }
 
 /// `[f(0), …, f(7)]`, written out: through `array::from_fn` the kernels' per-vertex blends
@@ -193,12 +203,14 @@ fn transpose4_halves(r: [__m256; 4]) -> [__m256; 4] {
 #[inline]
 #[target_feature(enable = "avx2,fma")]
 unsafe fn store_rows(o: &mut [Out], i: usize, r: [__m256; 6]) {
-    let z = _mm256_setzero_ps();
-    let rows = transpose8([r[0], r[1], r[2], r[3], r[4], r[5], z, z]);
-    let mask = _mm256_setr_epi32(-1, -1, -1, -1, -1, -1, 0, 0);
-    let ob = o.as_mut_ptr().add(i) as *mut f32;
-    for (l, row) in rows.into_iter().enumerate() {
-        _mm256_maskstore_ps(ob.add(l * 6), mask, row);
+    unsafe {
+        let z = _mm256_setzero_ps();
+        let rows = transpose8([r[0], r[1], r[2], r[3], r[4], r[5], z, z]);
+        let mask = _mm256_setr_epi32(-1, -1, -1, -1, -1, -1, 0, 0);
+        let ob = o.as_mut_ptr().add(i) as *mut f32;
+        for (l, row) in rows.into_iter().enumerate() {
+            _mm256_maskstore_ps(ob.add(l * 6), mask, row);
+        }
     }
 }
 
@@ -214,18 +226,20 @@ unsafe fn blend_signed<const K: usize>(
     signs: *const f32,
     joints: usize,
 ) -> __m256 {
-    let j = vx.j.map(usize::from);
-    let q = j.map(|j| _mm256_loadu_ps(db.add(j * 8)));
-    let row = signs.add(j[0] * joints);
-    let mut b = _mm256_mul_ps(_mm256_broadcast_ss(&vx.w[0]), q[0]);
-    // By index, as in the other kernels' blends: zipped iterators can compile slower.
-    #[allow(clippy::needless_range_loop)]
-    for k in 1..K {
-        let sign = _mm256_broadcast_ss(&*row.add(j[k]));
-        let w = _mm256_xor_ps(_mm256_broadcast_ss(&vx.w[k]), sign);
-        b = _mm256_fmadd_ps(w, q[k], b);
+    unsafe {
+        let j = vx.j.map(usize::from);
+        let q = j.map(|j| _mm256_loadu_ps(db.add(j * 8)));
+        let row = signs.add(j[0] * joints);
+        let mut b = _mm256_mul_ps(_mm256_broadcast_ss(&vx.w[0]), q[0]);
+        // By index, as in the other kernels' blends: zipped iterators can compile slower.
+        #[allow(clippy::needless_range_loop)]
+        for k in 1..K {
+            let sign = _mm256_broadcast_ss(&*row.add(j[k]));
+            let w = _mm256_xor_ps(_mm256_broadcast_ss(&vx.w[k]), sign);
+            b = _mm256_fmadd_ps(w, q[k], b);
+        }
+        b
     }
-    b
 }
 
 /// DQS for the first `v.len() / 8 * 8` vertices; returns how many were done. Each
@@ -243,12 +257,14 @@ pub unsafe fn dqs<const K: usize>(
     antipodes: &Antipodes,
     o: &mut [Out],
 ) -> usize {
-    let db = d.as_ptr() as *const f32;
-    if antipodes.is_empty() {
-        dqs_blocks(v, o, |vx| blend_one(vx, db))
-    } else {
-        let (signs, joints) = (antipodes.signs.as_ptr(), antipodes.joints);
-        dqs_blocks(v, o, |vx| blend_signed(vx, db, signs, joints))
+    unsafe {
+        let db = d.as_ptr() as *const f32;
+        if antipodes.is_empty() {
+            dqs_blocks(v, o, |vx| blend_one(vx, db))
+        } else {
+            let (signs, joints) = (antipodes.signs.as_ptr(), antipodes.joints);
+            dqs_blocks(v, o, |vx| blend_signed(vx, db, signs, joints))
+        }
     }
 }
 
@@ -261,14 +277,16 @@ unsafe fn dqs_blocks<const K: usize>(
     o: &mut [Out],
     blend: impl Fn(&Vertex<K>) -> __m256,
 ) -> usize {
-    let blocks = v.len() / 8;
-    for blk in 0..blocks {
-        let i = blk * 8;
-        let [px, py, pz, nx, ny, nz, _, _] = load_head(v, i);
-        let b = transpose8(eight(|l| blend(v.get_unchecked(i + l))));
-        store_rows(o, i, transform(b, [px, py, pz], [nx, ny, nz]));
+    unsafe {
+        let blocks = v.len() / 8;
+        for blk in 0..blocks {
+            let i = blk * 8;
+            let [px, py, pz, nx, ny, nz, _, _] = load_head(v, i);
+            let b = transpose8(eight(|l| blend(v.get_unchecked(i + l))));
+            store_rows(o, i, transform(b, [px, py, pz], [nx, ny, nz]));
+        }
+        blocks * 8
     }
-    blocks * 8
 }
 
 /// Eight positions and normals moved by eight blended dual quaternions `b` (lane by lane,
@@ -310,16 +328,19 @@ fn transform(b: [__m256; 8], p: [__m256; 3], n: [__m256; 3]) -> [__m256; 6] {
 #[inline]
 #[target_feature(enable = "avx2,fma")]
 unsafe fn lbs_blend<const K: usize>(vx: &Vertex<K>, mb: *const f32) -> (__m256, __m128) {
-    let j = vx.j.map(|j| usize::from(j) * 12);
-    let w = |k: usize| _mm256_broadcast_ss(&vx.w[k]);
-    let rows01 = |k: usize| _mm256_mul_ps(w(k), _mm256_loadu_ps(mb.add(j[k])));
-    let row2 = |k: usize| _mm_mul_ps(_mm256_castps256_ps128(w(k)), _mm_loadu_ps(mb.add(j[k] + 8)));
-    let (mut a, mut b) = (rows01(0), row2(0));
-    for k in 1..K {
-        a = _mm256_add_ps(a, rows01(k));
-        b = _mm_add_ps(b, row2(k));
+    unsafe {
+        let j = vx.j.map(|j| usize::from(j) * 12);
+        let w = |k: usize| _mm256_broadcast_ss(&vx.w[k]);
+        let rows01 = |k: usize| _mm256_mul_ps(w(k), _mm256_loadu_ps(mb.add(j[k])));
+        let row2 =
+            |k: usize| _mm_mul_ps(_mm256_castps256_ps128(w(k)), _mm_loadu_ps(mb.add(j[k] + 8)));
+        let (mut a, mut b) = (rows01(0), row2(0));
+        for k in 1..K {
+            a = _mm256_add_ps(a, rows01(k));
+            b = _mm_add_ps(b, row2(k));
+        }
+        (a, b)
     }
-    (a, b)
 }
 
 /// LBS for the first `v.len() / 8 * 8` vertices, in the order of operations of
@@ -336,43 +357,45 @@ pub unsafe fn lbs<const K: usize>(
     _: &(),
     o: &mut [Out],
 ) -> usize {
-    let mb = m.as_ptr() as *const f32;
-    let zero = _mm256_setzero_ps();
-    let blocks = v.len() / 8;
-    for blk in 0..blocks {
-        let i = blk * 8;
-        let [x, y, z, nx, ny, nz, _, _] = load_head(v, i);
-        let b = eight(|l| lbs_blend(v.get_unchecked(i + l), mb));
-        let [a0, a1, a2, a3, a4, a5, a6, a7] = transpose8(eight(|l| b[l].0));
-        // Row 2 of vertices l and l + 4 side by side, then 4×4 transposes per half.
-        let h = transpose4_halves([0, 1, 2, 3].map(|l| _mm256_set_m128(b[l + 4].1, b[l].1)));
-        let a = [a0, a1, a2, a3, a4, a5, a6, a7, h[0], h[1], h[2], h[3]];
-        let mul = |p, q| _mm256_mul_ps(p, q);
-        let add = |p, q| _mm256_add_ps(p, q);
-        let sub = |p, q| _mm256_sub_ps(p, q);
-        let px = add(add(add(mul(a[0], x), mul(a[1], y)), mul(a[2], z)), a[3]);
-        let py = add(add(add(mul(a[4], x), mul(a[5], y)), mul(a[6], z)), a[7]);
-        let pz = add(add(add(mul(a[8], x), mul(a[9], y)), mul(a[10], z)), a[11]);
-        let c00 = sub(mul(a[5], a[10]), mul(a[6], a[9]));
-        let c01 = sub(mul(a[6], a[8]), mul(a[4], a[10]));
-        let c02 = sub(mul(a[4], a[9]), mul(a[5], a[8]));
-        let c10 = sub(mul(a[2], a[9]), mul(a[1], a[10]));
-        let c11 = sub(mul(a[0], a[10]), mul(a[2], a[8]));
-        let c12 = sub(mul(a[1], a[8]), mul(a[0], a[9]));
-        let c20 = sub(mul(a[1], a[6]), mul(a[2], a[5]));
-        let c21 = sub(mul(a[2], a[4]), mul(a[0], a[6]));
-        let c22 = sub(mul(a[0], a[5]), mul(a[1], a[4]));
-        let mx = add(add(mul(c00, nx), mul(c01, ny)), mul(c02, nz));
-        let my = add(add(mul(c10, nx), mul(c11, ny)), mul(c12, nz));
-        let mz = add(add(mul(c20, nx), mul(c21, ny)), mul(c22, nz));
-        let l = _mm256_sqrt_ps(add(add(mul(mx, mx), mul(my, my)), mul(mz, mz)));
-        let ok = _mm256_cmp_ps::<_CMP_GT_OQ>(l, zero);
-        let mx = _mm256_blendv_ps(nx, _mm256_div_ps(mx, l), ok);
-        let my = _mm256_blendv_ps(ny, _mm256_div_ps(my, l), ok);
-        let mz = _mm256_blendv_ps(nz, _mm256_div_ps(mz, l), ok);
-        store_rows(o, i, [px, py, pz, mx, my, mz]);
+    unsafe {
+        let mb = m.as_ptr() as *const f32;
+        let zero = _mm256_setzero_ps();
+        let blocks = v.len() / 8;
+        for blk in 0..blocks {
+            let i = blk * 8;
+            let [x, y, z, nx, ny, nz, _, _] = load_head(v, i);
+            let b = eight(|l| lbs_blend(v.get_unchecked(i + l), mb));
+            let [a0, a1, a2, a3, a4, a5, a6, a7] = transpose8(eight(|l| b[l].0));
+            // Row 2 of vertices l and l + 4 side by side, then 4×4 transposes per half.
+            let h = transpose4_halves([0, 1, 2, 3].map(|l| _mm256_set_m128(b[l + 4].1, b[l].1)));
+            let a = [a0, a1, a2, a3, a4, a5, a6, a7, h[0], h[1], h[2], h[3]];
+            let mul = |p, q| _mm256_mul_ps(p, q);
+            let add = |p, q| _mm256_add_ps(p, q);
+            let sub = |p, q| _mm256_sub_ps(p, q);
+            let px = add(add(add(mul(a[0], x), mul(a[1], y)), mul(a[2], z)), a[3]);
+            let py = add(add(add(mul(a[4], x), mul(a[5], y)), mul(a[6], z)), a[7]);
+            let pz = add(add(add(mul(a[8], x), mul(a[9], y)), mul(a[10], z)), a[11]);
+            let c00 = sub(mul(a[5], a[10]), mul(a[6], a[9]));
+            let c01 = sub(mul(a[6], a[8]), mul(a[4], a[10]));
+            let c02 = sub(mul(a[4], a[9]), mul(a[5], a[8]));
+            let c10 = sub(mul(a[2], a[9]), mul(a[1], a[10]));
+            let c11 = sub(mul(a[0], a[10]), mul(a[2], a[8]));
+            let c12 = sub(mul(a[1], a[8]), mul(a[0], a[9]));
+            let c20 = sub(mul(a[1], a[6]), mul(a[2], a[5]));
+            let c21 = sub(mul(a[2], a[4]), mul(a[0], a[6]));
+            let c22 = sub(mul(a[0], a[5]), mul(a[1], a[4]));
+            let mx = add(add(mul(c00, nx), mul(c01, ny)), mul(c02, nz));
+            let my = add(add(mul(c10, nx), mul(c11, ny)), mul(c12, nz));
+            let mz = add(add(mul(c20, nx), mul(c21, ny)), mul(c22, nz));
+            let l = _mm256_sqrt_ps(add(add(mul(mx, mx), mul(my, my)), mul(mz, mz)));
+            let ok = _mm256_cmp_ps::<_CMP_GT_OQ>(l, zero);
+            let mx = _mm256_blendv_ps(nx, _mm256_div_ps(mx, l), ok);
+            let my = _mm256_blendv_ps(ny, _mm256_div_ps(my, l), ok);
+            let mz = _mm256_blendv_ps(nz, _mm256_div_ps(mz, l), ok);
+            store_rows(o, i, [px, py, pz, mx, my, mz]);
+        }
+        blocks * 8
     }
-    blocks * 8
 }
 
 #[cfg(test)]

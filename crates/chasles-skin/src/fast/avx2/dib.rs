@@ -238,82 +238,84 @@ fn keep_going(norm: __m256, last: __m256) -> __m256 {
 /// `d.len()`, and `o.len() >= v.len()`.
 #[target_feature(enable = "avx2,fma")]
 pub unsafe fn dib<const K: usize>(v: &[Vertex<K>], d: &[[f32; 8]], _: &(), o: &mut [Out]) -> usize {
-    let db = d.as_ptr() as *const f32;
-    let zero = _mm256_setzero_ps();
-    let identity: Dq = eight(|c| if c == 0 { set(1.0) } else { zero });
-    let blocks = v.len() / 8;
-    for blk in 0..blocks {
-        let i = blk * 8;
-        let [px, py, pz, nx, ny, nz, _, _] = load_head(v, i);
-        let vs = eight(|l| v.get_unchecked(i + l));
-        // Weights in lanes (vertex l in lane l), four slots at a time; the positive ones
-        // scaled to sum to 1, in the scalar kernel's order.
-        let mut raw = [zero; K];
-        for g in 0..K / 4 {
-            let w = |l: usize| _mm_loadu_ps(vs[l].w.as_ptr().add(4 * g));
-            let t = transpose4_halves([0, 1, 2, 3].map(|l| _mm256_set_m128(w(l + 4), w(l))));
-            raw[4 * g..4 * g + 4].copy_from_slice(&t);
-        }
-        let used = raw.map(|w| _mm256_cmp_ps::<_CMP_GT_OQ>(w, zero));
-        let mut wp = [zero; K];
-        let mut sum = zero;
-        for k in 0..K {
-            wp[k] = _mm256_and_ps(raw[k], used[k]);
-            sum = _mm256_add_ps(sum, wp[k]);
-        }
-        let w = wp.map(|x| _mm256_div_ps(x, sum));
-        // Trailing slots of weight 0 in all eight vertices (neighbours in a mesh tend to
-        // have as many influences) are skipped: their terms would be exact zeros.
-        let slots = (0..K)
-            .rev()
-            .find(|&k| _mm256_movemask_ps(used[k]) != 0)
-            .map_or(0, |k| k + 1);
-        // Joints in lanes; unused ones replaced by the identity.
-        let mut q = [identity; K];
-        for k in 0..slots {
-            let t = transpose8(eight(|l| {
-                _mm256_loadu_ps(db.add(usize::from(vs[l].j[k]) * 8))
-            }));
-            q[k] = eight(|c| _mm256_blendv_ps(identity[c], t[c], used[k]));
-        }
-        // DLB against the pivot: the first of the heaviest (slot 0 in a `FastRig::new`).
-        let (mut pivot, mut heaviest) = (q[0], w[0]);
-        for k in 1..slots {
-            let more = _mm256_cmp_ps::<_CMP_GT_OQ>(w[k], heaviest);
-            pivot = eight(|c| _mm256_blendv_ps(pivot[c], q[k][c], more));
-            heaviest = _mm256_blendv_ps(heaviest, w[k], more);
-        }
-        let mut sum = [zero; 8];
-        for k in 0..slots {
-            let flip = _mm256_cmp_ps::<_CMP_LT_OQ>(dot(&q[k][..4], &pivot[..4]), zero);
-            let wk = _mm256_xor_ps(w[k], _mm256_and_ps(flip, set(-0.0)));
-            sum = eight(|c| _mm256_fmadd_ps(wk, q[k][c], sum[c]));
-        }
-        let mut b = normalize(&sum);
-        let mut last = set(f32::INFINITY);
-        let mut active = _mm256_castsi256_ps(_mm256_set1_epi32(-1));
-        for _ in 0..DIB_UPDATES {
-            let conj: Dq = eight(|c| match c {
-                0 | 4 => b[c],
-                _ => _mm256_xor_ps(b[c], set(-0.0)),
-            });
-            let mut x = [zero; 8];
+    unsafe {
+        let db = d.as_ptr() as *const f32;
+        let zero = _mm256_setzero_ps();
+        let identity: Dq = eight(|c| if c == 0 { set(1.0) } else { zero });
+        let blocks = v.len() / 8;
+        for blk in 0..blocks {
+            let i = blk * 8;
+            let [px, py, pz, nx, ny, nz, _, _] = load_head(v, i);
+            let vs = eight(|l| v.get_unchecked(i + l));
+            // Weights in lanes (vertex l in lane l), four slots at a time; the positive ones
+            // scaled to sum to 1, in the scalar kernel's order.
+            let mut raw = [zero; K];
+            for g in 0..K / 4 {
+                let w = |l: usize| _mm_loadu_ps(vs[l].w.as_ptr().add(4 * g));
+                let t = transpose4_halves([0, 1, 2, 3].map(|l| _mm256_set_m128(w(l + 4), w(l))));
+                raw[4 * g..4 * g + 4].copy_from_slice(&t);
+            }
+            let used = raw.map(|w| _mm256_cmp_ps::<_CMP_GT_OQ>(w, zero));
+            let mut wp = [zero; K];
+            let mut sum = zero;
+            for k in 0..K {
+                wp[k] = _mm256_and_ps(raw[k], used[k]);
+                sum = _mm256_add_ps(sum, wp[k]);
+            }
+            let w = wp.map(|x| _mm256_div_ps(x, sum));
+            // Trailing slots of weight 0 in all eight vertices (neighbours in a mesh tend to
+            // have as many influences) are skipped: their terms would be exact zeros.
+            let slots = (0..K)
+                .rev()
+                .find(|&k| _mm256_movemask_ps(used[k]) != 0)
+                .map_or(0, |k| k + 1);
+            // Joints in lanes; unused ones replaced by the identity.
+            let mut q = [identity; K];
             for k in 0..slots {
-                let l = log(&dqmul(&conj, &q[k]));
-                x = eight(|c| _mm256_fmadd_ps(w[k], l[c], x[c]));
+                let t = transpose8(eight(|l| {
+                    _mm256_loadu_ps(db.add(usize::from(vs[l].j[k]) * 8))
+                }));
+                q[k] = eight(|c| _mm256_blendv_ps(identity[c], t[c], used[k]));
             }
-            let norm = _mm256_sqrt_ps(dot(&x, &x));
-            active = _mm256_and_ps(active, keep_going(norm, last));
-            if _mm256_movemask_ps(active) == 0 {
-                break;
+            // DLB against the pivot: the first of the heaviest (slot 0 in a `FastRig::new`).
+            let (mut pivot, mut heaviest) = (q[0], w[0]);
+            for k in 1..slots {
+                let more = _mm256_cmp_ps::<_CMP_GT_OQ>(w[k], heaviest);
+                pivot = eight(|c| _mm256_blendv_ps(pivot[c], q[k][c], more));
+                heaviest = _mm256_blendv_ps(heaviest, w[k], more);
             }
-            last = norm;
-            let next = normalize(&dqmul(&b, &exp(&x)));
-            b = eight(|c| _mm256_blendv_ps(b[c], next[c], active));
+            let mut sum = [zero; 8];
+            for k in 0..slots {
+                let flip = _mm256_cmp_ps::<_CMP_LT_OQ>(dot(&q[k][..4], &pivot[..4]), zero);
+                let wk = _mm256_xor_ps(w[k], _mm256_and_ps(flip, set(-0.0)));
+                sum = eight(|c| _mm256_fmadd_ps(wk, q[k][c], sum[c]));
+            }
+            let mut b = normalize(&sum);
+            let mut last = set(f32::INFINITY);
+            let mut active = _mm256_castsi256_ps(_mm256_set1_epi32(-1));
+            for _ in 0..DIB_UPDATES {
+                let conj: Dq = eight(|c| match c {
+                    0 | 4 => b[c],
+                    _ => _mm256_xor_ps(b[c], set(-0.0)),
+                });
+                let mut x = [zero; 8];
+                for k in 0..slots {
+                    let l = log(&dqmul(&conj, &q[k]));
+                    x = eight(|c| _mm256_fmadd_ps(w[k], l[c], x[c]));
+                }
+                let norm = _mm256_sqrt_ps(dot(&x, &x));
+                active = _mm256_and_ps(active, keep_going(norm, last));
+                if _mm256_movemask_ps(active) == 0 {
+                    break;
+                }
+                last = norm;
+                let next = normalize(&dqmul(&b, &exp(&x)));
+                b = eight(|c| _mm256_blendv_ps(b[c], next[c], active));
+            }
+            store_rows(o, i, transform(b, [px, py, pz], [nx, ny, nz]));
         }
-        store_rows(o, i, transform(b, [px, py, pz], [nx, ny, nz]));
+        blocks * 8
     }
-    blocks * 8
 }
 
 #[cfg(test)]

@@ -28,15 +28,17 @@ const C: [f32; 9] = taylor(3);
 #[inline]
 #[target_feature(enable = "avx2,fma")]
 unsafe fn blend<const K: usize>(vx: &Vertex<K>, tb: *const f32) -> __m256 {
-    // All K loads first: interleaved with the products, this ran 8 % slower.
-    let t = vx.j.map(|j| _mm256_loadu_ps(tb.add(usize::from(j) * 8)));
-    let mut b = _mm256_mul_ps(_mm256_broadcast_ss(&vx.w[0]), t[0]);
-    // By index: zipped iterators over the arrays compiled to slower code (7 %).
-    #[allow(clippy::needless_range_loop)]
-    for k in 1..K {
-        b = _mm256_fmadd_ps(_mm256_broadcast_ss(&vx.w[k]), t[k], b);
+    unsafe {
+        // All K loads first: interleaved with the products, this ran 8 % slower.
+        let t = vx.j.map(|j| _mm256_loadu_ps(tb.add(usize::from(j) * 8)));
+        let mut b = _mm256_mul_ps(_mm256_broadcast_ss(&vx.w[0]), t[0]);
+        // By index: zipped iterators over the arrays compiled to slower code (7 %).
+        #[allow(clippy::needless_range_loop)]
+        for k in 1..K {
+            b = _mm256_fmadd_ps(_mm256_broadcast_ss(&vx.w[k]), t[k], b);
+        }
+        b
     }
-    b
 }
 
 /// Log skinning for the first `v.len() / 8 * 8` vertices with the joints' twists as
@@ -47,38 +49,40 @@ unsafe fn blend<const K: usize>(vx: &Vertex<K>, tb: *const f32) -> __m256 {
 /// `t.len()`, and `o.len() >= v.len()`.
 #[target_feature(enable = "avx2,fma")]
 pub unsafe fn log<const K: usize>(v: &[Vertex<K>], t: &[[f32; 8]], _: &(), o: &mut [Out]) -> usize {
-    let tb = t.as_ptr() as *const f32;
-    let blocks = v.len() / 8;
-    for blk in 0..blocks {
-        let i = blk * 8;
-        let [px, py, pz, nx, ny, nz, _, _] = load_head(v, i);
-        let b = transpose8(eight(|l| blend(v.get_unchecked(i + l), tb)));
-        let [wx, wy, wz, vx_, vy, vz, _, _] = b;
-        let mul = |a, b| _mm256_mul_ps(a, b);
-        let add = |a, b| _mm256_add_ps(a, b);
-        let fma = |a, b, c| _mm256_fmadd_ps(a, b, c);
-        let s = fma(wz, wz, fma(wy, wy, mul(wx, wx)));
-        let (ca, cb, cc) = (horner(&A, s), horner(&B, s), horner(&C, s));
-        let w = [wx, wy, wz];
-        // Component c of ω × x.
-        let cross = |x: [__m256; 3], c: usize| cross(w, x, c);
-        let (p, n, t) = ([px, py, pz], [nx, ny, nz], [vx_, vy, vz]);
-        // u = B p + C v; e = A p + B v + ω × u; p' = p + v + ω × e (each written out: no
-        // array maps, which can stay calls).
-        let u = |c: usize| fma(cb, p[c], mul(cc, t[c]));
-        let u = [u(0), u(1), u(2)];
-        let e = |c: usize| add(fma(ca, p[c], mul(cb, t[c])), cross(u, c));
-        let e = [e(0), e(1), e(2)];
-        let q = |c: usize| add(add(p[c], t[c]), cross(e, c));
-        let q = [q(0), q(1), q(2)];
-        // n' = n + ω × (A n + B ω × n).
-        let f = |c: usize| fma(ca, n[c], mul(cb, cross(n, c)));
-        let f = [f(0), f(1), f(2)];
-        let m = |c: usize| add(n[c], cross(f, c));
-        let m = [m(0), m(1), m(2)];
-        store_rows(o, i, [q[0], q[1], q[2], m[0], m[1], m[2]]);
+    unsafe {
+        let tb = t.as_ptr() as *const f32;
+        let blocks = v.len() / 8;
+        for blk in 0..blocks {
+            let i = blk * 8;
+            let [px, py, pz, nx, ny, nz, _, _] = load_head(v, i);
+            let b = transpose8(eight(|l| blend(v.get_unchecked(i + l), tb)));
+            let [wx, wy, wz, vx_, vy, vz, _, _] = b;
+            let mul = |a, b| _mm256_mul_ps(a, b);
+            let add = |a, b| _mm256_add_ps(a, b);
+            let fma = |a, b, c| _mm256_fmadd_ps(a, b, c);
+            let s = fma(wz, wz, fma(wy, wy, mul(wx, wx)));
+            let (ca, cb, cc) = (horner(&A, s), horner(&B, s), horner(&C, s));
+            let w = [wx, wy, wz];
+            // Component c of ω × x.
+            let cross = |x: [__m256; 3], c: usize| cross(w, x, c);
+            let (p, n, t) = ([px, py, pz], [nx, ny, nz], [vx_, vy, vz]);
+            // u = B p + C v; e = A p + B v + ω × u; p' = p + v + ω × e (each written out: no
+            // array maps, which can stay calls).
+            let u = |c: usize| fma(cb, p[c], mul(cc, t[c]));
+            let u = [u(0), u(1), u(2)];
+            let e = |c: usize| add(fma(ca, p[c], mul(cb, t[c])), cross(u, c));
+            let e = [e(0), e(1), e(2)];
+            let q = |c: usize| add(add(p[c], t[c]), cross(e, c));
+            let q = [q(0), q(1), q(2)];
+            // n' = n + ω × (A n + B ω × n).
+            let f = |c: usize| fma(ca, n[c], mul(cb, cross(n, c)));
+            let f = [f(0), f(1), f(2)];
+            let m = |c: usize| add(n[c], cross(f, c));
+            let m = [m(0), m(1), m(2)];
+            store_rows(o, i, [q[0], q[1], q[2], m[0], m[1], m[2]]);
+        }
+        blocks * 8
     }
-    blocks * 8
 }
 
 #[cfg(test)]

@@ -22,16 +22,18 @@ unsafe fn signs<const K: usize>(
     rows: &[[f32; ROW]],
     table: &Antipodes,
 ) -> [__m256; K] {
-    let j = vx.j.map(usize::from);
-    if table.is_empty() {
-        let pivot = rows.get_unchecked(j[0]);
-        j.map(|j| {
-            let neg = real_dot(rows.get_unchecked(j), pivot) < 0.0;
-            _mm256_set1_ps(if neg { -0.0 } else { 0.0 })
-        })
-    } else {
-        let row = table.signs.as_ptr().add(j[0] * table.joints);
-        j.map(|j| _mm256_broadcast_ss(&*row.add(j)))
+    unsafe {
+        let j = vx.j.map(usize::from);
+        if table.is_empty() {
+            let pivot = rows.get_unchecked(j[0]);
+            j.map(|j| {
+                let neg = real_dot(rows.get_unchecked(j), pivot) < 0.0;
+                _mm256_set1_ps(if neg { -0.0 } else { 0.0 })
+            })
+        } else {
+            let row = table.signs.as_ptr().add(j[0] * table.joints);
+            j.map(|j| _mm256_broadcast_ss(&*row.add(j)))
+        }
     }
 }
 
@@ -47,24 +49,26 @@ unsafe fn blend<const K: usize, const SBS: bool>(
     rows: &[[f32; ROW]],
     table: &Antipodes,
 ) -> [__m256; 3] {
-    let rb = rows.as_ptr() as *const f32;
-    let low = _mm256_setr_ps(-0.0, -0.0, -0.0, -0.0, 0.0, 0.0, 0.0, 0.0);
-    let s = signs(vx, rows, table);
-    let mut out = [_mm256_setzero_ps(); 3];
-    // By index: zipped iterators over the three arrays compiled to slower code.
-    #[allow(clippy::needless_range_loop)]
-    for k in 0..K {
-        let r = rb.add(usize::from(vx.j[k]) * ROW);
-        let w = _mm256_broadcast_ss(&vx.w[k]);
-        // The sign touches the quaternion's four lanes only.
-        let sw = _mm256_xor_ps(w, _mm256_and_ps(s[k], low));
-        out[0] = _mm256_fmadd_ps(sw, _mm256_loadu_ps(r), out[0]);
-        out[1] = _mm256_fmadd_ps(w, _mm256_loadu_ps(r.add(8)), out[1]);
-        if !SBS {
-            out[2] = _mm256_fmadd_ps(w, _mm256_loadu_ps(r.add(16)), out[2]);
+    unsafe {
+        let rb = rows.as_ptr() as *const f32;
+        let low = _mm256_setr_ps(-0.0, -0.0, -0.0, -0.0, 0.0, 0.0, 0.0, 0.0);
+        let s = signs(vx, rows, table);
+        let mut out = [_mm256_setzero_ps(); 3];
+        // By index: zipped iterators over the three arrays compiled to slower code.
+        #[allow(clippy::needless_range_loop)]
+        for k in 0..K {
+            let r = rb.add(usize::from(vx.j[k]) * ROW);
+            let w = _mm256_broadcast_ss(&vx.w[k]);
+            // The sign touches the quaternion's four lanes only.
+            let sw = _mm256_xor_ps(w, _mm256_and_ps(s[k], low));
+            out[0] = _mm256_fmadd_ps(sw, _mm256_loadu_ps(r), out[0]);
+            out[1] = _mm256_fmadd_ps(w, _mm256_loadu_ps(r.add(8)), out[1]);
+            if !SBS {
+                out[2] = _mm256_fmadd_ps(w, _mm256_loadu_ps(r.add(16)), out[2]);
+            }
         }
+        out
     }
-    out
 }
 
 /// QLB for the first `v.len() / 8 * 8` vertices, each about the blend of its joints'
@@ -80,7 +84,7 @@ pub unsafe fn qlb<const K: usize>(
     table: &Antipodes,
     o: &mut [Out],
 ) -> usize {
-    blocks::<K, false>(v, rows, table, &[], &[], o)
+    unsafe { blocks::<K, false>(v, rows, table, &[], &[], o) }
 }
 
 /// SBS for the first `v.len() / 8 * 8` vertices, each about its cluster's centre
@@ -98,7 +102,7 @@ pub unsafe fn sbs<const K: usize>(
     centres: &[[f32; 8]],
     o: &mut [Out],
 ) -> usize {
-    blocks::<K, true>(v, rows, table, cluster, centres, o)
+    unsafe { blocks::<K, true>(v, rows, table, cluster, centres, o) }
 }
 
 /// The body over whole blocks of eight: each vertex's blended row, and its centre — its
@@ -114,53 +118,55 @@ unsafe fn blocks<const K: usize, const SBS: bool>(
     centres: &[[f32; 8]],
     o: &mut [Out],
 ) -> usize {
-    let blocks = v.len() / 8;
-    for blk in 0..blocks {
-        let i = blk * 8;
-        let [px, py, pz, nx, ny, nz, _, _] = load_head(v, i);
-        let r = eight(
-            #[inline(always)]
-            |l| {
-                let [a, b, c] = blend::<K, SBS>(v.get_unchecked(i + l), rows, table);
-                if SBS {
-                    let c = centres.get_unchecked(*cluster.get_unchecked(i + l) as usize);
-                    [a, b, _mm256_loadu_ps(c.as_ptr())]
-                } else {
-                    [a, b, c]
-                }
-            },
-        );
-        let lanes = |k: usize| transpose8(eight(|l| r[l][k]));
-        let [w0, x0, y0, z0, m00, m01, m02, m03] = lanes(0);
-        let [m10, m11, m12, m13, m20, m21, m22, m23] = lanes(1);
-        let [cx, cy, cz, _, _, _, _, _] = lanes(2);
-        let add = |a, b| _mm256_add_ps(a, b);
-        let sub = |a, b| _mm256_sub_ps(a, b);
-        let fma = |a, b, c| _mm256_fmadd_ps(a, b, c);
-        let s = two_over_norm2(&[w0, x0, y0, z0]);
-        // y = Σ wₖ (Rₖ c + tₖ), the blended matrix applied to c.
-        let y = [
-            fma(m02, cz, fma(m01, cy, fma(m00, cx, m03))),
-            fma(m12, cz, fma(m11, cy, fma(m10, cx, m13))),
-            fma(m22, cz, fma(m21, cy, fma(m20, cx, m23))),
-        ];
-        let v0 = [x0, y0, z0];
-        // x rotated by r / ‖r‖.
-        let rotate = |x| rotate(w0, v0, s, x);
-        let d = rotate([sub(px, cx), sub(py, cy), sub(pz, cz)]);
-        let n = rotate([nx, ny, nz]);
-        store_rows(
-            o,
-            i,
-            [
-                add(y[0], d[0]),
-                add(y[1], d[1]),
-                add(y[2], d[2]),
-                n[0],
-                n[1],
-                n[2],
-            ],
-        );
+    unsafe {
+        let blocks = v.len() / 8;
+        for blk in 0..blocks {
+            let i = blk * 8;
+            let [px, py, pz, nx, ny, nz, _, _] = load_head(v, i);
+            let r = eight(
+                #[inline(always)]
+                |l| {
+                    let [a, b, c] = blend::<K, SBS>(v.get_unchecked(i + l), rows, table);
+                    if SBS {
+                        let c = centres.get_unchecked(*cluster.get_unchecked(i + l) as usize);
+                        [a, b, _mm256_loadu_ps(c.as_ptr())]
+                    } else {
+                        [a, b, c]
+                    }
+                },
+            );
+            let lanes = |k: usize| transpose8(eight(|l| r[l][k]));
+            let [w0, x0, y0, z0, m00, m01, m02, m03] = lanes(0);
+            let [m10, m11, m12, m13, m20, m21, m22, m23] = lanes(1);
+            let [cx, cy, cz, _, _, _, _, _] = lanes(2);
+            let add = |a, b| _mm256_add_ps(a, b);
+            let sub = |a, b| _mm256_sub_ps(a, b);
+            let fma = |a, b, c| _mm256_fmadd_ps(a, b, c);
+            let s = two_over_norm2(&[w0, x0, y0, z0]);
+            // y = Σ wₖ (Rₖ c + tₖ), the blended matrix applied to c.
+            let y = [
+                fma(m02, cz, fma(m01, cy, fma(m00, cx, m03))),
+                fma(m12, cz, fma(m11, cy, fma(m10, cx, m13))),
+                fma(m22, cz, fma(m21, cy, fma(m20, cx, m23))),
+            ];
+            let v0 = [x0, y0, z0];
+            // x rotated by r / ‖r‖.
+            let rotate = |x| rotate(w0, v0, s, x);
+            let d = rotate([sub(px, cx), sub(py, cy), sub(pz, cz)]);
+            let n = rotate([nx, ny, nz]);
+            store_rows(
+                o,
+                i,
+                [
+                    add(y[0], d[0]),
+                    add(y[1], d[1]),
+                    add(y[2], d[2]),
+                    n[0],
+                    n[1],
+                    n[2],
+                ],
+            );
+        }
+        blocks * 8
     }
-    blocks * 8
 }
