@@ -38,7 +38,7 @@ fn colour_of(rig: &Rig) -> impl Fn(usize) -> [u8; 3] + '_ {
     move |i: usize| {
         if cyl {
             let first = rig.mesh.triangles[i][0] as usize % cylinder::SEGMENTS;
-            if (first / 6) % 2 == 0 {
+            if (first / 6).is_multiple_of(2) {
                 [70, 130, 200]
             } else {
                 [235, 235, 225]

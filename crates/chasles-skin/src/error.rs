@@ -22,6 +22,17 @@ pub enum SkinError {
         /// The parser's message.
         reason: String,
     },
+    /// A field of a JSON file (rig or pose) of the wrong shape or with a value that cannot
+    /// be used, named by its path (`joints[2].rotation`).
+    #[error("{file}: {path}: {reason}")]
+    Field {
+        /// The file.
+        file: String,
+        /// The field's path in the file (`.` for the whole document).
+        path: String,
+        /// What is wrong.
+        reason: String,
+    },
     /// Something missing or malformed in a rig, naming the item.
     #[error("{0}")]
     Invalid(String),

@@ -224,7 +224,7 @@ fn from_document(doc: &gltf::Document, buffers: &[Vec<u8>], name: &str) -> Resul
             Some(i) => i.into_u32().collect(),
             None => (0..count as u32).collect(),
         };
-        if idx.len() % 3 != 0 {
+        if !idx.len().is_multiple_of(3) {
             return invalid(format!(
                 "{name}: primitive {}: {} indices is not a whole number of triangles",
                 prim.index(),

@@ -20,183 +20,220 @@
 //!
 //! Pose (`--pose FILE.json`): `{"joints": {"knee": {"rotation": [w, x, y, z]}, "0":
 //! {"translation": [x, y, z]}}}` — joints by name or index; what is not given stays at rest.
-//! Quaternions are `[w, x, y, z]`, matrices row-major. Errors name the field, e.g.
-//! `joints[2].rotation` or `influences[17]`.
+//! Quaternions are `[w, x, y, z]`, matrices row-major.
+//!
+//! Both are serde-derived types read through `serde_path_to_error`, so every error is a
+//! [`SkinError::Field`] naming the file and the path of the bad field — `joints[2].rotation`,
+//! `influences[17][0]`, `positions[3]` — whether the field has the wrong shape (serde's
+//! message) or a value that cannot be used (not finite, a parent after its child, a vertex
+//! out of range, weights that are negative or sum to zero). Unknown fields are errors too,
+//! so a misspelt `"normal"` is not silently ignored.
 
-use crate::error::{invalid, Result, SkinError};
+use crate::error::{Result, SkinError};
 use crate::pose::{world, Pose};
 use crate::rig::{compute_normals, Influences, Mesh, Node, Rig, Trs};
 use chasles::{Mat4, Quat, Vec3};
-use serde_json::Value;
+use serde::Deserialize;
+use std::collections::BTreeMap;
 
-fn numbers<const N: usize>(v: &Value, at: &str) -> Result<[f32; N]> {
-    let a = v
-        .as_array()
-        .ok_or_else(|| SkinError::Invalid(format!("{at}: expected an array of {N} numbers")))?;
-    if a.len() != N {
-        return invalid(format!("{at}: expected {N} numbers, got {}", a.len()));
+/// A rig file as written.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RigFile {
+    positions: Vec<[f64; 3]>,
+    #[serde(default)]
+    normals: Option<Vec<[f64; 3]>>,
+    triangles: Vec<[u32; 3]>,
+    joints: Vec<JointFile>,
+    #[serde(default)]
+    inverse_bind: Option<Vec<[[f64; 4]; 4]>>,
+    influences: Vec<Vec<(usize, f64)>>,
+}
+
+/// One joint of a rig file: its rest transform relative to its parent.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct JointFile {
+    #[serde(default)]
+    name: String,
+    #[serde(default)]
+    parent: Option<usize>,
+    #[serde(default)]
+    translation: Option<[f64; 3]>,
+    #[serde(default)]
+    rotation: Option<[f64; 4]>,
+    #[serde(default)]
+    scale: Option<[f64; 3]>,
+}
+
+/// Translation, rotation `[w, x, y, z]` and scale, each optional: a pose file's joint.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct TrsFile {
+    #[serde(default)]
+    translation: Option<[f64; 3]>,
+    #[serde(default)]
+    rotation: Option<[f64; 4]>,
+    #[serde(default)]
+    scale: Option<[f64; 3]>,
+}
+
+/// A pose file: joints by name or index.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct PoseFile {
+    joints: BTreeMap<String, TrsFile>,
+}
+
+/// The error for the field at `path` of `file`.
+fn field(file: &str, path: impl Into<String>, reason: impl Into<String>) -> SkinError {
+    SkinError::Field {
+        file: file.to_string(),
+        path: path.into(),
+        reason: reason.into(),
     }
-    let mut out = [0f32; N];
-    for (k, x) in a.iter().enumerate() {
-        let f = x.as_f64().ok_or_else(|| {
-            SkinError::Invalid(format!("{at}[{k}]: expected a number, found {x}"))
-        })?;
-        if !f.is_finite() {
-            return invalid(format!("{at}[{k}]: not finite"));
+}
+
+/// Reads `text` as `T`, naming the path of the field that does not fit.
+fn read<'a, T: Deserialize<'a>>(text: &'a str, file: &str) -> Result<T> {
+    let mut de = serde_json::Deserializer::from_str(text);
+    let value = serde_path_to_error::deserialize(&mut de).map_err(|e| {
+        let path = e.path().to_string();
+        let inner = e.into_inner();
+        let reason = if inner.is_syntax() || inner.is_eof() {
+            format!("not valid JSON: {inner}")
+        } else {
+            inner.to_string()
+        };
+        field(file, path, reason)
+    })?;
+    // Nothing but white space may follow the document.
+    de.end()
+        .map_err(|e| field(file, ".", format!("not valid JSON: {e}")))?;
+    Ok(value)
+}
+
+/// `a` in f32, every component finite there.
+fn finite<const N: usize>(a: [f64; N], file: &str, path: impl Fn() -> String) -> Result<[f32; N]> {
+    let out = a.map(|x| x as f32);
+    match out.iter().position(|x| !x.is_finite()) {
+        Some(k) => Err(field(
+            file,
+            format!("{}[{k}]", path()),
+            format!("{:e} is not a finite f32", a[k]),
+        )),
+        None => Ok(out),
+    }
+}
+
+impl TrsFile {
+    /// `base` with what is given replaced; `at` is the path of this object.
+    fn apply(&self, base: Trs, file: &str, at: &str) -> Result<Trs> {
+        let mut t = base;
+        if let Some(x) = self.translation {
+            t.translation = Vec3::from_array(finite(x, file, || format!("{at}.translation"))?);
         }
-        out[k] = f as f32;
+        if let Some(x) = self.rotation {
+            let q = finite(x, file, || format!("{at}.rotation"))?;
+            t.rotation = Quat::from_array(q)
+                .normalize()
+                .map_err(|e| field(file, format!("{at}.rotation"), e.to_string()))?;
+        }
+        if let Some(x) = self.scale {
+            t.scale = Vec3::from_array(finite(x, file, || format!("{at}.scale"))?);
+        }
+        Ok(t)
     }
-    Ok(out)
 }
 
-fn array<'a>(v: &'a Value, field: &str) -> Result<&'a Vec<Value>> {
-    v.get(field)
-        .ok_or_else(|| SkinError::Invalid(format!("missing field '{field}'")))?
-        .as_array()
-        .ok_or_else(|| SkinError::Invalid(format!("field '{field}': expected an array")))
-}
-
-fn trs(v: &Value, at: &str, base: Trs) -> Result<Trs> {
-    let mut t = base;
-    if let Some(x) = v.get("translation") {
-        t.translation = Vec3::from_array(numbers::<3>(x, &format!("{at}.translation"))?);
-    }
-    if let Some(x) = v.get("rotation") {
-        t.rotation = Quat::from_array(numbers::<4>(x, &format!("{at}.rotation"))?)
-            .normalize()
-            .map_err(|e| SkinError::Invalid(format!("{at}.rotation: {e}")))?;
-    }
-    if let Some(x) = v.get("scale") {
-        t.scale = Vec3::from_array(numbers::<3>(x, &format!("{at}.scale"))?);
-    }
-    Ok(t)
-}
-
-/// Parses a JSON rig.
+/// Parses a JSON rig; `name` (the file) names it in errors.
 pub fn parse_rig(text: &str, name: &str) -> Result<Rig> {
-    let v: Value = serde_json::from_str(text)
-        .map_err(|e| SkinError::Invalid(format!("{name}: not valid JSON: {e}")))?;
-    let ctx = |e: SkinError| SkinError::Invalid(format!("{name}: {e}"));
-    let positions = array(&v, "positions")
-        .map_err(ctx)?
+    let f: RigFile = read(text, name)?;
+    let positions = f
+        .positions
         .iter()
         .enumerate()
-        .map(|(i, p)| numbers::<3>(p, &format!("positions[{i}]")).map(Vec3::from_array))
-        .collect::<Result<Vec<_>>>()
-        .map_err(ctx)?;
-    let triangles = array(&v, "triangles")
-        .map_err(ctx)?
-        .iter()
-        .enumerate()
-        .map(|(i, t)| {
-            let t = numbers::<3>(t, &format!("triangles[{i}]"))?;
-            if t.iter().any(|x| *x < 0.0 || x.fract() != 0.0) {
-                return invalid(format!(
-                    "triangles[{i}]: vertex indices must be whole and non-negative"
-                ));
-            }
-            Ok(t.map(|x| x as u32))
-        })
-        .collect::<Result<Vec<_>>>()
-        .map_err(ctx)?;
-    if let Some((i, t)) = triangles
+        .map(|(i, p)| finite(*p, name, || format!("positions[{i}]")).map(Vec3::from_array))
+        .collect::<Result<Vec<_>>>()?;
+    if let Some((i, t)) = f
+        .triangles
         .iter()
         .enumerate()
         .find(|(_, t)| t.iter().any(|x| *x as usize >= positions.len()))
     {
-        return invalid(format!(
-            "{name}: triangle {i} {t:?} names a vertex out of range (there are {})",
-            positions.len()
+        return Err(field(
+            name,
+            format!("triangles[{i}]"),
+            format!(
+                "{t:?} names a vertex out of range (there are {})",
+                positions.len()
+            ),
         ));
     }
-    let joints_v = array(&v, "joints").map_err(ctx)?;
-    let mut nodes = Vec::with_capacity(joints_v.len());
-    for (i, j) in joints_v.iter().enumerate() {
+    let mut nodes = Vec::with_capacity(f.joints.len());
+    for (i, j) in f.joints.iter().enumerate() {
         let at = format!("joints[{i}]");
-        let parent = match j.get("parent") {
-            None | Some(Value::Null) => None,
-            Some(p) => {
-                let p = p.as_u64().ok_or_else(|| {
-                    SkinError::Invalid(format!(
-                        "{name}: {at}.parent: expected a joint index or null"
-                    ))
-                })? as usize;
-                if p >= i {
-                    return invalid(format!(
-                        "{name}: {at}.parent is {p}: parents must come before their children"
-                    ));
-                }
-                Some(p)
-            }
-        };
+        if let Some(p) = j.parent.filter(|p| *p >= i) {
+            return Err(field(
+                name,
+                format!("{at}.parent"),
+                format!("{p}: parents must come before their children"),
+            ));
+        }
         nodes.push(Node {
-            name: j
-                .get("name")
-                .and_then(Value::as_str)
-                .unwrap_or("")
-                .to_string(),
-            parent,
-            rest: trs(j, &at, Trs::default()).map_err(ctx)?,
+            name: j.name.clone(),
+            parent: j.parent,
+            rest: TrsFile {
+                translation: j.translation,
+                rotation: j.rotation,
+                scale: j.scale,
+            }
+            .apply(Trs::default(), name, &at)?,
         });
     }
     let nj = nodes.len();
-    let lists = array(&v, "influences")
-        .map_err(ctx)?
-        .iter()
-        .enumerate()
-        .map(|(i, l)| {
-            let at = format!("influences[{i}]");
-            l.as_array()
-                .ok_or_else(|| {
-                    SkinError::Invalid(format!("{at}: expected a list of [joint, weight] pairs"))
-                })?
-                .iter()
-                .map(|pair| {
-                    let [j, w] = numbers::<2>(pair, &at)?;
-                    if j < 0.0 || j.fract() != 0.0 {
-                        return invalid(format!(
-                            "{at}: joint index {j} is not a whole non-negative number"
-                        ));
-                    }
-                    Ok((j as usize, w))
-                })
-                .collect::<Result<Vec<_>>>()
-        })
-        .collect::<Result<Vec<_>>>()
-        .map_err(ctx)?;
-    if lists.len() != positions.len() {
-        return invalid(format!(
-            "{name}: {} vertices but {} influence lists",
-            positions.len(),
-            lists.len()
+    if f.influences.len() != positions.len() {
+        return Err(field(
+            name,
+            "influences",
+            format!(
+                "{} influence lists for {} vertices",
+                f.influences.len(),
+                positions.len()
+            ),
         ));
     }
-    let influences = Influences::from_lists(&lists, nj).map_err(ctx)?;
-    let normals = match v.get("normals") {
+    let lists: Vec<Vec<(usize, f32)>> = f
+        .influences
+        .iter()
+        .map(|l| l.iter().map(|&(j, w)| (j, w as f32)).collect())
+        .collect();
+    let influences = Influences::from_lists(&lists, nj).map_err(|e| match e {
+        SkinError::BadWeights { vertex, .. } | SkinError::JointOutOfRange { vertex, .. } => {
+            field(name, format!("influences[{vertex}]"), e.to_string())
+        }
+        e => e,
+    })?;
+    let normals = match &f.normals {
         Some(n) => n
-            .as_array()
-            .ok_or_else(|| {
-                SkinError::Invalid(format!("{name}: field 'normals': expected an array"))
-            })?
             .iter()
             .enumerate()
             .map(|(i, p)| {
-                numbers::<3>(p, &format!("normals[{i}]")).map(|a| {
+                finite(*p, name, || format!("normals[{i}]")).map(|a| {
                     Vec3::from_array(a)
                         .normalize()
                         .unwrap_or(Vec3::new(0.0, 0.0, 1.0))
                 })
             })
-            .collect::<Result<Vec<_>>>()
-            .map_err(ctx)?,
-        None => compute_normals(&positions, &triangles),
+            .collect::<Result<Vec<_>>>()?,
+        None => compute_normals(&positions, &f.triangles),
     };
     let mut rig = Rig {
         name: name.to_string(),
         mesh: Mesh {
             positions,
             normals,
-            triangles,
+            triangles: f.triangles,
         },
         nodes,
         joints: (0..nj).collect(),
@@ -204,38 +241,25 @@ pub fn parse_rig(text: &str, name: &str) -> Result<Rig> {
         influences,
         animations: Vec::new(),
     };
-    rig.inverse_bind = match v.get("inverse_bind") {
+    rig.inverse_bind = match &f.inverse_bind {
         Some(ib) => ib
-            .as_array()
-            .ok_or_else(|| {
-                SkinError::Invalid(format!(
-                    "{name}: field 'inverse_bind': expected an array of 4x4 matrices"
-                ))
-            })?
             .iter()
             .enumerate()
             .map(|(i, m)| {
-                let rows = m.as_array().filter(|r| r.len() == 4).ok_or_else(|| {
-                    SkinError::Invalid(format!("{name}: inverse_bind[{i}]: expected 4 rows"))
-                })?;
-                let r = rows
-                    .iter()
-                    .enumerate()
-                    .map(|(k, row)| numbers::<4>(row, &format!("inverse_bind[{i}][{k}]")))
-                    .collect::<Result<Vec<_>>>()?;
-                Ok(Mat4::from_rows([r[0], r[1], r[2], r[3]]))
+                let mut rows = [[0f32; 4]; 4];
+                for (k, row) in m.iter().enumerate() {
+                    rows[k] = finite(*row, name, || format!("inverse_bind[{i}][{k}]"))?;
+                }
+                Ok(Mat4::from_rows(rows))
             })
-            .collect::<Result<Vec<_>>>()
-            .map_err(ctx)?,
+            .collect::<Result<Vec<_>>>()?,
         None => {
             let rest = world(&rig, &Pose::rest(&rig))?;
             rest.iter()
                 .enumerate()
                 .map(|(i, m)| {
                     let a = m.linear_part().inverse().ok_or_else(|| {
-                        SkinError::Invalid(format!(
-                            "{name}: joints[{i}] has a singular rest transform"
-                        ))
+                        field(name, format!("joints[{i}]"), "a singular rest transform")
                     })?;
                     Ok(Mat4::from_rotation_translation(
                         &a,
@@ -251,15 +275,10 @@ pub fn parse_rig(text: &str, name: &str) -> Result<Rig> {
 
 /// Parses a JSON pose for `rig`: joints by name or index, the rest at rest.
 pub fn parse_pose(text: &str, rig: &Rig, name: &str) -> Result<Pose> {
-    let v: Value = serde_json::from_str(text)
-        .map_err(|e| SkinError::Invalid(format!("{name}: not valid JSON: {e}")))?;
-    let joints = v.get("joints").and_then(Value::as_object).ok_or_else(|| {
-        SkinError::Invalid(format!(
-            "{name}: expected {{\"joints\": {{name or index: {{rotation, translation, scale}}}}}}"
-        ))
-    })?;
+    let f: PoseFile = read(text, name)?;
     let mut pose = Pose::rest(rig);
-    for (key, t) in joints {
+    for (key, t) in &f.joints {
+        let at = format!("joints.{key}");
         let node = rig
             .joints
             .iter()
@@ -270,10 +289,8 @@ pub fn parse_pose(text: &str, rig: &Rig, name: &str) -> Result<Pose> {
                     .ok()
                     .and_then(|j| rig.joints.get(j).copied())
             })
-            .ok_or_else(|| {
-                SkinError::Invalid(format!("{name}: no joint named or numbered '{key}'"))
-            })?;
-        pose.local[node] = trs(t, &format!("{name}: joints.{key}"), pose.local[node])?;
+            .ok_or_else(|| field(name, &at, format!("no joint named or numbered '{key}'")))?;
+        pose.local[node] = t.apply(pose.local[node], name, &at)?;
     }
     Ok(pose)
 }

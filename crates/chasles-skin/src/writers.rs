@@ -87,10 +87,10 @@ pub fn glb(mesh: &Mesh, s: &Skinned, comment: &str) -> Vec<u8> {
         ]
     });
     let mut j = json.to_string().into_bytes();
-    while j.len() % 4 != 0 {
+    while !j.len().is_multiple_of(4) {
         j.push(b' ');
     }
-    while bin.len() % 4 != 0 {
+    while !bin.len().is_multiple_of(4) {
         bin.push(0);
     }
     let total = 12 + 8 + j.len() + 8 + bin.len();

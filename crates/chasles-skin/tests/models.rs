@@ -504,7 +504,7 @@ fn json_rigs_and_poses() {
     let bad: &[(&str, &str)] = &[
         (
             r#"{"positions": [[0,0,0]], "triangles": [], "joints": [{"name": "a"}], "influences": [[[3, 1]]]}"#,
-            "joint index 3 out of range",
+            "r: influences[0]: vertex 0: joint index 3 out of range",
         ),
         (
             r#"{"positions": [[0,0,0]], "triangles": [], "joints": [{"name": "a"}], "influences": [[[0, -1]]]}"#,
@@ -519,8 +519,20 @@ fn json_rigs_and_poses() {
             "positions[0]",
         ),
         (
+            r#"{"positions": [[0,0,1e39]], "triangles": [], "joints": [{"name": "a"}], "influences": [[[0, 1]]]}"#,
+            "r: positions[0][2]: 1e39 is not a finite f32",
+        ),
+        (
+            r#"{"positions": [[0,0,0]], "triangles": [], "joints": [{"name": "a", "rotaton": [1,0,0,0]}], "influences": [[[0, 1]]]}"#,
+            "r: joints[0].rotaton: unknown field `rotaton`, expected one of",
+        ),
+        (
+            r#"{"positions": [[0,0,0]], "triangles": [], "joints": [{"name": "a"}], "influences": [[[0.5, 1]]]}"#,
+            "r: influences[0][0][0]: invalid type: floating point `0.5`",
+        ),
+        (
             r#"{"positions": [[0,0,0]], "triangles": [[0,0,5]], "joints": [{"name": "a"}], "influences": [[[0, 1]]]}"#,
-            "triangle 0",
+            "triangles[0]: [0, 0, 5] names a vertex out of range",
         ),
         (
             r#"{"positions": [[0,0,0]], "triangles": [], "joints": [{"name": "a", "rotation": [0,0,0,0]}], "influences": [[[0, 1]]]}"#,
@@ -532,11 +544,22 @@ fn json_rigs_and_poses() {
         ),
         (
             r#"{"positions": [[0,0,0]], "triangles": [], "joints": [{"name": "a"}]}"#,
-            "missing field 'influences'",
+            "missing field `influences`",
         ),
-        ("[1, 2", "not valid JSON"),
+        (
+            r#"{"positions": [[0,0,0]"#,
+            "r: positions: not valid JSON: EOF while parsing",
+        ),
+        (
+            "[1, 2",
+            "r: [0]: invalid type: integer `1`, expected a sequence",
+        ),
     ];
-    for (text, needle) in bad {
+    let trailing = format!("{STRIP} x");
+    for (text, needle) in bad.iter().chain([&(
+        trailing.as_str(),
+        "r: .: not valid JSON: trailing characters",
+    )]) {
         let e = parse_rig(text, "r").unwrap_err().to_string();
         assert!(e.contains(needle), "{text}: {e}");
     }
@@ -544,11 +567,11 @@ fn json_rigs_and_poses() {
         .unwrap_err()
         .to_string()
         .contains("'knee'"));
+    let e = parse_pose(r#"{"joints": {"b": {"scale": [1, 2]}}}"#, &rig, "p").unwrap_err();
     assert!(
-        parse_pose(r#"{"joints": {"b": {"scale": [1, 2]}}}"#, &rig, "p")
-            .unwrap_err()
-            .to_string()
-            .contains("joints.b.scale")
+        e.to_string()
+            .starts_with("p: joints.b.scale: invalid length 2, expected an array of length 3"),
+        "{e}"
     );
 }
 
