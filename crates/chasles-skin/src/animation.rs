@@ -5,7 +5,7 @@
 //! interval; rotations normalized afterwards). Before the first key the first value holds,
 //! after the last key the last.
 
-use crate::error::{invalid, Result};
+use crate::error::ChannelProblem;
 use crate::rig::Trs;
 use chasles::interp::slerp::slerp_shortest;
 use chasles::{Quat, Vec3};
@@ -59,20 +59,18 @@ pub struct Animation {
 }
 
 impl Channel {
-    /// Checks times (finite, strictly increasing) and the number of values.
-    pub fn validate(&self, nodes: usize) -> Result<()> {
+    /// Checks the target node, times (finite, strictly increasing) and the number of
+    /// values; [`crate::Rig::new`] runs it on every channel.
+    pub fn validate(&self, nodes: usize) -> Result<(), ChannelProblem> {
         if self.node >= nodes {
-            return invalid(format!(
-                "animation channel targets node {}, out of range (there are {nodes})",
-                self.node
-            ));
+            return Err(ChannelProblem::NodeOutOfRange { nodes });
         }
         if self.times.is_empty() {
-            return invalid("animation channel has no keys");
+            return Err(ChannelProblem::NoKeys);
         }
         if self.times.iter().any(|t| !t.is_finite()) || self.times.windows(2).any(|w| w[1] <= w[0])
         {
-            return invalid("animation key times must be finite and strictly increasing");
+            return Err(ChannelProblem::Times);
         }
         let per = if self.interpolation == Interpolation::CubicSpline {
             3
@@ -80,15 +78,14 @@ impl Channel {
             1
         };
         if self.values.len() != self.times.len() * per {
-            return invalid(format!(
-                "animation channel has {} keys but {} values (expected {})",
-                self.times.len(),
-                self.values.len(),
-                self.times.len() * per
-            ));
+            return Err(ChannelProblem::Values {
+                keys: self.times.len(),
+                values: self.values.len(),
+                expected: self.times.len() * per,
+            });
         }
         if self.values.iter().flatten().any(|v| !v.is_finite()) {
-            return invalid("animation channel has values that are not finite");
+            return Err(ChannelProblem::NotFinite);
         }
         Ok(())
     }

@@ -33,9 +33,113 @@ pub enum SkinError {
         /// What is wrong.
         reason: String,
     },
-    /// Something missing or malformed in a rig, naming the item.
-    #[error("{0}")]
-    Invalid(String),
+    /// A glTF file that parses but holds something that cannot be skinned, naming the item
+    /// (`buffer 0`, `primitive 2`, `accessor 5 (POSITION)`, `skin`, `animation 1`).
+    #[error("{file}: {item}: {problem}")]
+    GltfContent {
+        /// The file.
+        file: String,
+        /// The item of the file.
+        item: String,
+        /// What is wrong with it.
+        problem: String,
+    },
+    /// A file whose kind is not known from its extension.
+    #[error("{path}: rigs are read from .gltf, .glb or .json files")]
+    UnknownFormat {
+        /// The file.
+        path: String,
+    },
+    /// Two sizes that must agree and do not: `{got} {what}` where `{expected}` belong.
+    #[error("{rig}: {got} {what}, expected {expected}")]
+    Count {
+        /// The rig (or what the data belongs to).
+        rig: String,
+        /// What was counted (`normals`, `joint transforms`, `output vertices`).
+        what: &'static str,
+        /// How many there should be.
+        expected: usize,
+        /// How many there are.
+        got: usize,
+    },
+    /// An index past the end of what it indexes.
+    #[error("{rig}: {what} {index} out of range (there are {count})")]
+    OutOfRange {
+        /// The rig.
+        rig: String,
+        /// What the index names (`vertex of triangle 3`, `node of joint 2`).
+        what: String,
+        /// The index.
+        index: usize,
+        /// How many there are.
+        count: usize,
+    },
+    /// A number that must be finite and is not.
+    #[error("{rig}: {what} is not finite")]
+    NotFinite {
+        /// The rig.
+        rig: String,
+        /// The number (`the position of vertex 7`, `time NaN`).
+        what: String,
+    },
+    /// A node whose parent chain is broken or a cycle.
+    #[error("{rig}: node {node} has a broken or cyclic parent chain")]
+    Hierarchy {
+        /// The rig.
+        rig: String,
+        /// The node.
+        node: usize,
+    },
+    /// A rig with more joints than 16-bit joint indices hold.
+    #[error("{joints} joints: at most 65535 are supported")]
+    TooManyJoints {
+        /// The joint count.
+        joints: usize,
+    },
+    /// A vertex with more influences than a fast-path layout holds.
+    #[error("{rig}: a vertex has {most} influences; this layout holds {layout}")]
+    TooManyInfluences {
+        /// The rig.
+        rig: String,
+        /// The most influences of any vertex.
+        most: usize,
+        /// The layout's K.
+        layout: usize,
+    },
+    /// An animation clip that does not exist.
+    #[error("{rig}: no animation {clip} (there are {count})")]
+    NoAnimation {
+        /// The rig.
+        rig: String,
+        /// The clip asked for.
+        clip: usize,
+        /// How many clips there are.
+        count: usize,
+    },
+    /// An animation channel that cannot be played.
+    #[error("{rig}: animation {animation}, channel {channel} (node {node}): {problem}")]
+    Channel {
+        /// The rig.
+        rig: String,
+        /// The clip's index.
+        animation: usize,
+        /// The channel's index in the clip.
+        channel: usize,
+        /// The node the channel targets.
+        node: usize,
+        /// What is wrong.
+        problem: ChannelProblem,
+    },
+    /// Skinning that produced a non-finite vertex (from non-finite or degenerate joints).
+    #[error("{rig}: skinning with {method} produced a non-finite vertex ({vertex})")]
+    NonFiniteOutput {
+        /// The rig.
+        rig: String,
+        /// The method's name.
+        method: &'static str,
+        /// The first such vertex.
+        vertex: usize,
+    },
     /// A vertex influence naming a joint that does not exist.
     #[error("vertex {vertex}: joint index {joint} out of range (the skin has {joints} joints)")]
     JointOutOfRange {
@@ -71,9 +175,48 @@ pub enum SkinError {
     Math(#[from] chasles::Error),
 }
 
+/// What is wrong with an animation channel.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Error)]
+pub enum ChannelProblem {
+    /// It targets a node that does not exist.
+    #[error("the node is out of range (there are {nodes})")]
+    NodeOutOfRange {
+        /// How many nodes there are.
+        nodes: usize,
+    },
+    /// It has no keys.
+    #[error("no keys")]
+    NoKeys,
+    /// Its key times are not finite and strictly increasing.
+    #[error("key times must be finite and strictly increasing")]
+    Times,
+    /// Its values do not match its keys.
+    #[error("{keys} keys but {values} values (expected {expected})")]
+    Values {
+        /// Keys.
+        keys: usize,
+        /// Values.
+        values: usize,
+        /// Values expected.
+        expected: usize,
+    },
+    /// A value is not finite.
+    #[error("values that are not finite")]
+    NotFinite,
+}
+
 /// Result with [`SkinError`].
 pub type Result<T> = std::result::Result<T, SkinError>;
 
-pub(crate) fn invalid<T>(msg: impl Into<String>) -> Result<T> {
-    Err(SkinError::Invalid(msg.into()))
+/// A [`SkinError::GltfContent`] for `item` of `file`.
+pub(crate) fn gltf_content(
+    file: &str,
+    item: impl Into<String>,
+    problem: impl Into<String>,
+) -> SkinError {
+    SkinError::GltfContent {
+        file: file.to_string(),
+        item: item.into(),
+        problem: problem.into(),
+    }
 }

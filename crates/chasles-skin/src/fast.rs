@@ -20,7 +20,7 @@
 //! antipodality signs depend only on the pair (pivot joint, joint), so the SIMD kernel
 //! looks them up in a table made once per pose (`antipodes`).
 
-use crate::error::{invalid, Result};
+use crate::error::{Result, SkinError};
 use crate::pose::JointTransforms;
 use crate::rig::Rig;
 use crate::rotation_centre::joint_centres;
@@ -72,18 +72,18 @@ impl<const K: usize> FastRig<K> {
     pub fn new(rig: &Rig) -> Result<Self> {
         let most = rig.influences.max_per_vertex();
         if most > K {
-            return invalid(format!(
-                "{}: a vertex has {most} influences; this layout holds {K}",
-                rig.name
-            ));
+            return Err(SkinError::TooManyInfluences {
+                rig: rig.name.clone(),
+                most,
+                layout: K,
+            });
         }
         let vertices = (0..rig.mesh.positions.len())
             .map(|v| {
-                let mut inf: Vec<(usize, f32)> = rig.influences.of(v).collect();
-                inf.sort_by(|a, b| b.1.total_cmp(&a.1)); // stable: ties keep file order
+                // Influences are stored heaviest first (`Influences::from_lists`).
                 let mut j = [0u16; K];
                 let mut w = [0f32; K];
-                for (k, (jj, ww)) in inf.into_iter().enumerate() {
+                for (k, (jj, ww)) in rig.influences.of(v).enumerate() {
                     j[k] = jj as u16;
                     w[k] = ww;
                 }
@@ -108,10 +108,12 @@ impl<const K: usize> FastRig<K> {
             .enumerate()
             .find(|(_, v)| v.j.iter().any(|j| usize::from(*j) >= joints))
         {
-            return invalid(format!(
-                "vertex {i}: joint index out of range in {:?} ({joints} joints)",
-                v.j
-            ));
+            let joint = v.j.iter().map(|j| usize::from(*j)).max().unwrap_or(0);
+            return Err(SkinError::JointOutOfRange {
+                vertex: i,
+                joint,
+                joints,
+            });
         }
         Ok(FastRig { vertices, centres })
     }
@@ -344,18 +346,20 @@ impl<const K: usize> Kernel<K> for DqsKernel {
 /// The sizes every fast skinning checks: one output per vertex, one transform per joint.
 fn check<const K: usize>(rig: &FastRig<K>, joints: usize, out: usize) -> Result<()> {
     if out != rig.vertices.len() {
-        return invalid(format!(
-            "output holds {} vertices, the rig has {}",
-            out,
-            rig.vertices.len()
-        ));
+        return Err(SkinError::Count {
+            rig: "the fast rig".into(),
+            what: "output vertices",
+            expected: rig.vertices.len(),
+            got: out,
+        });
     }
     if joints != rig.joints() {
-        return invalid(format!(
-            "{} joint transforms for {} joints",
-            joints,
-            rig.joints()
-        ));
+        return Err(SkinError::Count {
+            rig: "the fast rig".into(),
+            what: "joint transforms",
+            expected: rig.joints(),
+            got: joints,
+        });
     }
     Ok(())
 }

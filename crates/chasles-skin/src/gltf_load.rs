@@ -12,7 +12,7 @@
 //! indices and weights are checked per vertex ([`Influences::from_lists`]).
 
 use crate::animation::{Animation, Channel, Interpolation, Path as ChannelPath};
-use crate::error::{invalid, Result, SkinError};
+use crate::error::{gltf_content, Result, SkinError};
 use crate::rig::{compute_normals, Influences, Mesh, Node, Rig, Trs};
 use base64::Engine;
 use chasles::{Mat4, Quat, Vec3};
@@ -37,44 +37,51 @@ fn load_buffers(
         .map(|b| {
             let data = match b.source() {
                 gltf::buffer::Source::Bin => blob.take().ok_or_else(|| {
-                    SkinError::Invalid(format!(
-                        "{name}: buffer {} refers to a missing GLB binary chunk",
-                        b.index()
-                    ))
+                    gltf_content(
+                        name,
+                        format!("buffer {}", b.index()),
+                        "refers to a missing GLB binary chunk",
+                    )
                 })?,
                 gltf::buffer::Source::Uri(uri) => {
                     if let Some(rest) = uri.strip_prefix("data:") {
                         let (_, payload) = rest.split_once(";base64,").ok_or_else(|| {
-                            SkinError::Invalid(format!(
-                                "{name}: buffer {}: only base64 data URIs are supported",
-                                b.index()
-                            ))
+                            gltf_content(
+                                name,
+                                format!("buffer {}", b.index()),
+                                "only base64 data URIs are supported",
+                            )
                         })?;
                         base64::engine::general_purpose::STANDARD
                             .decode(payload)
                             .map_err(|e| {
-                                SkinError::Invalid(format!(
-                                    "{name}: buffer {}: bad base64 data: {e}",
-                                    b.index()
-                                ))
+                                gltf_content(
+                                    name,
+                                    format!("buffer {}", b.index()),
+                                    format!("bad base64 data: {e}"),
+                                )
                             })?
                     } else if let Some(base) = base {
                         let p = base.join(uri);
                         std::fs::read(&p).map_err(|e| io(&p, e))?
                     } else {
-                        return invalid(format!(
-                            "{name}: buffer {} is in a separate file ({uri}), which bytes in memory cannot refer to",
-                            b.index()
+                        return Err(gltf_content(
+                            name,
+                            format!("buffer {}", b.index()),
+                            format!("is in a separate file ({uri}), which bytes in memory cannot refer to"),
                         ));
                     }
                 }
             };
             if data.len() < b.length() {
-                return invalid(format!(
-                    "{name}: buffer {} is truncated: {} bytes, the file declares {}",
-                    b.index(),
-                    data.len(),
-                    b.length()
+                return Err(gltf_content(
+                    name,
+                    format!("buffer {}", b.index()),
+                    format!(
+                        "is truncated: {} bytes, the file declares {}",
+                        data.len(),
+                        b.length()
+                    ),
                 ));
             }
             Ok(data)
@@ -83,11 +90,12 @@ fn load_buffers(
 }
 
 /// Checks that an accessor lies inside its view and buffer.
-fn check_accessor(a: &gltf::Accessor, buffers: &[Vec<u8>], what: &str) -> Result<()> {
+fn check_accessor(a: &gltf::Accessor, buffers: &[Vec<u8>], what: &str, name: &str) -> Result<()> {
     let Some(view) = a.view() else {
-        return invalid(format!(
-            "accessor {} ({what}) has no buffer view (sparse-only accessors are not supported)",
-            a.index()
+        return Err(gltf_content(
+            name,
+            format!("accessor {} ({what})", a.index()),
+            "has no buffer view (sparse-only accessors are not supported)",
         ));
     };
     let elem = a.size();
@@ -168,9 +176,11 @@ fn from_document(doc: &gltf::Document, buffers: &[Vec<u8>], name: &str) -> Resul
         .nodes()
         .find(|n| n.mesh().is_some() && n.skin().is_some())
         .ok_or_else(|| {
-            SkinError::Invalid(format!(
-                "{name}: no node has both a mesh and a skin: nothing to skin"
-            ))
+            gltf_content(
+                name,
+                "nodes",
+                "no node has both a mesh and a skin: nothing to skin",
+            )
         })?;
     let (mesh, skin) = (
         skinned.mesh().unwrap_or_else(|| unreachable!()),
@@ -185,34 +195,28 @@ fn from_document(doc: &gltf::Document, buffers: &[Vec<u8>], name: &str) -> Resul
     let mut lists: Vec<Vec<(usize, f32)>> = Vec::new();
     for prim in mesh.primitives() {
         if prim.mode() != gltf::mesh::Mode::Triangles {
-            return invalid(format!(
-                "{name}: mesh primitive {} is not made of triangles",
-                prim.index()
+            return Err(gltf_content(
+                name,
+                format!("mesh primitive {}", prim.index()),
+                "is not made of triangles",
             ));
         }
         let base = positions.len() as u32;
-        let pos_acc = prim.get(&Semantic::Positions).ok_or_else(|| {
-            SkinError::Invalid(format!(
-                "{name}: primitive {} has no POSITION",
-                prim.index()
-            ))
-        })?;
-        check_accessor(&pos_acc, buffers, "POSITION")?;
+        let item = || format!("primitive {}", prim.index());
+        let pos_acc = prim
+            .get(&Semantic::Positions)
+            .ok_or_else(|| gltf_content(name, item(), "has no POSITION"))?;
+        check_accessor(&pos_acc, buffers, "POSITION", name)?;
         for (s, a) in prim.attributes() {
-            check_accessor(&a, buffers, &format!("{s:?}"))?;
+            check_accessor(&a, buffers, &format!("{s:?}"), name)?;
         }
         if let Some(ix) = prim.indices() {
-            check_accessor(&ix, buffers, "indices")?;
+            check_accessor(&ix, buffers, "indices", name)?;
         }
         let reader = prim.reader(get);
         let p: Vec<Vec3<f32>> = reader
             .read_positions()
-            .ok_or_else(|| {
-                SkinError::Invalid(format!(
-                    "{name}: primitive {}: POSITION unreadable",
-                    prim.index()
-                ))
-            })?
+            .ok_or_else(|| gltf_content(name, item(), "POSITION unreadable"))?
             .map(Vec3::from_array)
             .collect();
         let count = p.len();
@@ -225,16 +229,17 @@ fn from_document(doc: &gltf::Document, buffers: &[Vec<u8>], name: &str) -> Resul
             None => (0..count as u32).collect(),
         };
         if !idx.len().is_multiple_of(3) {
-            return invalid(format!(
-                "{name}: primitive {}: {} indices is not a whole number of triangles",
-                prim.index(),
-                idx.len()
+            return Err(gltf_content(
+                name,
+                item(),
+                format!("{} indices is not a whole number of triangles", idx.len()),
             ));
         }
         if let Some(bad) = idx.iter().find(|i| **i as usize >= count) {
-            return invalid(format!(
-                "{name}: primitive {}: index {bad} out of range ({count} vertices)",
-                prim.index()
+            return Err(gltf_content(
+                name,
+                item(),
+                format!("index {bad} out of range ({count} vertices)"),
             ));
         }
         triangles.extend(
@@ -247,7 +252,15 @@ fn from_document(doc: &gltf::Document, buffers: &[Vec<u8>], name: &str) -> Resul
             let j: Vec<[u16; 4]> = j.into_u16().collect();
             let w: Vec<[f32; 4]> = w.into_f32().collect();
             if j.len() != count || w.len() != count {
-                return invalid(format!("{name}: primitive {}: JOINTS_{set}/WEIGHTS_{set} have {}/{} entries for {count} vertices", prim.index(), j.len(), w.len()));
+                return Err(gltf_content(
+                    name,
+                    item(),
+                    format!(
+                        "JOINTS_{set}/WEIGHTS_{set} have {}/{} entries for {count} vertices",
+                        j.len(),
+                        w.len()
+                    ),
+                ));
             }
             for (v, (jv, wv)) in j.iter().zip(&w).enumerate() {
                 for k in 0..4 {
@@ -257,36 +270,37 @@ fn from_document(doc: &gltf::Document, buffers: &[Vec<u8>], name: &str) -> Resul
             set += 1;
         }
         if set == 0 {
-            return invalid(format!(
-                "{name}: primitive {} has no JOINTS_0/WEIGHTS_0: it is not skinned",
-                prim.index()
+            return Err(gltf_content(
+                name,
+                item(),
+                "has no JOINTS_0/WEIGHTS_0: it is not skinned",
             ));
         }
         lists.extend(per_vertex);
         positions.extend(p);
     }
     let influences = Influences::from_lists(&lists, nj)
-        .map_err(|e| SkinError::Invalid(format!("{name}: {e}")))?;
+        .map_err(|e| gltf_content(name, "JOINTS/WEIGHTS", e.to_string()))?;
     if !have_normals || normals.len() != positions.len() {
         normals = compute_normals(&positions, &triangles);
     }
     let inverse_bind = match skin.inverse_bind_matrices() {
         Some(a) => {
-            check_accessor(&a, buffers, "inverseBindMatrices")?;
+            check_accessor(&a, buffers, "inverseBindMatrices", name)?;
             let m: Vec<Mat4<f32>> = skin
                 .reader(get)
                 .read_inverse_bind_matrices()
-                .ok_or_else(|| {
-                    SkinError::Invalid(format!("{name}: inverse bind matrices unreadable"))
-                })?
+                .ok_or_else(|| gltf_content(name, "skin", "inverse bind matrices unreadable"))?
                 // glTF matrices are column-major: cols[c][r].
                 .map(|cols| Mat4::from_rows(cols).transpose())
                 .collect();
             if m.len() != nj {
-                return invalid(format!(
-                    "{name}: {} inverse bind matrices for {nj} joints",
-                    m.len()
-                ));
+                return Err(SkinError::Count {
+                    rig: name.to_string(),
+                    what: "inverse bind matrices",
+                    expected: nj,
+                    got: m.len(),
+                });
             }
             m
         }
@@ -311,13 +325,13 @@ fn from_document(doc: &gltf::Document, buffers: &[Vec<u8>], name: &str) -> Resul
         for c in a.channels() {
             use gltf::animation::util::ReadOutputs;
             let s = c.sampler();
-            check_accessor(&s.input(), buffers, "animation input")?;
-            check_accessor(&s.output(), buffers, "animation output")?;
+            check_accessor(&s.input(), buffers, "animation input", name)?;
+            check_accessor(&s.output(), buffers, "animation output", name)?;
             let r = c.reader(get);
             let times: Vec<f32> = r
                 .read_inputs()
                 .ok_or_else(|| {
-                    SkinError::Invalid(format!("{name}: animation {} input unreadable", a.index()))
+                    gltf_content(name, format!("animation {}", a.index()), "input unreadable")
                 })?
                 .collect();
             let (path, values): (ChannelPath, Vec<[f32; 4]>) = match r.read_outputs() {
@@ -347,8 +361,6 @@ fn from_document(doc: &gltf::Document, buffers: &[Vec<u8>], name: &str) -> Resul
                 times,
                 values,
             };
-            ch.validate(nodes.len())
-                .map_err(|e| SkinError::Invalid(format!("{name}: animation {}: {e}", a.index())))?;
             channels.push(ch);
         }
         animations.push(Animation {
@@ -356,19 +368,17 @@ fn from_document(doc: &gltf::Document, buffers: &[Vec<u8>], name: &str) -> Resul
             channels,
         });
     }
-    let rig = Rig {
-        name: name.to_string(),
-        mesh: Mesh {
+    Rig::new(
+        name.to_string(),
+        Mesh {
             positions,
             normals,
             triangles,
         },
         nodes,
-        joints: joint_nodes,
+        joint_nodes,
         inverse_bind,
         influences,
         animations,
-    };
-    rig.validate()?;
-    Ok(rig)
+    )
 }

@@ -30,7 +30,7 @@
 //! so a misspelt `"normal"` is not silently ignored.
 
 use crate::error::{Result, SkinError};
-use crate::pose::{world, Pose};
+use crate::pose::{world_of, Pose};
 use crate::rig::{compute_normals, Influences, Mesh, Node, Rig, Trs};
 use chasles::{Mat4, Quat, Vec3};
 use serde::Deserialize;
@@ -228,20 +228,7 @@ pub fn parse_rig(text: &str, name: &str) -> Result<Rig> {
             .collect::<Result<Vec<_>>>()?,
         None => compute_normals(&positions, &f.triangles),
     };
-    let mut rig = Rig {
-        name: name.to_string(),
-        mesh: Mesh {
-            positions,
-            normals,
-            triangles: f.triangles,
-        },
-        nodes,
-        joints: (0..nj).collect(),
-        inverse_bind: Vec::new(),
-        influences,
-        animations: Vec::new(),
-    };
-    rig.inverse_bind = match &f.inverse_bind {
+    let inverse_bind = match &f.inverse_bind {
         Some(ib) => ib
             .iter()
             .enumerate()
@@ -254,8 +241,9 @@ pub fn parse_rig(text: &str, name: &str) -> Result<Rig> {
             })
             .collect::<Result<Vec<_>>>()?,
         None => {
-            let rest = world(&rig, &Pose::rest(&rig))?;
-            rest.iter()
+            let rest: Vec<Trs> = nodes.iter().map(|n| n.rest).collect();
+            world_of(&nodes, &rest)
+                .iter()
                 .enumerate()
                 .map(|(i, m)| {
                     let a = m.linear_part().inverse().ok_or_else(|| {
@@ -269,8 +257,19 @@ pub fn parse_rig(text: &str, name: &str) -> Result<Rig> {
                 .collect::<Result<Vec<_>>>()?
         }
     };
-    rig.validate()?;
-    Ok(rig)
+    Rig::new(
+        name.to_string(),
+        Mesh {
+            positions,
+            normals,
+            triangles: f.triangles,
+        },
+        nodes,
+        (0..nj).collect(),
+        inverse_bind,
+        influences,
+        Vec::new(),
+    )
 }
 
 /// Parses a JSON pose for `rig`: joints by name or index, the rest at rest.

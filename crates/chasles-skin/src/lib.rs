@@ -25,7 +25,7 @@ pub mod synthetic;
 pub mod volume;
 pub mod writers;
 
-pub use error::{Result, SkinError};
+pub use error::{ChannelProblem, Result, SkinError};
 
 /// Loads a rig from `.gltf`, `.glb` or `.json` (by extension).
 pub fn load(path: &std::path::Path) -> Result<Rig> {
@@ -45,10 +45,9 @@ pub fn load(path: &std::path::Path) -> Result<Rig> {
             rig.name = gltf_load::file_name(path);
             Ok(rig)
         }
-        _ => Err(SkinError::Invalid(format!(
-            "{}: rigs are read from .gltf, .glb or .json files",
-            path.display()
-        ))),
+        _ => Err(SkinError::UnknownFormat {
+            path: path.display().to_string(),
+        }),
     }
 }
 pub use pose::{joint_transforms, JointTransforms, Pose};

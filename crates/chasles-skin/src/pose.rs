@@ -2,8 +2,8 @@
 //! every joint, `C_j = World(joint_j) · InverseBind_j` (glTF 2.0 §3.7.3; Kavan et al. 2006
 //! §6: "the list L of joint displacements from the reference to the animated skeleton").
 
-use crate::error::{invalid, Result};
-use crate::rig::{Rig, Trs};
+use crate::error::{Result, SkinError};
+use crate::rig::{Node, Rig, Trs};
 use chasles::{DualQuat, Mat4, Quat};
 
 /// A pose: the local transform of every node.
@@ -23,14 +23,17 @@ impl Pose {
     /// Clip `animation` (by index) at time `t`.
     pub fn animated(rig: &Rig, animation: usize, t: f32) -> Result<Self> {
         let Some(a) = rig.animations.get(animation) else {
-            return invalid(format!(
-                "{}: no animation {animation} (there are {})",
-                rig.name,
-                rig.animations.len()
-            ));
+            return Err(SkinError::NoAnimation {
+                rig: rig.name.clone(),
+                clip: animation,
+                count: rig.animations.len(),
+            });
         };
         if !t.is_finite() {
-            return invalid(format!("time {t} is not finite"));
+            return Err(SkinError::NotFinite {
+                rig: rig.name.clone(),
+                what: format!("the time {t} in clip {animation}"),
+            });
         }
         Ok(Pose {
             local: a.sample(&Pose::rest(rig).local, t),
@@ -64,34 +67,44 @@ impl JointTransforms {
 /// World transforms of all nodes (parents before children is not assumed).
 pub fn world(rig: &Rig, pose: &Pose) -> Result<Vec<Mat4<f32>>> {
     if pose.local.len() != rig.nodes.len() {
-        return invalid(format!(
-            "the pose has {} node transforms, the rig {} nodes",
-            pose.local.len(),
-            rig.nodes.len()
-        ));
+        return Err(SkinError::Count {
+            rig: rig.name.clone(),
+            what: "node transforms in the pose",
+            expected: rig.nodes.len(),
+            got: pose.local.len(),
+        });
     }
-    let mut done: Vec<Option<Mat4<f32>>> = vec![None; rig.nodes.len()];
+    Ok(world_of(&rig.nodes, &pose.local))
+}
+
+/// World transforms of `nodes` with these local transforms (one per node). A parent out
+/// of range, or a chain longer than the node count (a cycle), ends the chain there;
+/// [`Rig::new`] refuses both.
+pub(crate) fn world_of(nodes: &[Node], local: &[Trs]) -> Vec<Mat4<f32>> {
     fn get(
         i: usize,
-        rig: &Rig,
-        pose: &Pose,
+        nodes: &[Node],
+        local: &[Trs],
         done: &mut [Option<Mat4<f32>>],
         depth: usize,
     ) -> Mat4<f32> {
         if let Some(m) = done[i] {
             return m;
         }
-        let local = pose.local[i].matrix();
-        let m = match rig.nodes[i].parent {
-            Some(p) if depth < rig.nodes.len() => get(p, rig, pose, done, depth + 1) * local,
-            _ => local,
+        let l = local[i].matrix();
+        let m = match nodes[i].parent {
+            Some(p) if p < local.len() && depth < nodes.len() => {
+                get(p, nodes, local, done, depth + 1) * l
+            }
+            _ => l,
         };
         done[i] = Some(m);
         m
     }
-    Ok((0..rig.nodes.len())
-        .map(|i| get(i, rig, pose, &mut done, 0))
-        .collect())
+    let mut done: Vec<Option<Mat4<f32>>> = vec![None; nodes.len()];
+    (0..nodes.len().min(local.len()))
+        .map(|i| get(i, nodes, local, &mut done, 0))
+        .collect()
 }
 
 /// `C_j = World(joint_j) · InverseBind_j` for every joint. For the dual quaternions, a

@@ -3,7 +3,7 @@
 //! list L of rigid transformations, and weights for every vertex").
 
 use crate::animation::Animation;
-use crate::error::{invalid, Result, SkinError};
+use crate::error::{Result, SkinError};
 use chasles::{Mat4, Quat, Vec3};
 
 /// A node's local transform: translation, rotation, scale (applied as T · R · S).
@@ -137,7 +137,7 @@ impl Influences {
             out.start.push(out.joints.len() as u32);
         }
         if joints > usize::from(u16::MAX) {
-            return invalid(format!("{joints} joints: at most 65535 are supported"));
+            return Err(SkinError::TooManyJoints { joints });
         }
         Ok(out)
     }
@@ -184,58 +184,87 @@ pub struct Rig {
 }
 
 impl Rig {
-    /// Checks the rig's consistency: counts, indices, finite numbers, an acyclic hierarchy.
+    /// A rig from its parts, checked once (see [`Rig::validate`]): every loader builds its
+    /// rig here, so a `Rig` from this crate is always consistent.
+    pub fn new(
+        name: String,
+        mesh: Mesh,
+        nodes: Vec<Node>,
+        joints: Vec<usize>,
+        inverse_bind: Vec<Mat4<f32>>,
+        influences: Influences,
+        animations: Vec<Animation>,
+    ) -> Result<Rig> {
+        let rig = Rig {
+            name,
+            mesh,
+            nodes,
+            joints,
+            inverse_bind,
+            influences,
+            animations,
+        };
+        rig.validate()?;
+        Ok(rig)
+    }
+
+    /// Checks the rig's consistency: counts, indices, finite numbers, an acyclic hierarchy,
+    /// playable animation channels. [`Rig::new`] runs it; run it again after changing the
+    /// public fields by hand.
     pub fn validate(&self) -> Result<()> {
+        let rig = || self.name.clone();
         let n = self.mesh.positions.len();
-        if self.influences.vertices() != n {
-            return invalid(format!(
-                "{}: {} vertices but influences for {}",
-                self.name,
-                n,
-                self.influences.vertices()
-            ));
-        }
-        if self.mesh.normals.len() != n {
-            return invalid(format!(
-                "{}: {} vertices but {} normals",
-                self.name,
-                n,
-                self.mesh.normals.len()
-            ));
-        }
-        if let Some((i, t)) = self
-            .mesh
-            .triangles
-            .iter()
-            .enumerate()
-            .find(|(_, t)| t.iter().any(|v| *v as usize >= n))
-        {
-            return invalid(format!(
-                "{}: triangle {i} {:?} names a vertex out of range (there are {n})",
-                self.name, t
-            ));
+        let count = |what, expected, got| {
+            if expected == got {
+                Ok(())
+            } else {
+                Err(SkinError::Count {
+                    rig: rig(),
+                    what,
+                    expected,
+                    got,
+                })
+            }
+        };
+        count("influence lists", n, self.influences.vertices())?;
+        count("normals", n, self.mesh.normals.len())?;
+        count(
+            "inverse bind matrices",
+            self.joints.len(),
+            self.inverse_bind.len(),
+        )?;
+        if let Some((i, v)) = self.mesh.triangles.iter().enumerate().find_map(|(i, t)| {
+            t.iter()
+                .find(|v| **v as usize >= n)
+                .map(|v| (i, *v as usize))
+        }) {
+            return Err(SkinError::OutOfRange {
+                rig: rig(),
+                what: format!("triangle {i}'s vertex"),
+                index: v,
+                count: n,
+            });
         }
         if let Some(i) = self.mesh.positions.iter().position(|p| !p.is_finite()) {
-            return invalid(format!(
-                "{}: vertex {i} has a position that is not finite",
-                self.name
-            ));
+            return Err(SkinError::NotFinite {
+                rig: rig(),
+                what: format!("the position of vertex {i}"),
+            });
         }
-        if self.inverse_bind.len() != self.joints.len() {
-            return invalid(format!(
-                "{}: {} joints but {} inverse bind matrices",
-                self.name,
-                self.joints.len(),
-                self.inverse_bind.len()
-            ));
+        if let Some(i) = self.mesh.normals.iter().position(|p| !p.is_finite()) {
+            return Err(SkinError::NotFinite {
+                rig: rig(),
+                what: format!("the normal of vertex {i}"),
+            });
         }
         for (j, node) in self.joints.iter().enumerate() {
             if *node >= self.nodes.len() {
-                return invalid(format!(
-                    "{}: joint {j} is node {node}, out of range (there are {})",
-                    self.name,
-                    self.nodes.len()
-                ));
+                return Err(SkinError::OutOfRange {
+                    rig: rig(),
+                    what: format!("joint {j}'s node"),
+                    index: *node,
+                    count: self.nodes.len(),
+                });
             }
         }
         for (i, node) in self.nodes.iter().enumerate() {
@@ -243,13 +272,25 @@ impl Rig {
             let mut p = node.parent;
             while let Some(k) = p {
                 if k >= self.nodes.len() || seen > self.nodes.len() {
-                    return invalid(format!(
-                        "{}: node {i} has a broken or cyclic parent chain",
-                        self.name
-                    ));
+                    return Err(SkinError::Hierarchy {
+                        rig: rig(),
+                        node: i,
+                    });
                 }
                 p = self.nodes[k].parent;
                 seen += 1;
+            }
+        }
+        for (a, anim) in self.animations.iter().enumerate() {
+            for (c, ch) in anim.channels.iter().enumerate() {
+                ch.validate(self.nodes.len())
+                    .map_err(|problem| SkinError::Channel {
+                        rig: rig(),
+                        animation: a,
+                        channel: c,
+                        node: ch.node,
+                        problem,
+                    })?;
             }
         }
         Ok(())

@@ -23,7 +23,7 @@
 //! (non-rigid `Cⱼ`) are exact in LBS only; the other methods use the nearest rotation (see
 //! [`crate::pose::joint_transforms`]).
 
-use crate::error::{invalid, Result};
+use crate::error::{Result, SkinError};
 use crate::pose::{joint_transforms, JointTransforms, Pose};
 use crate::rig::Rig;
 use crate::rotation_centre::{joint_centres, Clusters};
@@ -108,11 +108,12 @@ pub fn skin(rig: &Rig, pose: &Pose, method: Method) -> Result<Skinned> {
 /// bind pose).
 pub fn skin_joints(rig: &Rig, jt: &JointTransforms, method: Method) -> Result<Skinned> {
     if jt.matrices.len() != rig.joints.len() || jt.dual_quats.len() != rig.joints.len() {
-        return invalid(format!(
-            "{} joint transforms for {} joints",
-            jt.matrices.len(),
-            rig.joints.len()
-        ));
+        return Err(SkinError::Count {
+            rig: rig.name.clone(),
+            what: "joint transforms",
+            expected: rig.joints.len(),
+            got: jt.matrices.len().min(jt.dual_quats.len()),
+        });
     }
     let n = rig.mesh.positions.len();
     let mut positions = Vec::with_capacity(n);
@@ -201,12 +202,12 @@ pub fn skin_joints(rig: &Rig, jt: &JointTransforms, method: Method) -> Result<Sk
             }
         }
     }
-    if positions.iter().any(|p| !p.is_finite()) {
-        return invalid(format!(
-            "{}: skinning with {} produced non-finite positions",
-            rig.name,
-            method.name()
-        ));
+    if let Some(vertex) = positions.iter().position(|p| !p.is_finite()) {
+        return Err(SkinError::NonFiniteOutput {
+            rig: rig.name.clone(),
+            method: method.name(),
+            vertex,
+        });
     }
     Ok(Skinned { positions, normals })
 }

@@ -46,12 +46,10 @@ pub fn lbs_volume_over_clip(rig: &Rig, clip: usize, samples: usize) -> Result<Ve
         .animations
         .get(clip)
         .map(|a| a.duration())
-        .ok_or_else(|| {
-            crate::SkinError::Invalid(format!(
-                "{}: no animation {clip} (there are {})",
-                rig.name,
-                rig.animations.len()
-            ))
+        .ok_or_else(|| crate::SkinError::NoAnimation {
+            rig: rig.name.clone(),
+            clip,
+            count: rig.animations.len(),
         })?;
     let n = samples.max(1);
     (0..=n)

@@ -644,3 +644,166 @@ fn writers_produce_what_they_promise() {
     assert_eq!(r.read_indices().unwrap().into_u32().count(), 4672 * 3);
     assert_eq!(bytes.len() % 4, 0);
 }
+
+#[test]
+fn rig_new_checks_the_parts_with_typed_errors() {
+    use chasles::Mat4;
+    use chasles_skin::animation::Animation;
+    use chasles_skin::{ChannelProblem, Mesh, Node, Rig, Trs};
+    let mesh = || Mesh {
+        positions: vec![
+            Vec3::new(0.0, 0.0, 0.0),
+            Vec3::new(1.0, 0.0, 0.0),
+            Vec3::new(0.0, 1.0, 0.0),
+        ],
+        normals: vec![Vec3::new(0.0, 0.0, 1.0); 3],
+        triangles: vec![[0, 1, 2]],
+    };
+    let nodes = || {
+        vec![
+            Node {
+                name: "a".into(),
+                parent: None,
+                rest: Trs::default(),
+            },
+            Node {
+                name: "b".into(),
+                parent: Some(0),
+                rest: Trs::default(),
+            },
+        ]
+    };
+    let inf = || {
+        Influences::from_lists(
+            &[vec![(0, 1.0)], vec![(0, 0.5), (1, 0.5)], vec![(1, 1.0)]],
+            2,
+        )
+        .unwrap()
+    };
+    let ib = || vec![Mat4::identity(); 2];
+    let anim = |node: usize, times: Vec<f32>, values: usize| Animation {
+        name: "clip".into(),
+        channels: vec![Channel {
+            node,
+            path: P::Rotation,
+            interpolation: Interpolation::Linear,
+            times,
+            values: vec![[1.0, 0.0, 0.0, 0.0]; values],
+        }],
+    };
+    let new = |mesh: Mesh,
+               nodes: Vec<Node>,
+               joints: Vec<usize>,
+               ib: Vec<Mat4<f32>>,
+               anims: Vec<Animation>| {
+        Rig::new("t".into(), mesh, nodes, joints, ib, inf(), anims)
+    };
+    let rig = new(
+        mesh(),
+        nodes(),
+        vec![0, 1],
+        ib(),
+        vec![anim(1, vec![0.0, 1.0], 2)],
+    )
+    .unwrap();
+    assert_eq!(rig.joints, vec![0, 1]);
+    // Each broken part is named by its own variant.
+    let mut m = mesh();
+    m.normals.pop();
+    assert!(matches!(
+        new(m, nodes(), vec![0, 1], ib(), vec![]),
+        Err(SkinError::Count {
+            what: "normals",
+            expected: 3,
+            got: 2,
+            ..
+        })
+    ));
+    let mut m = mesh();
+    m.triangles[0] = [0, 1, 7];
+    assert!(matches!(
+        new(m, nodes(), vec![0, 1], ib(), vec![]),
+        Err(SkinError::OutOfRange {
+            index: 7,
+            count: 3,
+            ..
+        })
+    ));
+    let mut m = mesh();
+    m.positions[1].x = f32::NAN;
+    let e = new(m, nodes(), vec![0, 1], ib(), vec![]).unwrap_err();
+    assert!(matches!(e, SkinError::NotFinite { .. }));
+    assert_eq!(e.to_string(), "t: the position of vertex 1 is not finite");
+    assert!(matches!(
+        new(mesh(), nodes(), vec![0, 5], ib(), vec![]),
+        Err(SkinError::OutOfRange {
+            index: 5,
+            count: 2,
+            ..
+        })
+    ));
+    assert!(matches!(
+        new(mesh(), nodes(), vec![0, 1], vec![Mat4::identity()], vec![]),
+        Err(SkinError::Count {
+            what: "inverse bind matrices",
+            expected: 2,
+            got: 1,
+            ..
+        })
+    ));
+    let mut cyclic = nodes();
+    cyclic[0].parent = Some(1);
+    assert!(matches!(
+        new(mesh(), cyclic, vec![0, 1], ib(), vec![]),
+        Err(SkinError::Hierarchy { node: 0, .. })
+    ));
+    for (a, problem) in [
+        (
+            anim(9, vec![0.0], 1),
+            ChannelProblem::NodeOutOfRange { nodes: 2 },
+        ),
+        (anim(1, vec![], 0), ChannelProblem::NoKeys),
+        (anim(1, vec![1.0, 0.5], 2), ChannelProblem::Times),
+        (
+            anim(1, vec![0.0, 1.0], 3),
+            ChannelProblem::Values {
+                keys: 2,
+                values: 3,
+                expected: 2,
+            },
+        ),
+    ] {
+        let e = new(mesh(), nodes(), vec![0, 1], ib(), vec![a]).unwrap_err();
+        assert!(
+            matches!(e, SkinError::Channel { animation: 0, channel: 0, problem: p, .. } if p == problem),
+            "{e}"
+        );
+    }
+    // The fast layout names the influence count it cannot hold.
+    let five: Vec<Node> = (0..5)
+        .map(|i| Node {
+            name: format!("j{i}"),
+            parent: None,
+            rest: Trs::default(),
+        })
+        .collect();
+    let spread: Vec<(usize, f32)> = (0..5).map(|j| (j, 0.2)).collect();
+    let wide = Rig::new(
+        "wide".into(),
+        mesh(),
+        five,
+        (0..5).collect(),
+        vec![Mat4::identity(); 5],
+        Influences::from_lists(&[spread.clone(), spread.clone(), spread], 5).unwrap(),
+        vec![],
+    )
+    .unwrap();
+    assert!(matches!(
+        chasles_skin::fast::FastRig::<4>::new(&wide),
+        Err(SkinError::TooManyInfluences { layout: 4, .. })
+    ));
+    assert!(matches!(
+        chasles_skin::load(std::path::Path::new("rig.txt")),
+        Err(SkinError::UnknownFormat { .. })
+    ));
+}

@@ -24,7 +24,7 @@
 use super::{
     check, for_chunks, pose_table, rotate_scaled, run, Antipodes, FastRig, Kernel, Out, Vertex,
 };
-use crate::error::{invalid, Result};
+use crate::error::{Result, SkinError};
 use crate::rotation_centre::Clusters;
 use chasles::DualQuat;
 
@@ -132,11 +132,12 @@ pub fn sbs<const K: usize>(
 ) -> Result<()> {
     check(rig, d.len(), out.len())?;
     if clusters.of_vertex().len() != rig.vertices().len() {
-        return invalid(format!(
-            "clusters of {} vertices for a rig of {}",
-            clusters.of_vertex().len(),
-            rig.vertices().len()
-        ));
+        return Err(SkinError::Count {
+            rig: "the fast rig".into(),
+            what: "vertices in the clusters",
+            expected: rig.vertices().len(),
+            got: clusters.of_vertex().len(),
+        });
     }
     let centres = padded(&clusters.centres(d, rig.centres(), parallel));
     let rows = rows(d, rig.centres());

@@ -7,7 +7,7 @@
 use super::{
     clusters, dib, dqs, dual_quats8, lbs, log, matrices12, qlb, sbs, twists, FastRig, Out,
 };
-use crate::error::{invalid, Result};
+use crate::error::{Result, SkinError};
 use crate::pose::JointTransforms;
 use crate::rig::Rig;
 use crate::rotation_centre::Clusters;
@@ -63,11 +63,11 @@ impl Skinner {
             Layout::Reference => return skin_joints(rig, jt, method),
         };
         if let Some(v) = out.iter().position(|o| o.iter().any(|x| !x.is_finite())) {
-            return invalid(format!(
-                "{}: skinning with {} produced a non-finite vertex ({v})",
-                rig.name,
-                method.name()
-            ));
+            return Err(SkinError::NonFiniteOutput {
+                rig: rig.name.clone(),
+                method: method.name(),
+                vertex: v,
+            });
         }
         Ok(Skinned {
             positions: out.iter().map(|o| Vec3::new(o[0], o[1], o[2])).collect(),
