@@ -140,8 +140,10 @@ pub fn load(path: &Path) -> Result<Rig> {
 
 /// The file name of `path`, for a rig's name (titles show no folders).
 pub(crate) fn file_name(path: &Path) -> String {
-    path.file_name()
-        .map_or_else(|| path.display().to_string(), |f| f.to_string_lossy().into_owned())
+    path.file_name().map_or_else(
+        || path.display().to_string(),
+        |f| f.to_string_lossy().into_owned(),
+    )
 }
 
 /// Loads a rig from the bytes of a `.glb`, or of a `.gltf` whose buffers are embedded

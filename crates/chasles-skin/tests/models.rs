@@ -35,7 +35,10 @@ fn models() -> impl Iterator<Item = (&'static str, usize, usize, usize)> {
 fn every_model_loads_plays_and_skins_with_every_method() {
     for (file, verts, joints, clips) in models() {
         let rig = gltf_load::load(&data(file)).unwrap_or_else(|e| panic!("{file}: {e}"));
-        assert_eq!(rig.name, file, "a rig is named by its file name, not its path");
+        assert_eq!(
+            rig.name, file,
+            "a rig is named by its file name, not its path"
+        );
         // The bytes built in load to the same rig as the file.
         let built_in = chasles_models::by_file(file).unwrap();
         let from_bytes = gltf_load::load_slice(built_in.bytes, file).unwrap();
