@@ -205,21 +205,23 @@ pub fn characters() -> Section {
             Err(e) => s.text(format!("picture {name}-sphere.png failed: {e}")),
         }
         let Some((t, worst)) = worst_t else { continue };
-        let pose = Pose::animated(rig, c, t).map_err(anyhow::Error::from);
+        let pose = match Pose::animated(rig, c, t) {
+            Ok(p) => p,
+            Err(e) => {
+                s.text(format!(
+                    "pictures {name}.png and {name}-closeup.png failed: {e}"
+                ));
+                continue;
+            }
+        };
         s.try_figure(
             &format!("{name}.png"),
-            pose.as_ref()
-                .map_err(|e| anyhow::anyhow!("{e}"))
-                .and_then(|p| pictures::methods_side_by_side(rig, p, &Method::ALL))
-                .map(|i| i.png()),
+            pictures::methods_side_by_side(rig, &pose, &Method::ALL).map(|i| i.png()),
             &format!("{file} at t = {t:.2} s of its clip, where LBS loses the most volume, skinned by every method. Credit: {credit}"),
         );
         s.try_figure(
             &format!("{name}-closeup.png"),
-            pose.as_ref()
-                .map_err(|e| anyhow::anyhow!("{e}"))
-                .and_then(|p| pictures::methods_closeup(rig, p, &Method::ALL))
-                .map(|i| i.png()),
+            pictures::methods_closeup(rig, &pose, &Method::ALL).map(|i| i.png()),
             &format!("{file}, the same pose, close up around the vertex where LBS keeps the least volume ({worst:.2}): LBS pinches, the rigid blends keep the limb's thickness"),
         );
     }
