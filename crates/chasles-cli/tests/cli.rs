@@ -455,29 +455,53 @@ fn tour_prints_computed_numbers_and_writes_the_report() {
         assert!(out.contains(section), "missing {section}");
     }
     // Spring ends below Squad on every chapter-7 set (ratio column < 1).
-    let rows: Vec<&str> = out
-        .lines()
-        .skip_while(|l| !l.contains("Spring against Squad"))
-        .skip(2)
-        .take(6)
-        .collect();
-    assert_eq!(rows.len(), 6);
+    let (header, rows) = terminal_table(&out, "Spring against Squad", "Spring / Squad", 6);
+    let ratio_at = header.iter().position(|h| h == "Spring / Squad").unwrap();
     for r in rows {
-        let ratio = numbers(r.split_whitespace().nth(4).unwrap())[0];
-        assert!(ratio < 1.0, "{r}");
+        let ratio = numbers(&r[ratio_at])[0];
+        assert!(ratio < 1.0, "{r:?}");
     }
     // Every identity row carries two measured errors, within the test-suite tolerances.
-    let rows: Vec<&str> = out
-        .lines()
-        .skip_while(|l| !l.contains("Identities over"))
-        .skip(2)
-        .take(8)
-        .collect();
-    assert_eq!(rows.len(), 8);
+    let (header, rows) = terminal_table(&out, "Identities over", "identity", 8);
+    assert_eq!(header[..2], ["f64", "f32"]);
     for r in rows {
-        let v = numbers(r);
-        assert!(v.len() >= 2 && v[0] < 1e-12 && v[1] < 1e-5, "{r}");
+        let v: Vec<f64> = r[..2].iter().flat_map(|c| numbers(c)).collect();
+        assert!(v.len() == 2 && v[0] < 1e-12 && v[1] < 1e-5, "{r:?}");
     }
+}
+
+/// The table of the tour's section titled with `section`: the header (the first line
+/// after the title with a column named `column`) and the `n` rows after it, each split into
+/// columns at runs of two or more spaces.
+fn terminal_table(
+    out: &str,
+    section: &str,
+    column: &str,
+    n: usize,
+) -> (Vec<String>, Vec<Vec<String>>) {
+    let split = |l: &str| -> Vec<String> {
+        l.trim()
+            .split("  ")
+            .map(str::trim)
+            .filter(|c| !c.is_empty())
+            .map(String::from)
+            .collect()
+    };
+    let mut lines = out
+        .lines()
+        .skip_while(|l| !(l.starts_with("== ") && l.contains(section)))
+        .skip_while(|l| !split(l).iter().any(|c| c == column));
+    let header = split(
+        lines
+            .next()
+            .unwrap_or_else(|| panic!("no table in {section}")),
+    );
+    let rows: Vec<Vec<String>> = lines.take(n).map(split).collect();
+    assert_eq!(rows.len(), n, "{section}");
+    for r in &rows {
+        assert_eq!(r.len(), header.len(), "{section}: {r:?}");
+    }
+    (header, rows)
 }
 
 fn csv_rows(text: &str) -> Vec<Vec<String>> {
@@ -852,24 +876,48 @@ fn properties_table_and_claims() {
         "json",
     ])))
     .unwrap();
-    assert_eq!(j["disagreements"].as_array().unwrap().len(), 0);
-    let rows = j["table_1"]["rows"].as_array().unwrap();
-    assert_eq!(rows.len(), 8);
-    for r in rows {
-        for p in [
-            "rigidity",
-            "bi-invariance",
-            "coordinate invariance",
-            "constant speed",
-            "shortest path",
-        ] {
+    let items = j["sections"][0]["items"].as_array().unwrap();
+    let claim = items
+        .iter()
+        .find(|i| i["kind"] == "claim" && i["section"] == "Table 1")
+        .expect("the Table 1 claim");
+    assert_eq!(claim["verdict"], "agrees", "{claim}");
+    let table = items
+        .iter()
+        .find(|i| i["kind"] == "table" && i["caption"].as_str().unwrap().starts_with("Table 1"))
+        .expect("Table 1");
+    assert_eq!(
+        table["header"].as_array().unwrap().len(),
+        9,
+        "a column per method"
+    );
+    let mut measured = 0;
+    for r in table["rows"].as_array().unwrap() {
+        let r = r.as_array().unwrap();
+        let p = r[0]["text"].as_str().unwrap();
+        if !matches!(
+            p,
+            "rigidity"
+                | "bi-invariance"
+                | "coordinate invariance"
+                | "constant speed"
+                | "shortest path"
+        ) {
+            continue;
+        }
+        measured += 1;
+        assert_eq!(r.len(), 9);
+        for c in &r[1..] {
+            assert_eq!(c["kind"], "check", "{p}: {c}");
             assert!(
-                r[p]["worst"].is_number(),
-                "{} {p}: every cell carries its measured deviation",
-                r["method"]
+                c["worst"]["value"].is_number(),
+                "{p}: every cell carries its measured deviation: {c}"
             );
+            // No disagreement with the paper.
+            assert!(c["paper"].is_null() || c["paper"] == c["holds"], "{p}: {c}");
         }
     }
+    assert_eq!(measured, 5);
     let o = chasles(&["properties", "--samples", "0"]);
     assert!(!o.status.success());
 }

@@ -4,15 +4,18 @@
 //!
 //! `cargo bench -p chasles --bench blend`
 
-use chasles::analysis::properties::random_rigid;
 use chasles::blend::{
     dec::dec, dib::dib, dlb::dlb, lin::lin, log, qlb::qlb, sclerp::sclerp, Options,
 };
 use chasles::{DualQuat, Mat4, Vec3};
+use common::random_rigid;
 use criterion::{criterion_group, criterion_main, Criterion};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 use std::hint::black_box;
+
+#[path = "../tests/common/mod.rs"]
+mod common;
 
 const CASES: usize = 256;
 

@@ -9,8 +9,8 @@
 //! * Kavan, Collins, Žára & O'Sullivan (2006), *Dual Quaternions for Rigid Transformation
 //!   Blending*: §3 ([`Dual`], [`DualQuat`], eq. 1–2, [`screw`]) and Lemma 1;
 //! * Kavan et al. §2–5 and Appendices A–B: blending of rigid transformations ([`blend`]:
-//!   Lin, Dec, Log, iterative Log, QLB, ScLERP, DLB, DIB) and their properties
-//!   ([`analysis::properties`], the paper's Table 1 measured);
+//!   Lin, Dec, Log, iterative Log, QLB, ScLERP, DLB, DIB; their properties, the paper's
+//!   Table 1, are measured by the `chasles-paper` crate);
 //! * Dam et al. chapters 5–7: interpolation along key frames ([`interp`]: LinEuler, LinMat,
 //!   Lerp, Slerp, Squad, Spring) and the measures that compare them ([`analysis`]).
 //!

@@ -1,7 +1,8 @@
-//! Blending of rigid transformations (Kavan et al. 2006): weights, each method's defining
-//! behaviour, Table 1 measured against the paper, and the paper's claims by number.
+//! Blending of rigid transformations (Kavan et al. 2006): weights and each method's
+//! defining behaviour (Table 1 and the paper's claims are measured in `chasles-paper`).
 
-use chasles::analysis::{claims, properties};
+mod common;
+
 use chasles::blend::dib::{dib, dib_convex};
 use chasles::blend::dlb::{dlb, dlb_convex};
 use chasles::blend::log::{
@@ -76,101 +77,6 @@ fn weights_are_checked_and_scaled() {
 }
 
 #[test]
-fn table_1_measured_agrees_with_the_paper() {
-    let t = properties::measure(60, 11).unwrap();
-    assert!(
-        t.disagreements().is_empty(),
-        "{:?}\n{}",
-        t.disagreements(),
-        properties::to_markdown(&t)
-    );
-    // Every '−' is backed by a real deviation, every '+' by a tiny one.
-    for r in &t.rows {
-        for (name, c) in r.cells() {
-            if name == "n > 2" {
-                continue;
-            }
-            if c.holds {
-                assert!(c.worst <= properties::TOLERANCE, "{:?} {name}", r.method);
-            } else {
-                assert!(
-                    c.worst > 1e-3,
-                    "{:?} {name}: '−' with deviation {}",
-                    r.method,
-                    c.worst
-                );
-            }
-        }
-    }
-    // The methods the paper does not list: QLB is shortest path but not constant speed,
-    // the iterative Log is coordinate invariant (and, converged, bi-invariant).
-    let row = |m| t.rows.iter().find(|r| r.method == m).unwrap();
-    assert!(row(Method::Qlb).shortest_path.holds && !row(Method::Qlb).constant_speed.holds);
-    assert!(row(Method::LogIter).coordinate_invariance.holds);
-    // FLOPs: closed forms are exactly linear in n.
-    assert_eq!(row(Method::Lin).flops.formula, Some((0, 26)));
-    assert!(row(Method::Dlb).flops.formula.is_some());
-    assert!(row(Method::Log).flops.formula.is_some());
-    assert!(
-        row(Method::Dib).flops.formula.is_none(),
-        "iterative: counts depend on the input"
-    );
-    let md = properties::to_markdown(&t);
-    assert!(md.contains("| FLOPS (paper) |") && md.contains("65+49n"));
-}
-
-#[test]
-fn dlb_and_sclerp_share_the_axis_and_differ_by_the_bounds() {
-    let c = claims::dlb_vs_sclerp(300, 5).unwrap();
-    assert!(c.angle_deg < 8.15 && c.angle_deg > 8.14, "{c:?}");
-    assert!((c.angle_at.0 - std::f64::consts::PI).abs() < 1e-9);
-    // The supremum of the slide gap is 0.1501416 (closed form in the docs), at t = 0.74293.
-    assert!((c.translation - 0.150_141_55).abs() < 1e-7, "{c:?}");
-    assert!((c.translation_at.1 - 0.742_934).abs() < 2e-3, "{c:?}");
-    assert!(c.axis < 1e-10, "{c:?}");
-}
-
-#[test]
-fn lemma_3_dib_of_two_is_sclerp_after_one_update() {
-    let (diff, most) = claims::lemma_3(300, 8).unwrap();
-    assert!(diff < 1e-12, "{diff}");
-    assert_eq!(most, 1);
-}
-
-#[test]
-fn lemma_2_sclerp_is_bi_invariant() {
-    assert!(claims::lemma_2(300, 9).unwrap() < 1e-12);
-}
-
-#[test]
-fn dib_converges_in_one_to_four_updates_for_skinning_spreads() {
-    let h = claims::dib_iterations(500, 3, 30f64.to_radians(), 1e-6).unwrap();
-    assert!(h.len() <= 5, "{h:?}");
-    assert_eq!(h[0], 0, "DIB always updates at least once");
-    let wide = claims::dib_iterations(300, 3, std::f64::consts::PI, 1e-6).unwrap();
-    assert!(
-        wide.len() > 5,
-        "uniformly random rotations need more: {wide:?}"
-    );
-}
-
-#[test]
-fn figure_7_log_matrix_blending_is_not_constant_speed() {
-    let f = claims::figure_7().unwrap();
-    assert!(
-        f.worst < 1e-9,
-        "measured ‖ω_t‖ differs from Appendix B's closed form by {}",
-        f.worst
-    );
-    let (lo, hi) = f
-        .rows
-        .iter()
-        .fold((f64::MAX, 0.0f64), |(a, b), r| (a.min(r[1]), b.max(r[1])));
-    assert!(hi - lo > 1e-3, "‖ω_t‖ should vary: {lo}..{hi}");
-    assert!((claims::omega_closed_form(0.0) - (2.0 - 2.0 * 1f64.cos()).sqrt()).abs() < 1e-15);
-}
-
-#[test]
 fn alexa_blends_the_long_way_and_the_iterative_version_fixes_it() {
     // ±170° about z: axis–angle blending goes through 0°, the long way (Bloom et al.).
     let a = rigid([0.0, 0.0, 1.0], 170f64.to_radians(), [0.0; 3]).to_matrix4();
@@ -187,14 +93,11 @@ fn alexa_blends_the_long_way_and_the_iterative_version_fixes_it() {
     let (from_a, _) = log_blend_iterative_from(&[a, b], &[0.5, 0.5], a, 1e-12, 50).unwrap();
     let half_turn = rigid([0.0, 0.0, 1.0], std::f64::consts::PI, [0.0; 3]).to_matrix4();
     assert!(from_a.max_abs_diff(&half_turn) < 1e-9, "{from_a:?}");
-    let (id, pivot) = claims::log_iter_reaches_sclerp(300, 6).unwrap();
-    assert!(pivot > 0.99, "from the heavier input: {pivot}");
-    assert!(id < pivot, "from the identity: {id}");
     // One iteration of the iterative version is Alexa's blend.
     let mut r = rng(4);
     for _ in 0..50 {
         let x: Vec<Mat4<f64>> = (0..3)
-            .map(|_| properties::random_rigid(&mut r).to_matrix4())
+            .map(|_| common::random_rigid(&mut r).to_matrix4())
             .collect();
         let w = [0.2, 0.3, 0.5];
         let (one, _) = log_blend_iterative(&x, &w, 0.0, 1).unwrap();
@@ -229,7 +132,7 @@ proptest! {
     #[test]
     fn convex_blends_are_the_blends_with_convex_weights(seed in 0u64..1000, n in 1usize..6) {
         let mut r = rng(seed);
-        let x: Vec<DualQuat<f64>> = (0..n).map(|_| properties::random_rigid(&mut r)).collect();
+        let x: Vec<DualQuat<f64>> = (0..n).map(|_| common::random_rigid(&mut r)).collect();
         let raw: Vec<f64> = (0..n).map(|i| 0.2 + ((seed as usize * 7 + i * 13) % 10) as f64).collect();
         let w = convex_weights(&raw, n).unwrap();
         let c = Vec3::new(0.3, -1.0, 2.0);
@@ -262,7 +165,7 @@ proptest! {
     #[test]
     fn matrix_and_dual_quaternion_inputs_agree(seed in 0u64..1000) {
         let mut r = rng(seed);
-        let x: Vec<DualQuat<f64>> = (0..4).map(|_| properties::random_rigid(&mut r)).collect();
+        let x: Vec<DualQuat<f64>> = (0..4).map(|_| common::random_rigid(&mut r)).collect();
         let m: Vec<Mat4<f64>> = x.iter().map(|d| d.to_matrix4()).collect();
         let w = [0.1, 0.2, 0.3, 0.4];
         for method in Method::ALL.into_iter().filter(|m| *m != Method::ScLerp) {
@@ -362,7 +265,7 @@ fn dec_depends_on_its_centre() {
 fn blends_in_f32_match_f64() {
     let mut r = rng(21);
     for _ in 0..100 {
-        let x: Vec<DualQuat<f64>> = (0..4).map(|_| properties::random_rigid(&mut r)).collect();
+        let x: Vec<DualQuat<f64>> = (0..4).map(|_| common::random_rigid(&mut r)).collect();
         let x32: Vec<DualQuat<f32>> = x.iter().map(|d| d.cast()).collect();
         let w = [0.1, 0.2, 0.3, 0.4];
         let w32 = [0.1f32, 0.2, 0.3, 0.4];
@@ -405,8 +308,8 @@ proptest! {
     fn sclerp_closed_form_equals_the_power_definition(seed in 0u64..10_000, scale in prop::sample::select(vec![1.0, 1e-2, 1e-4, 1e-7, 0.0])) {
         // Random pairs, and pairs whose relative rotation is tiny or zero (pure translation).
         let mut r = rng(seed);
-        let p = properties::random_rigid(&mut r);
-        let rel = properties::random_rigid(&mut r);
+        let p = common::random_rigid(&mut r);
+        let rel = common::random_rigid(&mut r);
         let small = DualQuat::from_rotation_translation(
             Quat::from_rotation_vector(rel.real.vector() * scale).unwrap(),
             rel.translation(),

@@ -134,7 +134,7 @@ pub fn log_blend<T: Real>(m: &[Mat4<T>], w: &[T]) -> Result<Mat4<T>> {
 /// constant-speed, shortest-path blend is reached when Alexa's blend is on the short
 /// side; [`log_blend_iterative_from`] with the heaviest input as the start reaches it
 /// whenever the inputs are within a half turn of it (see
-/// [`crate::analysis::claims::log_iter_reaches_sclerp`]).
+/// `chasles_paper::claims::log_iter_reaches_sclerp`).
 pub fn log_blend_iterative<T: Real>(
     m: &[Mat4<T>],
     w: &[T],

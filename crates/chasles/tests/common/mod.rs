@@ -3,6 +3,8 @@
 
 use chasles::{DualQuat, Quat, Real, Vec3};
 use proptest::prelude::*;
+use rand::rngs::StdRng;
+use rand::Rng;
 
 /// The relative tolerance a round trip must meet: 1e-12 in f64, 1e-5 in f32 (issue #2).
 pub trait Tol: Real {
@@ -99,4 +101,26 @@ macro_rules! both_precisions {
             }
         }
     };
+}
+
+/// A random rigid transformation: uniform rotation, translation in [−2, 2]³.
+pub fn random_rigid(rng: &mut StdRng) -> DualQuat<f64> {
+    let q = loop {
+        let q = Quat::new(
+            rng.random_range(-1.0..1.0),
+            rng.random_range(-1.0..1.0),
+            rng.random_range(-1.0..1.0),
+            rng.random_range(-1.0..1.0),
+        );
+        let n = q.norm();
+        if n > 0.1 && n <= 1.0 {
+            break q / n;
+        }
+    };
+    let t = Vec3::new(
+        rng.random_range(-2.0..2.0),
+        rng.random_range(-2.0..2.0),
+        rng.random_range(-2.0..2.0),
+    );
+    DualQuat::from_rotation_translation(q, t)
 }

@@ -1,12 +1,12 @@
 //! Counting floating-point operations exactly (for the FLOPS row of Kavan et al. 2006,
-//! Table 1): [`Flop`] is an `f64` that implements [`Real`] and counts every operation it
+//! Table 1, §5): [`Flop`] is an `f64` that implements [`Real`] and counts every operation it
 //! takes part in, per thread. Run any generic routine with `T = Flop` inside [`count`].
 //!
 //! Counted: `+ − × ÷` (one each), and the special functions `sqrt, sin, cos, asin, acos,
 //! atan2, exp, ln` (one each; `sin_cos` is two). Not counted: negation, `abs`,
 //! comparisons, `max`/`min` and conversions — sign flips and selections, not arithmetic.
 
-use crate::Real;
+use chasles::Real;
 use core::cell::Cell;
 use core::fmt;
 use core::ops::{Add, AddAssign, Div, DivAssign, Mul, MulAssign, Neg, Sub, SubAssign};

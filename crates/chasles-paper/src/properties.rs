@@ -22,15 +22,17 @@
 //! A property holds ('+') when its worst deviation is below [`TOLERANCE`].
 //!
 //! FLOPs: the blend of n = 2, 4, 8 transforms with inputs and output as 4×4 matrices (as
-//! the paper assumes), counted with [`super::flops::Flop`]; for closed-form methods the
+//! the paper assumes), counted with [`crate::flops::Flop`]; for closed-form methods the
 //! counts are fitted exactly by `a + b n`. Our counts differ from the paper's for reasons
 //! the docs of [`Row::flops`] give.
 
-use super::flops::{count, Counts, Flop};
-use crate::blend::{self, lin, log, Method, Options};
-use crate::{DualQuat, Mat4, Quat, Result, Vec3};
+use crate::error::{need_samples, Result};
+use crate::flops::{count, Counts, Flop};
+use crate::random::{random_rigid, random_weights};
+use chasles::blend::{self, lin, log, Method, Options};
+use chasles::{DualQuat, Mat4, Vec3};
 use rand::rngs::StdRng;
-use rand::{Rng, SeedableRng};
+use rand::SeedableRng;
 
 /// The deviation below which a property counts as holding (f64 arithmetic, iterative
 /// methods run to precision 1.5e-10).
@@ -38,7 +40,7 @@ pub const TOLERANCE: f64 = 1e-8;
 
 /// One measured cell.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Cell {
+pub struct PropertyCell {
     /// Whether the property held on every sample.
     pub holds: bool,
     /// The worst deviation measured (NaN where the property could not be measured).
@@ -49,9 +51,9 @@ pub struct Cell {
     pub note: String,
 }
 
-impl Cell {
+impl PropertyCell {
     fn new(worst: f64, paper: Option<bool>) -> Self {
-        Cell {
+        PropertyCell {
             holds: worst <= TOLERANCE,
             worst,
             paper,
@@ -81,17 +83,17 @@ pub struct Row {
     /// The method.
     pub method: Method,
     /// Preserving rigid transformations.
-    pub rigidity: Cell,
+    pub rigidity: PropertyCell,
     /// Bi-invariance.
-    pub bi_invariance: Cell,
+    pub bi_invariance: PropertyCell,
     /// Coordinate invariance.
-    pub coordinate_invariance: Cell,
+    pub coordinate_invariance: PropertyCell,
     /// Support of more than two transforms.
-    pub many: Cell,
+    pub many: PropertyCell,
     /// Constant speed.
-    pub constant_speed: Cell,
+    pub constant_speed: PropertyCell,
     /// Shortest path.
-    pub shortest_path: Cell,
+    pub shortest_path: PropertyCell,
     /// FLOPs. Differences from the paper: our matrix → dual quaternion conversion is
     /// Shepperd's (four branches, a normalization) rather than the trace formula; DLB's
     /// antipodality fix costs four multiply-adds per input; ScLERP is counted as it runs,
@@ -104,7 +106,7 @@ pub struct Row {
 
 /// The measured table.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Table {
+pub struct Table1 {
     /// One row per method, in [`Method::ALL`] order.
     pub rows: Vec<Row>,
     /// Random samples per property.
@@ -113,7 +115,7 @@ pub struct Table {
     pub seed: u64,
 }
 
-impl Table {
+impl Table1 {
     /// Cells that disagree with the paper: (method, property).
     pub fn disagreements(&self) -> Vec<(Method, &'static str)> {
         let mut out = Vec::new();
@@ -130,7 +132,7 @@ impl Table {
 
 impl Row {
     /// The six property cells with their names.
-    pub fn cells(&self) -> [(&'static str, &Cell); 6] {
+    pub fn cells(&self) -> [(&'static str, &PropertyCell); 6] {
         [
             ("rigidity", &self.rigidity),
             ("bi-invariance", &self.bi_invariance),
@@ -156,42 +158,16 @@ pub fn paper_column(m: Method) -> Option<([bool; 6], &'static str)> {
     }
 }
 
-/// A random rigid transformation: uniform rotation, translation in [−2, 2]³.
-pub fn random_rigid(rng: &mut StdRng) -> DualQuat<f64> {
-    let q = loop {
-        let q = Quat::new(
-            rng.random_range(-1.0..1.0),
-            rng.random_range(-1.0..1.0),
-            rng.random_range(-1.0..1.0),
-            rng.random_range(-1.0..1.0),
-        );
-        let n = q.norm();
-        if n > 0.1 && n <= 1.0 {
-            break q / n;
-        }
-    };
-    let t = Vec3::new(
-        rng.random_range(-2.0..2.0),
-        rng.random_range(-2.0..2.0),
-        rng.random_range(-2.0..2.0),
-    );
-    DualQuat::from_rotation_translation(q, t)
-}
-
-fn random_weights(rng: &mut StdRng, n: usize) -> Vec<f64> {
-    (0..n).map(|_| rng.random_range(0.05..1.0)).collect()
-}
-
 fn mats(x: &[DualQuat<f64>]) -> Vec<Mat4<f64>> {
     x.iter().map(|d| d.to_matrix4()).collect()
 }
 
-fn run(m: Method, x: &[Mat4<f64>], w: &[f64]) -> Result<blend::Blended<f64>> {
+fn run(m: Method, x: &[Mat4<f64>], w: &[f64]) -> chasles::Result<blend::Blended<f64>> {
     blend::blend_matrices(m, x, w, &Options::default())
 }
 
 /// The screw (angle, slide, axis) of `M0⁻¹ Φ` in its positive hemisphere.
-fn relative_screw(m0: &Mat4<f64>, phi: &Mat4<f64>) -> Result<(f64, f64, Vec3<f64>)> {
+fn relative_screw(m0: &Mat4<f64>, phi: &Mat4<f64>) -> chasles::Result<(f64, f64, Vec3<f64>)> {
     let rel = DualQuat::from_matrix4_unchecked(&log::inverse_rigid(m0))
         * DualQuat::from_matrix4_unchecked(phi);
     let s = rel.to_positive_hemisphere().to_screw()?;
@@ -199,7 +175,8 @@ fn relative_screw(m0: &Mat4<f64>, phi: &Mat4<f64>) -> Result<(f64, f64, Vec3<f64
 }
 
 /// Measures the table with `samples` random cases per property.
-pub fn measure(samples: usize, seed: u64) -> Result<Table> {
+pub fn measure(samples: usize, seed: u64) -> Result<Table1> {
+    need_samples(samples)?;
     let mut rows = Vec::new();
     for method in Method::ALL {
         let mut rng = StdRng::seed_from_u64(seed);
@@ -270,8 +247,8 @@ pub fn measure(samples: usize, seed: u64) -> Result<Table> {
                 short = short.max(a1 - std::f64::consts::PI);
             }
         }
-        let mut constant_speed = Cell::new(speed, p(4));
-        let mut shortest_path = Cell::new(short, p(5));
+        let mut constant_speed = PropertyCell::new(speed, p(4));
+        let mut shortest_path = PropertyCell::new(short, p(5));
         if lin_not_rigid {
             for c in [&mut constant_speed, &mut shortest_path] {
                 c.holds = false;
@@ -279,7 +256,7 @@ pub fn measure(samples: usize, seed: u64) -> Result<Table> {
                 c.note = "not rigid: no screw to measure".into();
             }
         }
-        let mut many = Cell::new(if many_ok { 0.0 } else { f64::NAN }, p(3));
+        let mut many = PropertyCell::new(if many_ok { 0.0 } else { f64::NAN }, p(3));
         many.holds = many_ok;
         if method == Method::ScLerp {
             many.holds = blend::blend_matrices(
@@ -293,16 +270,16 @@ pub fn measure(samples: usize, seed: u64) -> Result<Table> {
         }
         rows.push(Row {
             method,
-            rigidity: Cell::new(rigid, p(0)),
-            bi_invariance: Cell::new(bi, p(1)),
-            coordinate_invariance: Cell::new(coord, p(2)),
+            rigidity: PropertyCell::new(rigid, p(0)),
+            bi_invariance: PropertyCell::new(bi, p(1)),
+            coordinate_invariance: PropertyCell::new(coord, p(2)),
             many,
             constant_speed,
             shortest_path,
             flops: count_flops(method, seed)?,
         });
     }
-    Ok(Table {
+    Ok(Table1 {
         rows,
         samples,
         seed,
@@ -327,7 +304,7 @@ fn count_flops(method: Method, seed: u64) -> Result<FlopRow> {
             .collect();
         let w: Vec<Flop> = random_weights(&mut rng, n).into_iter().map(Flop).collect();
         let opt = Options::<Flop>::default();
-        let (r, c) = count(|| -> Result<Option<usize>> {
+        let (r, c) = count(|| -> chasles::Result<Option<usize>> {
             Ok(match method {
                 Method::Lin => {
                     lin::lin(&x, &w)?;
@@ -365,71 +342,4 @@ fn count_flops(method: Method, seed: u64) -> Result<FlopRow> {
         formula,
         paper: paper_column(method).map_or("—", |c| c.1),
     })
-}
-
-/// Formats the table as Markdown: a column per method, each cell the measured mark with the
-/// worst deviation, the paper's mark beside it.
-pub fn to_markdown(t: &Table) -> String {
-    let mut s = String::new();
-    s.push_str("| property |");
-    for r in &t.rows {
-        s.push_str(&format!(" {} |", r.method.name()));
-    }
-    s.push('\n');
-    s.push_str(&"|---".repeat(t.rows.len() + 1));
-    s.push_str("|\n");
-    let names = [
-        "rigidity",
-        "bi-invariance",
-        "coordinate invariance",
-        "n > 2",
-        "constant speed",
-        "shortest path",
-    ];
-    for (i, name) in names.iter().enumerate() {
-        s.push_str(&format!("| {name} |"));
-        for r in &t.rows {
-            let c = r.cells()[i].1;
-            let mark = if c.holds { '+' } else { '−' };
-            let num = if c.worst.is_nan() {
-                "error".to_string()
-            } else {
-                format!("{:.1e}", c.worst)
-            };
-            let paper = match c.paper {
-                Some(true) => " (paper +)",
-                Some(false) => " (paper −)",
-                None => "",
-            };
-            let flag = if c.agrees() { "" } else { " **differs**" };
-            let note = if c.note.is_empty() {
-                String::new()
-            } else {
-                format!(", {}", c.note)
-            };
-            s.push_str(&format!(" {mark} {num}{note}{paper}{flag} |"));
-        }
-        s.push('\n');
-    }
-    s.push_str("| FLOPS (ours) |");
-    for r in &t.rows {
-        let f = &r.flops;
-        let v = match f.formula {
-            Some((a, 0)) => format!("{a}"),
-            Some((a, b)) => format!("{a}+{b}n"),
-            None => f
-                .measured
-                .iter()
-                .map(|(n, c, it)| format!("n={n}: {} ({} it.)", c.total(), it.unwrap_or(0)))
-                .collect::<Vec<_>>()
-                .join("; "),
-        };
-        s.push_str(&format!(" {v} |"));
-    }
-    s.push_str("\n| FLOPS (paper) |");
-    for r in &t.rows {
-        s.push_str(&format!(" {} |", r.flops.paper));
-    }
-    s.push('\n');
-    s
 }

@@ -1,4 +1,4 @@
-//! The paper's claims, reproduced by number (Kavan et al. 2006, §4, §5, Appendices A–B):
+//! Kavan et al. 2006's claims, reproduced by number (§4, §5, Appendices A–B):
 //!
 //! * [`dlb_vs_sclerp`]: DLB and ScLERP share the screw axis, and their rotation angles
 //!   differ by less than 8.15°, their translations by less than 15 % (§4) — with the worst
@@ -22,10 +22,11 @@
 //!   computed from our log-matrix blend of the paper's R0, R1 and matched against the
 //!   closed form printed there.
 
-use super::properties::random_rigid;
-use crate::blend::log::{log_blend, log_blend_iterative, log_blend_iterative_from};
-use crate::blend::{dib::dib, dlb::dlb, sclerp::sclerp};
-use crate::{DualQuat, Mat3, Quat, Result, Screw, Vec3};
+use crate::error::{need_samples, Result};
+use crate::random::random_rigid;
+use chasles::blend::log::{log_blend, log_blend_iterative, log_blend_iterative_from};
+use chasles::blend::{dib::dib, dlb::dlb, sclerp::sclerp};
+use chasles::{DualQuat, Mat3, Quat, Screw, Vec3};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 
@@ -66,8 +67,10 @@ pub fn dlb_sclerp_difference(theta: f64, t: f64) -> Result<(f64, f64)> {
 }
 
 /// Searches the worst angle and translation differences (θ ∈ (0, π], t ∈ [0, 1]) and
-/// measures the screw-axis agreement on `samples` random pairs.
+/// measures the screw-axis agreement on `samples` random pairs ([`crate::Error::NoSamples`]
+/// for none; so for every measurement over random samples here).
 pub fn dlb_vs_sclerp(samples: usize, seed: u64) -> Result<DlbVsScLerp> {
+    need_samples(samples)?;
     let mut best_a = (0.0, (0.0, 0.0));
     let mut best_t = (0.0, (0.0, 0.0));
     let (nt, nh) = (300, 200);
@@ -160,6 +163,7 @@ pub fn dlb_vs_sclerp(samples: usize, seed: u64) -> Result<DlbVsScLerp> {
 /// Lemma 3 on random pairs: the largest difference between DIB and ScLERP (as matrices)
 /// and the largest number of DIB updates.
 pub fn lemma_3(samples: usize, seed: u64) -> Result<(f64, usize)> {
+    need_samples(samples)?;
     let mut rng = StdRng::seed_from_u64(seed);
     let (mut diff, mut most) = (0.0f64, 0usize);
     for _ in 0..samples {
@@ -185,6 +189,7 @@ pub fn dib_iterations(
     spread: f64,
     precision: f64,
 ) -> Result<Vec<usize>> {
+    need_samples(samples)?;
     let mut rng = StdRng::seed_from_u64(seed);
     let mut hist = vec![0usize; 51];
     let unit = |rng: &mut StdRng| {
@@ -217,6 +222,7 @@ pub fn dib_iterations(
 
 /// Lemma 2 on random inputs: the largest left and right invariance defects of ScLERP.
 pub fn lemma_2(samples: usize, seed: u64) -> Result<f64> {
+    need_samples(samples)?;
     let mut rng = StdRng::seed_from_u64(seed);
     let mut worst = 0.0f64;
     for _ in 0..samples {
@@ -307,6 +313,7 @@ pub fn figure_7() -> Result<Figure7> {
 /// (1 − t, t)) converges to ScLERP: started at the identity (§5), and started at the
 /// heavier input. Returns the two fractions of `samples`.
 pub fn log_iter_reaches_sclerp(samples: usize, seed: u64) -> Result<(f64, f64)> {
+    need_samples(samples)?;
     let mut rng = StdRng::seed_from_u64(seed);
     let (mut from_identity, mut from_pivot) = (0usize, 0usize);
     for _ in 0..samples {

@@ -1,0 +1,82 @@
+//! `chasles tour`: a walk through both papers on built-in data, with every number computed
+//! on the spot. The tour is the list of experiments in [`run`] — the core algebra (Dam et
+//! al. App. A and B; Kavan et al. §3), interpolation (Dam et al. ch. 5–7), blending (Kavan
+//! et al. §4, §5, Table 1, Figure 7), skinning (Kavan et al. §6) and the identities —
+//! each returning a typed section, run in order and fed to the terminal renderer (stdout)
+//! and to the report (`--out`, default `report/`: one HTML page with every claim, our
+//! measurement, whether they agree, and the pictures; see [`crate::report`]).
+
+mod blending;
+mod skinning;
+
+use crate::report::Report;
+use chasles_paper::experiments::{
+    algebra, blending_claims::blending_claims, identities::identities, interpolation,
+    spring::spring_vs_squad, table_1::table_1,
+};
+use chasles_paper::{render, Experiment, Figures};
+use std::io::{IsTerminal, Write};
+use std::path::PathBuf;
+
+/// Options of `chasles tour`.
+pub struct TourArgs {
+    /// Random inputs per identity in the sweep.
+    pub samples: usize,
+    /// Seed of the random inputs.
+    pub seed: u64,
+    /// The report's folder.
+    pub out: PathBuf,
+}
+
+/// Progress on a terminal (stderr), nothing when piped.
+fn stage(what: &str) {
+    let mut e = std::io::stderr();
+    if e.is_terminal() {
+        let _ = write!(e, "\r\x1b[2K  tour: {what} …");
+        let _ = e.flush();
+    }
+}
+
+/// Runs the tour, printing to stdout.
+pub fn run(args: TourArgs) -> anyhow::Result<()> {
+    let (samples, seed) = (args.samples, args.seed);
+    let tour = [
+        Experiment::new("the Euler convention", algebra::euler_convention),
+        Experiment::new("App. B.4 near 180°", algebra::b4_near_half_turn),
+        Experiment::new("gimbal lock", algebra::gimbal_lock),
+        Experiment::new("exp, log and powers", algebra::exp_log),
+        Experiment::new("dual quaternions", algebra::dual_quaternion),
+        Experiment::new("interpolation", || {
+            interpolation::six_methods(Figures::Draw)
+        }),
+        Experiment::new("Squad's continuity", interpolation::squad_continuity),
+        Experiment::new("Spring on the chapter 7 examples", spring_vs_squad),
+        Experiment::new("blending: Table 1", || table_1(50, 2006, Figures::Draw)),
+        Experiment::new("blending: two transforms", blending::two_transforms),
+        Experiment::new("blending: the claims", || {
+            blending_claims(100, 1, Figures::Draw)
+        }),
+        Experiment::new("skinning: the candy wrapper", skinning::candy_wrapper),
+        Experiment::new("skinning: the characters", skinning::characters),
+        Experiment::new("identities on random inputs", move || {
+            identities(samples, seed)
+        }),
+    ];
+    println!("chasles tour — rotations and rigid motions, with numbers computed now");
+    println!("Papers: Dam, Koch & Lillholm 1998 (quaternions, interpolation, animation);");
+    println!("        Kavan, Collins, Žára & O'Sullivan 2006 (dual quaternions, rigid blending).");
+    let mut report = Report::new(&args.out)?;
+    for experiment in tour {
+        stage(experiment.name);
+        let section = experiment.run();
+        print!("{}", render::terminal::section(&section));
+        report.add(section)?;
+    }
+    let path = report.finish()?;
+    if std::io::stderr().is_terminal() {
+        eprint!("\r\x1b[2K");
+    }
+    let (ok, n) = report.tally();
+    println!("\nreport: {} ({ok} of {n} claims agree)", path.display());
+    Ok(())
+}

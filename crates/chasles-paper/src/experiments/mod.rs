@@ -1,0 +1,35 @@
+//! The experiments: each function runs one part of a paper and returns its outcome as a
+//! [`Section`](crate::Section). A part whose operation fails adds its claim as
+//! [`Failed`](crate::Verdict::Failed) and the section goes on.
+//!
+//! * [`algebra`]: Dam et al. App. A and B (Euler angles, B.4 near the half turn, gimbal
+//!   lock), Definitions 14–16 (exp, log, powers); Kavan et al. eq. (1)–(2).
+//! * [`interpolation`]: Dam et al. ch. 5–6 (six methods through Table 5.1's keys) and
+//!   Proposition 30 (Squad is C¹).
+//! * [`spring`]: Dam et al. ch. 7, Spring against Squad.
+//! * [`table_1`]: Kavan et al. Table 1 measured, with FLOP counts.
+//! * [`blending_claims`]: Kavan et al. §4, §5, Lemmas 2–3, Appendix B / Figure 7.
+//! * [`identities`]: both papers' identities on random inputs, f64 and f32.
+
+pub mod algebra;
+pub mod blending_claims;
+pub mod identities;
+pub mod interpolation;
+pub mod spring;
+pub mod table_1;
+
+/// Whether an experiment draws its pictures (the tour does; `chasles properties` does
+/// not, having nowhere to put them).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Figures {
+    /// Draw them and add them to the section.
+    Draw,
+    /// Leave them out.
+    Skip,
+}
+
+/// `[+0.100000, +0.200000]`: numbers with sign and six decimals.
+pub(crate) fn arr(xs: &[f64]) -> String {
+    let parts: Vec<String> = xs.iter().map(|x| format!("{x:+.6}")).collect();
+    format!("[{}]", parts.join(", "))
+}

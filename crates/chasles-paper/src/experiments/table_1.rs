@@ -1,0 +1,159 @@
+//! Kavan et al. 2006, Table 1 measured ([`crate::properties`]): one typed table, a column
+//! per method and a row per property — each cell the measured mark, the worst deviation
+//! and the paper's mark — with the FLOPS rows; the FLOP counts in full; the claim that the
+//! measured marks are the paper's; and with [`Figures::Draw`] the deviations as a grid.
+
+use super::Figures;
+use crate::claim::Paper::Kavan2006;
+use crate::properties::{self, PropertyCell, Table1, TOLERANCE};
+use crate::section::Section;
+use crate::table::{Cell, Number, Table};
+use chasles_viz::grid::{grid_svg, GridCell};
+
+fn check(c: &PropertyCell) -> Cell {
+    Cell::Check {
+        holds: c.holds,
+        worst: (!c.worst.is_nan()).then(|| Number::sci(c.worst, 1)),
+        note: c.note.clone(),
+        paper: c.paper,
+    }
+}
+
+/// The measured table as a typed table: property rows, method columns, the FLOPS rows.
+pub fn typed(t: &Table1) -> Table {
+    let mut header = vec!["property".to_string()];
+    header.extend(t.rows.iter().map(|r| r.method.name().to_string()));
+    let mut out = Table {
+        caption: format!(
+            "Table 1 measured: each cell the measured mark ('+': worst deviation below {TOLERANCE:.0e}) and the worst deviation, the paper's mark in parentheses"
+        ),
+        header,
+        rows: Vec::new(),
+    };
+    let names = t.rows.first().map(|r| r.cells().map(|c| c.0));
+    for (i, name) in names.into_iter().flatten().enumerate() {
+        let mut row = vec![Cell::text(name)];
+        row.extend(t.rows.iter().map(|r| check(r.cells()[i].1)));
+        out.row(row);
+    }
+    let mut ours = vec![Cell::text("FLOPS (ours)")];
+    ours.extend(t.rows.iter().map(|r| {
+        let f = &r.flops;
+        Cell::text(match f.formula {
+            Some((a, 0)) => format!("{a}"),
+            Some((a, b)) => format!("{a}+{b}n"),
+            None => f
+                .measured
+                .iter()
+                .map(|(n, c, it)| format!("n={n}: {} ({} it.)", c.total(), it.unwrap_or(0)))
+                .collect::<Vec<_>>()
+                .join("; "),
+        })
+    }));
+    out.row(ours);
+    let mut paper = vec![Cell::text("FLOPS (paper)")];
+    paper.extend(t.rows.iter().map(|r| Cell::text(r.flops.paper)));
+    out.row(paper);
+    out
+}
+
+/// Every FLOP count, per method and n.
+fn flop_counts(t: &Table1) -> Table {
+    let mut out = Table::new(
+        "FLOPs of one blend, 4×4 matrices in and out (special: square roots and trigonometric functions, one each)",
+        &["method", "n", "+ −", "×", "÷", "special", "total", "iterations"],
+    );
+    for r in &t.rows {
+        for (n, c, it) in &r.flops.measured {
+            out.row(vec![
+                Cell::text(r.method.name()),
+                Cell::Number(Number::integer(*n as u64)),
+                Cell::Number(Number::integer(c.add)),
+                Cell::Number(Number::integer(c.mul)),
+                Cell::Number(Number::integer(c.div)),
+                Cell::Number(Number::integer(c.special)),
+                Cell::Number(Number::integer(c.total())),
+                it.map_or(Cell::text("—"), |k| {
+                    Cell::Number(Number::integer(k as u64))
+                }),
+            ]);
+        }
+    }
+    out
+}
+
+/// The deviations as a grid picture.
+fn grid(t: &Table1, samples: usize) -> Vec<u8> {
+    let names: Vec<&str> = t.rows.iter().map(|r| r.method.name()).collect();
+    let columns: Vec<&str> = t
+        .rows
+        .first()
+        .map_or(Vec::new(), |r| r.cells().iter().map(|c| c.0).collect());
+    let cells: Vec<Vec<GridCell>> = t
+        .rows
+        .iter()
+        .map(|r| {
+            r.cells()
+                .iter()
+                .map(|(_, c)| GridCell {
+                    value: c.worst,
+                    holds: c.holds,
+                    agrees: c.agrees(),
+                })
+                .collect()
+        })
+        .collect();
+    grid_svg(
+        &names,
+        &columns,
+        &cells,
+        &format!(
+            "Table 1 measured: worst deviation per method and property ({samples} random cases)"
+        ),
+    )
+    .into_bytes()
+}
+
+/// Table 1 measured on `samples` random cases per property from `seed`.
+pub fn table_1(samples: usize, seed: u64, figures: Figures) -> Section {
+    let mut s = Section::new(format!(
+        "Kavan et al. Table 1: properties of the blending methods, measured on {samples} random cases per property (seed {seed})"
+    ));
+    s.attempt(
+        Kavan2006,
+        "Table 1",
+        "which methods are rigid, bi-invariant, coordinate-invariant, blend more than two transforms, move at constant speed and take the shortest path, and how their cost grows with n",
+        |s| -> crate::Result<_> {
+            let t = properties::measure(samples, seed)?;
+            s.text("Each cell: measured mark, worst deviation; the paper's mark in parentheses; \"differs\" where they disagree.");
+            s.table(typed(&t));
+            s.table(flop_counts(&t));
+            if figures == Figures::Draw {
+                s.figure(
+                    "table1.svg",
+                    grid(&t, samples),
+                    &format!("Table 1 as measured: each cell the worst deviation over {samples} random cases; green holds, red fails, a frame marks a disagreement with the paper"),
+                );
+            }
+            let listed: usize = t
+                .rows
+                .iter()
+                .map(|r| r.cells().iter().filter(|c| c.1.paper.is_some()).count())
+                .sum();
+            let dis = t.disagreements();
+            let ours = if dis.is_empty() {
+                format!("All {listed} cells the paper lists agree with it.")
+            } else {
+                let which: Vec<String> =
+                    dis.iter().map(|(m, p)| format!("{}: {p}", m.name())).collect();
+                format!(
+                    "{} of {listed} cells the paper lists agree with it; differing: {}.",
+                    listed - dis.len(),
+                    which.join(", ")
+                )
+            };
+            Ok((ours, dis.is_empty()))
+        },
+    );
+    s
+}
