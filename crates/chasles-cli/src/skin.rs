@@ -160,7 +160,7 @@ pub(crate) fn median_secs(runs: usize, mut f: impl FnMut() -> Result<()>) -> Res
 /// run). The random joints make nearly every
 /// vertex its own SBS cluster: SBS's worst case, a rotation centre solved per vertex.
 pub fn bench() -> Result<()> {
-    use chasles_skin::fast::{clusters, skin_pose};
+    use chasles_skin::fast::skin_pose;
     use chasles_skin::synthetic;
     use rayon::prelude::*;
     // Runs per median: this many keeps a shared machine's hiccups out of 10⁵-vertex runs
@@ -172,7 +172,6 @@ pub fn bench() -> Result<()> {
     for n in [100_000usize, 1_000_000] {
         let rig = synthetic::rig(n, 54, 7);
         let jt = synthetic::joints(54, 7);
-        let cl = clusters(&rig);
         let mut out = vec![[0f32; 6]; n];
         let src = vec![1u8; n * 36];
         let mut dst = vec![0u8; n * 36];
@@ -201,7 +200,7 @@ pub fn bench() -> Result<()> {
             );
             let mut rate = |m: Method| -> Result<f64> {
                 let mut once =
-                    || -> Result<()> { Ok(skin_pose(&rig, &jt, m, || &cl, &mut out, parallel)?) };
+                    || -> Result<()> { Ok(skin_pose(&rig, &jt, m, &mut out, parallel)?) };
                 // DIB takes a second a run at 10⁶ vertices: fewer runs for slow methods.
                 let start = std::time::Instant::now();
                 once()?;
@@ -223,7 +222,7 @@ pub fn bench() -> Result<()> {
                 );
                 rates.insert(m, r);
             }
-            ratios.push((n, threads, cl.len(), rates));
+            ratios.push((n, threads, rig.clusters().len(), rates));
         }
     }
     println!();

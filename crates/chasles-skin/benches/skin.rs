@@ -185,14 +185,13 @@ fn eight_influences(c: &mut Criterion) {
     let n = 100_000;
     let rig = synthetic::rig_with::<8>(n, 54, 7);
     let jt = synthetic::joints(54, 7);
-    let cl = clusters(&rig);
     let mut out = vec![[0f32; 6]; n];
     let mut g = c.benchmark_group(format!("skin {n} vertices, 54 joints, 8 influences"));
     g.throughput(Throughput::Elements(n as u64));
     g.sample_size(20);
     for m in chasles_skin::Method::ALL {
         g.bench_function(format!("chasles {}, 1 thread", m.name()), |b| {
-            b.iter(|| skin_pose(&rig, &jt, m, || &cl, black_box(&mut out), false).unwrap())
+            b.iter(|| skin_pose(&rig, &jt, m, black_box(&mut out), false).unwrap())
         });
     }
     g.finish();
@@ -215,12 +214,11 @@ fn figure_1(c: &mut Criterion) {
     }
     let fast = chasles_skin::fast::FastRig::<4>::new(&rig).unwrap();
     let mut out = vec![[0f32; 6]; rig.mesh.positions.len()];
-    let cl = clusters(&fast);
     for m in Method::ALL {
         g.bench_function(format!("{} (fast, with the pose)", m.name()), |b| {
             b.iter(|| {
                 let jt = joint_transforms(&rig, &pose).unwrap();
-                skin_pose(&fast, &jt, m, || &cl, &mut out, false).unwrap()
+                skin_pose(&fast, &jt, m, &mut out, false).unwrap()
             })
         });
     }

@@ -130,6 +130,14 @@ pub enum SkinError {
         /// What is wrong.
         problem: ChannelProblem,
     },
+    /// An interleaved output whose stride is under 6 floats or does not divide its length.
+    #[error("interleaved output: a stride of {stride} floats (at least 6: position, normal) does not fit its {floats} floats")]
+    Stride {
+        /// Floats per vertex.
+        stride: usize,
+        /// Floats in the buffer.
+        floats: usize,
+    },
     /// Skinning that produced a non-finite vertex (from non-finite or degenerate joints).
     #[error("{rig}: skinning with {method} produced a non-finite vertex ({vertex})")]
     NonFiniteOutput {

@@ -23,9 +23,9 @@
 use crate::error::{Result, SkinError};
 use crate::pose::JointTransforms;
 use crate::rig::Rig;
-use crate::rotation_centre::joint_centres;
+use crate::rotation_centre::{joint_centres, Clusters};
 use chasles::{DualQuat, Vec3};
-use rayon::prelude::*;
+use std::sync::OnceLock;
 
 /// One vertex with K influences (unused slots have weight 0).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -45,13 +45,18 @@ mod antipodes;
 #[cfg(target_arch = "x86_64")]
 mod avx2;
 mod dib;
+mod job;
 mod log;
+mod palette;
 mod qlb;
 mod skinner;
 
 use antipodes::Antipodes;
 pub use dib::dib;
+use job::for_chunks;
+pub use job::{Output, SkinningJob};
 pub use log::{log, twists};
+pub use palette::{Affine3x4, Joints, Palette, QlbJoint, RotationCentre, Twist, UnitDualQuat};
 pub use qlb::{clusters, qlb, sbs, Row};
 pub use skinner::{skin_pose, Skinner};
 
@@ -62,6 +67,8 @@ pub struct FastRig<const K: usize> {
     vertices: Vec<Vertex<K>>,
     /// Each joint's bind-pose origin (decomposed QLB and SBS rotate about these).
     centres: Vec<Vec3<f32>>,
+    /// SBS's vertex clusters, made on first use.
+    clusters: OnceLock<Clusters>,
 }
 
 /// Output: position and normal per vertex.
@@ -115,7 +122,11 @@ impl<const K: usize> FastRig<K> {
                 joints,
             });
         }
-        Ok(FastRig { vertices, centres })
+        Ok(FastRig {
+            vertices,
+            centres,
+            clusters: OnceLock::new(),
+        })
     }
 
     /// The vertices.
@@ -131,6 +142,12 @@ impl<const K: usize> FastRig<K> {
     /// Each joint's bind-pose origin.
     pub fn centres(&self) -> &[Vec3<f32>] {
         &self.centres
+    }
+
+    /// SBS's clusters of vertices moved by the same joints ([`clusters`]), made on the
+    /// first call.
+    pub fn clusters(&self) -> &Clusters {
+        self.clusters.get_or_init(|| clusters(self))
     }
 }
 
@@ -367,13 +384,25 @@ fn check<const K: usize>(rig: &FastRig<K>, joints: usize, out: usize) -> Result<
 fn run<const K: usize, F: Kernel<K>>(
     rig: &FastRig<K>,
     joints: &[F::Joint],
-    out: &mut [Out],
+    out: Output<'_>,
     parallel: bool,
 ) -> Result<()> {
-    check(rig, joints.len(), out.len())?;
-    let (simd, table) = pose_table::<K, F>(joints, rig.vertices.len());
+    let (_, table) = pose_table::<K, F>(joints, rig.vertices.len());
+    run_with::<K, F>(rig, joints, &table, out, parallel)
+}
+
+/// [`run`] with the pose's table made already (a [`Palette`]'s).
+fn run_with<const K: usize, F: Kernel<K>>(
+    rig: &FastRig<K>,
+    joints: &[F::Joint],
+    table: &F::Table,
+    out: Output<'_>,
+    parallel: bool,
+) -> Result<()> {
+    check(rig, joints.len(), out.vertices()?)?;
+    let simd = simd(K);
     for_chunks(out, &rig.vertices, parallel, |_, o, v| {
-        F::chunk(o, v, joints, &table, simd)
+        F::chunk(o, v, joints, table, simd)
     });
     Ok(())
 }
@@ -388,28 +417,6 @@ fn pose_table<const K: usize, F: Kernel<K>>(
     (simd, F::table(if simd { joints } else { &[] }, vertices))
 }
 
-/// `chunk(first, out, vertices)` over chunks of [`CHUNK`] vertices (`first`: the index of
-/// the chunk's first vertex), on all threads when `parallel`.
-fn for_chunks<const K: usize>(
-    out: &mut [Out],
-    vertices: &[Vertex<K>],
-    parallel: bool,
-    chunk: impl Fn(usize, &mut [Out], &[Vertex<K>]) + Sync,
-) {
-    let each = |(c, (o, v)): (usize, (&mut [Out], &[Vertex<K>]))| chunk(c * CHUNK, o, v);
-    if parallel {
-        out.par_chunks_mut(CHUNK)
-            .zip(vertices.par_chunks(CHUNK))
-            .enumerate()
-            .for_each(each);
-    } else {
-        out.chunks_mut(CHUNK)
-            .zip(vertices.chunks(CHUNK))
-            .enumerate()
-            .for_each(each);
-    }
-}
-
 /// Linear blend skinning into `out`, on all threads when `parallel`.
 pub fn lbs<const K: usize>(
     rig: &FastRig<K>,
@@ -417,7 +424,7 @@ pub fn lbs<const K: usize>(
     out: &mut [Out],
     parallel: bool,
 ) -> Result<()> {
-    run::<K, LbsKernel>(rig, m, out, parallel)
+    run::<K, LbsKernel>(rig, m, out.into(), parallel)
 }
 
 /// Dual quaternion skinning into `out`, on all threads when `parallel`.
@@ -427,7 +434,7 @@ pub fn dqs<const K: usize>(
     out: &mut [Out],
     parallel: bool,
 ) -> Result<()> {
-    run::<K, DqsKernel>(rig, d, out, parallel)
+    run::<K, DqsKernel>(rig, d, out.into(), parallel)
 }
 
 /// The largest difference between two outputs' six numbers.

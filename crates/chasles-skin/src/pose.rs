@@ -107,28 +107,45 @@ pub(crate) fn world_of(nodes: &[Node], local: &[Trs]) -> Vec<Mat4<f32>> {
         .collect()
 }
 
-/// `C_j = World(joint_j) · InverseBind_j` for every joint. For the dual quaternions, a
-/// 3×3 block that is not a rotation (scaled joints) contributes its nearest rotation
-/// (Shepperd's method on the block, normalized); `non_rigidity` says how far off it was.
-pub fn joint_transforms(rig: &Rig, pose: &Pose) -> Result<JointTransforms> {
+/// `C_j = World(joint_j) · InverseBind_j` for every joint: the matrices alone (what LBS
+/// reads; [`crate::fast::Palette::update`] makes any method's palette from them).
+pub fn skinning_matrices(rig: &Rig, pose: &Pose) -> Result<Vec<Mat4<f32>>> {
     let w = world(rig, pose)?;
-    let matrices: Vec<Mat4<f32>> = rig
+    Ok(rig
         .joints
         .iter()
         .zip(&rig.inverse_bind)
         .map(|(n, ib)| w[*n] * *ib)
-        .collect();
+        .collect())
+}
+
+/// The unit dual quaternion of a skinning matrix — its 3×3 block's nearest rotation
+/// (Shepperd's method on the block, normalized) and its translation — and how far the block
+/// was from a rotation (`max |AᵀA − I|`).
+pub fn rigid_of(m: &Mat4<f32>) -> (DualQuat<f32>, f32) {
+    let a = m.linear_part();
+    let off = (a.transpose() * a).max_abs_diff(&chasles::Mat3::identity());
+    (
+        DualQuat::from_rotation_translation(
+            Quat::from_rotation_matrix_unchecked(&a),
+            m.translation(),
+        ),
+        off,
+    )
+}
+
+/// `C_j = World(joint_j) · InverseBind_j` for every joint. For the dual quaternions, a
+/// 3×3 block that is not a rotation (scaled joints) contributes its nearest rotation
+/// (Shepperd's method on the block, normalized); `non_rigidity` says how far off it was.
+pub fn joint_transforms(rig: &Rig, pose: &Pose) -> Result<JointTransforms> {
+    let matrices = skinning_matrices(rig, pose)?;
     let mut non_rigidity = 0.0f32;
     let dual_quats = matrices
         .iter()
         .map(|m| {
-            let a = m.linear_part();
-            non_rigidity =
-                non_rigidity.max((a.transpose() * a).max_abs_diff(&chasles::Mat3::identity()));
-            DualQuat::from_rotation_translation(
-                Quat::from_rotation_matrix_unchecked(&a),
-                m.translation(),
-            )
+            let (d, off) = rigid_of(m);
+            non_rigidity = non_rigidity.max(off);
+            d
         })
         .collect();
     Ok(JointTransforms {

@@ -215,10 +215,17 @@ pub fn skin_joints(rig: &Rig, jt: &JointTransforms, method: Method) -> Result<Sk
 /// The joints' twists for Log skinning: `log` of each joint matrix's nearest rigid
 /// transform (a scaled or sheared joint is made rigid first).
 pub fn twists(jt: &JointTransforms) -> Result<Vec<log::Twist<f32>>> {
-    jt.matrices
-        .iter()
-        .map(|m| log::log_rigid(&rigid(m)).map_err(Into::into))
-        .collect()
+    twists_of(&jt.matrices)
+}
+
+/// [`twists`] of skinning matrices.
+pub fn twists_of(matrices: &[Mat4<f32>]) -> Result<Vec<log::Twist<f32>>> {
+    matrices.iter().map(twist_of).collect()
+}
+
+/// One skinning matrix's twist: `log` of its nearest rigid transform.
+pub fn twist_of(m: &Mat4<f32>) -> Result<log::Twist<f32>> {
+    log::log_rigid(&rigid(m)).map_err(Into::into)
 }
 
 /// A vertex moved by `exp(x)`, `x` its blended twist: the position, and the normal turned

@@ -195,3 +195,84 @@ fn gpu_matches_the_fast_path_on_a_synthetic_mesh() {
         ));
     }
 }
+
+#[test]
+fn the_skinning_job_runs_on_the_gpu_as_on_the_cpu() {
+    use chasles_skin::fast::{FastRig, Output, Palette, SkinningJob};
+    let m = chasles_models::CESIUM_MAN;
+    let rig = gltf_load::load_slice(m.bytes, m.file).unwrap();
+    let fast = FastRig::<4>::new(&rig).unwrap();
+    let gpu = match GpuSkinner::from_fast(&fast) {
+        Ok(g) => g,
+        Err(GpuError::NoAdapter(why)) => {
+            eprintln!("skipping: no adapter ({why})");
+            return;
+        }
+        Err(e) => panic!("{e}"),
+    };
+    let n = fast.vertices().len();
+    let jt = joint_transforms(&rig, &Pose::animated(&rig, 0, 0.9).unwrap()).unwrap();
+    for method in [Method::Lbs, Method::Dqs, Method::Dib] {
+        let palette = Palette::from_joint_transforms(method, &fast, &jt, false).unwrap();
+        let mut cpu = vec![[0f32; 6]; n];
+        SkinningJob {
+            rig: &fast,
+            palette: &palette,
+            output: Output::Packed(&mut cpu),
+            parallel: true,
+        }
+        .run()
+        .unwrap();
+        let close = |got: &[f32], want: &[f32; 6]| {
+            for k in 0..6 {
+                assert!(
+                    (got[k] - want[k]).abs() < 1e-4,
+                    "{}: {got:?} vs {want:?}",
+                    method.name()
+                );
+            }
+        };
+        // The same palette, every layout.
+        let mut packed = vec![[0f32; 6]; n];
+        gpu.run(&palette, Output::Packed(&mut packed)).unwrap();
+        packed.iter().zip(&cpu).for_each(|(g, c)| close(g, c));
+        let mut inter = vec![-1f32; n * 9];
+        gpu.run(
+            &palette,
+            Output::Interleaved {
+                data: &mut inter,
+                stride: 9,
+            },
+        )
+        .unwrap();
+        for (g, c) in inter.chunks(9).zip(&cpu) {
+            close(&g[..6], c);
+            assert_eq!(&g[6..], &[-1.0; 3], "the rest of each vertex is left alone");
+        }
+        let (mut p, mut nr) = (vec![[0f32; 3]; n], vec![[0f32; 3]; n]);
+        gpu.run(
+            &palette,
+            Output::Split {
+                positions: &mut p,
+                normals: &mut nr,
+            },
+        )
+        .unwrap();
+        for ((p, nr), c) in p.iter().zip(&nr).zip(&cpu) {
+            close(&[p[0], p[1], p[2], nr[0], nr[1], nr[2]], c);
+        }
+    }
+    // Methods without a shader, palettes of another rig and short outputs: typed errors.
+    let log = Palette::from_joint_transforms(Method::Log, &fast, &jt, false).unwrap();
+    let mut out = vec![[0f32; 6]; n];
+    assert!(matches!(
+        gpu.run(&log, Output::Packed(&mut out)),
+        Err(GpuError::Unsupported("log"))
+    ));
+    let mut short = vec![[0f32; 6]; n - 1];
+    let dqs = Palette::from_joint_transforms(Method::Dqs, &fast, &jt, false).unwrap();
+    assert!(matches!(
+        gpu.run(&dqs, Output::Packed(&mut short)),
+        Err(GpuError::Rig(_))
+    ));
+}

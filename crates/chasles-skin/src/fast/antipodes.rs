@@ -12,7 +12,7 @@ use super::real_dot;
 
 /// The sign table: `−0.0` where the weight flips, `+0.0` where it stays (so a sign is
 /// applied by an exclusive or), row `a` for pivot `a`. Empty where a table would not pay.
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Clone, Default, PartialEq)]
 pub struct Antipodes {
     pub(super) signs: Vec<f32>,
     pub(super) joints: usize,
@@ -28,18 +28,25 @@ impl Antipodes {
     /// joints and no more signs than `vertices` to skin. Otherwise empty, and the kernel
     /// takes the dot products itself.
     pub fn new<const N: usize>(d: &[[f32; N]], vertices: usize) -> Self {
+        let mut t = Self::default();
+        t.refill(d, vertices);
+        t
+    }
+
+    /// [`Antipodes::new`] in place, keeping the table's capacity (no allocation once a
+    /// table of this size has been made).
+    pub fn refill<const N: usize>(&mut self, d: &[[f32; N]], vertices: usize) {
         let joints = d.len();
+        self.signs.clear();
         if joints > MOST_JOINTS || joints * joints > vertices {
-            return Self::default();
+            self.joints = 0;
+            return;
         }
-        let signs = d
-            .iter()
-            .flat_map(|pivot| {
-                d.iter()
-                    .map(move |q| if real_dot(q, pivot) < 0.0 { -0.0 } else { 0.0 })
-            })
-            .collect();
-        Antipodes { signs, joints }
+        self.joints = joints;
+        self.signs.extend(d.iter().flat_map(|pivot| {
+            d.iter()
+                .map(move |q| if real_dot(q, pivot) < 0.0 { -0.0 } else { 0.0 })
+        }));
     }
 
     /// Whether there is a table.

@@ -67,7 +67,7 @@ pub fn dib<const K: usize>(
     out: &mut [Out],
     parallel: bool,
 ) -> Result<()> {
-    run::<K, DibKernel>(rig, &super::arrays8(d), out, parallel)
+    run::<K, DibKernel>(rig, &super::arrays8(d), out.into(), parallel)
 }
 
 #[cfg(test)]

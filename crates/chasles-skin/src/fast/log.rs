@@ -55,16 +55,16 @@ pub fn log<const K: usize>(
     out: &mut [Out],
     parallel: bool,
 ) -> Result<()> {
-    run::<K, LogKernel>(rig, &rows(twists), out, parallel)
+    run::<K, LogKernel>(rig, &rows(twists), out.into(), parallel)
 }
 
 /// The twists as the kernels read them, `[ω, v, 0, 0]`.
 pub(super) fn rows(twists: &[Twist<f32>]) -> Vec<Row> {
-    twists
-        .iter()
-        .map(|t| {
-            let ([a, b, c], [d, e, f]) = (t.w.to_array(), t.v.to_array());
-            [a, b, c, d, e, f, 0.0, 0.0]
-        })
-        .collect()
+    twists.iter().map(row).collect()
+}
+
+/// One twist as the kernels read it.
+pub(super) fn row(t: &Twist<f32>) -> Row {
+    let ([a, b, c], [d, e, f]) = (t.w.to_array(), t.v.to_array());
+    [a, b, c, d, e, f, 0.0, 0.0]
 }

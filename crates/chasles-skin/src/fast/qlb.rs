@@ -22,7 +22,8 @@
 //! reference path to 1e-5 (a test checks every model and clip).
 
 use super::{
-    check, for_chunks, pose_table, rotate_scaled, run, Antipodes, FastRig, Kernel, Out, Vertex,
+    check, for_chunks, pose_table, rotate_scaled, run, Antipodes, FastRig, Kernel, Out, Output,
+    Vertex,
 };
 use crate::error::{Result, SkinError};
 use crate::rotation_centre::Clusters;
@@ -34,19 +35,19 @@ pub type Row = [f32; 24];
 
 /// The rows of joint transforms `d` with bind origins `centres`.
 pub(super) fn rows(d: &[DualQuat<f32>], centres: &[chasles::Vec3<f32>]) -> Vec<Row> {
-    d.iter()
-        .zip(centres)
-        .map(|(d, c)| {
-            let m = d.to_matrix4();
-            let mut r = [0f32; 24];
-            r[..4].copy_from_slice(&[d.real.w, d.real.x, d.real.y, d.real.z]);
-            for i in 0..12 {
-                r[4 + i] = m.m[i / 4][i % 4];
-            }
-            r[16..19].copy_from_slice(&c.to_array());
-            r
-        })
-        .collect()
+    d.iter().zip(centres).map(|(d, c)| row(d, *c)).collect()
+}
+
+/// One joint's row: transform `d`, bind origin `c`.
+pub(super) fn row(d: &DualQuat<f32>, c: chasles::Vec3<f32>) -> Row {
+    let m = d.to_matrix4();
+    let mut r = [0f32; 24];
+    r[..4].copy_from_slice(&[d.real.w, d.real.x, d.real.y, d.real.z]);
+    for i in 0..12 {
+        r[4 + i] = m.m[i / 4][i % 4];
+    }
+    r[16..19].copy_from_slice(&c.to_array());
+    r
 }
 
 /// A vertex's blended row: `Σ ±wₖ qₖ` (signs against the pivot, the heaviest influence),
@@ -116,7 +117,7 @@ pub fn qlb<const K: usize>(
     parallel: bool,
 ) -> Result<()> {
     check(rig, d.len(), out.len())?;
-    run::<K, QlbKernel>(rig, &rows(d, rig.centres()), out, parallel)
+    run::<K, QlbKernel>(rig, &rows(d, rig.centres()), out.into(), parallel)
 }
 
 /// Spherical blend skinning into `out` with the joints' unit dual quaternions: the rotation
@@ -131,17 +132,44 @@ pub fn sbs<const K: usize>(
     parallel: bool,
 ) -> Result<()> {
     check(rig, d.len(), out.len())?;
-    if clusters.of_vertex().len() != rig.vertices().len() {
-        return Err(SkinError::Count {
-            rig: "the fast rig".into(),
-            what: "vertices in the clusters",
-            expected: rig.vertices().len(),
-            got: clusters.of_vertex().len(),
-        });
-    }
     let centres = padded(&clusters.centres(d, rig.centres(), parallel));
     let rows = rows(d, rig.centres());
-    let (simd, table) = pose_table::<K, QlbKernel>(&rows, rig.vertices().len());
+    let (_, table) = pose_table::<K, QlbKernel>(&rows, rig.vertices().len());
+    sbs_into(rig, clusters, &rows, &table, &centres, out.into(), parallel)
+}
+
+/// SBS into `out` with the joints' rows and each of `clusters`' centre for the pose (as
+/// 8 floats, the centre first); on all threads when `parallel`. Every size is checked
+/// here: the SIMD kernel indexes `centres` by cluster.
+pub(super) fn sbs_into<const K: usize>(
+    rig: &FastRig<K>,
+    clusters: &Clusters,
+    rows: &[Row],
+    table: &Antipodes,
+    centres: &[[f32; 8]],
+    out: Output<'_>,
+    parallel: bool,
+) -> Result<()> {
+    check(rig, rows.len(), out.vertices()?)?;
+    let count = |what, expected, got| {
+        if expected == got {
+            Ok(())
+        } else {
+            Err(SkinError::Count {
+                rig: "the fast rig".into(),
+                what,
+                expected,
+                got,
+            })
+        }
+    };
+    count(
+        "vertices in the clusters",
+        rig.vertices().len(),
+        clusters.of_vertex().len(),
+    )?;
+    count("rotation centres", clusters.len(), centres.len())?;
+    let simd = super::simd(K);
     let cluster = clusters.of_vertex();
     for_chunks(out, rig.vertices(), parallel, |first, o, v| {
         let cl = &cluster[first..first + v.len()];
@@ -150,19 +178,19 @@ pub fn sbs<const K: usize>(
         if simd {
             // SAFETY: `simd` holds only for K = 4 or 8 on a processor with AVX2 and FMA;
             // the joint indices were checked when the rig was built and `check` matched
-            // `rows` to the joint count; every cluster index is below `centres.len()` (both
-            // from `clusters`); `table` was made from `rows`; `o` is as long as `v` and `cl`.
-            done = unsafe { super::avx2::qlb::sbs(v, &rows, &table, cl, &centres, o) };
+            // `rows` to the joint count; every cluster index is below `clusters.len()`, which
+            // is `centres.len()` (checked above); `table` was made from `rows`; `o` is as
+            // long as `v` and `cl`.
+            done = unsafe { super::avx2::qlb::sbs(v, rows, table, cl, centres, o) };
         }
         for ((o, v), c) in o.iter_mut().zip(v).zip(cl).skip(done) {
             let c = &centres[*c as usize];
-            *o = about(v, &blend(v, &rows), [c[0], c[1], c[2]]);
+            *o = about(v, &blend(v, rows), [c[0], c[1], c[2]]);
         }
     });
     Ok(())
 }
 
-/// Centres padded to 8 floats: the SIMD kernel loads each as one register.
 pub(super) fn padded(centres: &[chasles::Vec3<f32>]) -> Vec<[f32; 8]> {
     centres
         .iter()

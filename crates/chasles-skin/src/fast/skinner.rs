@@ -1,25 +1,21 @@
 //! Every method on the fast path behind one call, for tools that skin whole clips
 //! (`chasles skin --all-frames`): the rig's layout made once — 4 influences, else 8, else
 //! the reference path ([`crate::skinning`]) — the SBS clusters on first use, and each pose's
-//! joint data per call; all threads. Beneath it, [`skin_pose`]: one pose by any method into
-//! a caller's buffer, on one thread or all (the benchmarks and tests call it).
+//! palette per call; all threads. Beneath it, [`skin_pose`]: one pose by any method into a
+//! caller's buffer through the [`SkinningJob`], on one thread or all (the benchmarks and
+//! tests call it).
 
-use super::{
-    clusters, dib, dqs, dual_quats8, lbs, log, matrices12, qlb, sbs, twists, FastRig, Out,
-};
+use super::{FastRig, Out, Palette, SkinningJob};
 use crate::error::{Result, SkinError};
 use crate::pose::JointTransforms;
 use crate::rig::Rig;
-use crate::rotation_centre::Clusters;
 use crate::skinning::{skin_joints, Method, Skinned};
 use chasles::Vec3;
-use std::sync::OnceLock;
 
 /// A rig laid out for the fast path, skinning any [`Method`] on all threads.
 #[derive(Debug)]
 pub struct Skinner {
     layout: Layout,
-    clusters: OnceLock<Clusters>,
 }
 
 #[derive(Debug)]
@@ -38,10 +34,7 @@ impl Skinner {
             5..=8 => Layout::Eight(FastRig::new(rig)?),
             _ => Layout::Reference,
         };
-        Ok(Skinner {
-            layout,
-            clusters: OnceLock::new(),
-        })
+        Ok(Skinner { layout })
     }
 
     /// How many influences a vertex may have on the fast path taken (0: the reference path).
@@ -82,31 +75,27 @@ impl Skinner {
         method: Method,
     ) -> Result<Vec<Out>> {
         let mut out = vec![[0f32; 6]; f.vertices().len()];
-        let sbs_clusters = || self.clusters.get_or_init(|| clusters(f));
-        skin_pose(f, jt, method, sbs_clusters, &mut out, true)?;
+        skin_pose(f, jt, method, &mut out, true)?;
         Ok(out)
     }
 }
 
-/// One pose skinned by `method` on the fast path into `out`: the joints' data the method's
-/// kernel reads (matrices, dual quaternions, twists or rows) made from `jt` here, and
-/// `clusters` asked for by SBS only (the [`clusters`] of this rig, made once); on all threads
-/// when `parallel`.
-pub fn skin_pose<'c, const K: usize>(
+/// One pose skinned by `method` on the fast path into `out`: the method's [`Palette`] made
+/// from `jt` (SBS's clusters are the rig's own, made on first use) and run as a
+/// [`SkinningJob`]; on all threads when `parallel`.
+pub fn skin_pose<const K: usize>(
     rig: &FastRig<K>,
     jt: &JointTransforms,
     method: Method,
-    clusters: impl FnOnce() -> &'c Clusters,
     out: &mut [Out],
     parallel: bool,
 ) -> Result<()> {
-    let d = &jt.dual_quats;
-    match method {
-        Method::Lbs => lbs(rig, &matrices12(jt), out, parallel),
-        Method::Dqs => dqs(rig, &dual_quats8(jt), out, parallel),
-        Method::Dib => dib(rig, d, out, parallel),
-        Method::Log => log(rig, &twists(jt)?, out, parallel),
-        Method::Qlb => qlb(rig, d, out, parallel),
-        Method::Sbs => sbs(rig, clusters(), d, out, parallel),
+    let palette = Palette::from_joint_transforms(method, rig, jt, parallel)?;
+    SkinningJob {
+        rig,
+        palette: &palette,
+        output: out.into(),
+        parallel,
     }
+    .run()
 }

@@ -1,0 +1,223 @@
+//! The skinning job: one call for every method — a rig laid out once ([`FastRig`]), a
+//! [`Palette`] for the pose, and buffers the caller owns ([`Output`]) — in the manner of
+//! ozz-animation's `SkinningJob`. Nothing is allocated while it runs: the kernels write
+//! straight into a packed output (position then normal, 6 floats a vertex: their own
+//! layout), and into any other layout through a small buffer on the stack (256 vertices)
+//! copied out as it fills. Kavan et al. 2006, §6.
+
+use super::palette::{Joints, Palette};
+use super::qlb::{sbs_into, QlbKernel};
+use super::{
+    dib::DibKernel, log::LogKernel, run_with, DqsKernel, FastRig, LbsKernel, Out, Vertex, CHUNK,
+};
+use crate::error::{Result, SkinError};
+use bytemuck::cast_slice;
+use rayon::prelude::*;
+
+/// Where a job writes each vertex's skinned position and normal.
+#[derive(Debug)]
+pub enum Output<'a> {
+    /// `[px, py, pz, nx, ny, nz]` per vertex, back to back: the kernels' own layout, written
+    /// with no copy.
+    Packed(&'a mut [[f32; 6]]),
+    /// One interleaved vertex buffer of `stride` floats a vertex (at least 6): the position
+    /// in the vertex's first three floats, the normal in the next three; the rest of each
+    /// vertex (texture coordinates, …) is left as it is. `data.len()` is the vertex count
+    /// times `stride`. A stride of 6 is [`Output::Packed`].
+    Interleaved {
+        /// The buffer.
+        data: &'a mut [f32],
+        /// Floats per vertex.
+        stride: usize,
+    },
+    /// Positions and normals in two arrays of one entry per vertex.
+    Split {
+        /// Positions.
+        positions: &'a mut [[f32; 3]],
+        /// Normals.
+        normals: &'a mut [[f32; 3]],
+    },
+}
+
+impl<'a> From<&'a mut [[f32; 6]]> for Output<'a> {
+    fn from(o: &'a mut [[f32; 6]]) -> Self {
+        Output::Packed(o)
+    }
+}
+
+impl Output<'_> {
+    /// How many vertices it holds, or what is wrong with its shape.
+    pub fn vertices(&self) -> Result<usize> {
+        match self {
+            Output::Packed(o) => Ok(o.len()),
+            Output::Interleaved { data, stride } => {
+                if *stride < 6 || data.len() % stride != 0 {
+                    Err(SkinError::Stride {
+                        stride: *stride,
+                        floats: data.len(),
+                    })
+                } else {
+                    Ok(data.len() / stride)
+                }
+            }
+            Output::Split { positions, normals } => {
+                if positions.len() == normals.len() {
+                    Ok(positions.len())
+                } else {
+                    Err(SkinError::Count {
+                        rig: "the output".into(),
+                        what: "normals",
+                        expected: positions.len(),
+                        got: normals.len(),
+                    })
+                }
+            }
+        }
+    }
+}
+
+/// Vertices staged on the stack between a kernel and a non-packed output: a multiple of
+/// the SIMD kernels' 8-vertex block, 6 KB.
+const STAGE: usize = 256;
+
+/// `chunk(first, out, vertices)` over chunks of [`CHUNK`] vertices into `out` (`first`: the
+/// index of the chunk's first vertex), on all threads when `parallel`. `out` holds as many
+/// vertices as `vertices` (checked by the caller).
+pub(super) fn for_chunks<const K: usize>(
+    out: Output<'_>,
+    vertices: &[Vertex<K>],
+    parallel: bool,
+    chunk: impl Fn(usize, &mut [Out], &[Vertex<K>]) + Sync,
+) {
+    match out {
+        Output::Packed(o) => {
+            let each = |(c, (o, v)): (usize, (&mut [Out], &[Vertex<K>]))| chunk(c * CHUNK, o, v);
+            if parallel {
+                o.par_chunks_mut(CHUNK)
+                    .zip(vertices.par_chunks(CHUNK))
+                    .enumerate()
+                    .for_each(each);
+            } else {
+                o.chunks_mut(CHUNK)
+                    .zip(vertices.chunks(CHUNK))
+                    .enumerate()
+                    .for_each(each);
+            }
+        }
+        Output::Interleaved { data, stride: 6 } => for_chunks(
+            Output::Packed(bytemuck::cast_slice_mut(data)),
+            vertices,
+            parallel,
+            chunk,
+        ),
+        Output::Interleaved { data, stride } => {
+            let each = |(c, (d, v)): (usize, (&mut [f32], &[Vertex<K>]))| {
+                staged(c * CHUNK, v, &chunk, |i, o| {
+                    d[i * stride..i * stride + 6].copy_from_slice(o)
+                })
+            };
+            if parallel {
+                data.par_chunks_mut(CHUNK * stride)
+                    .zip(vertices.par_chunks(CHUNK))
+                    .enumerate()
+                    .for_each(each);
+            } else {
+                data.chunks_mut(CHUNK * stride)
+                    .zip(vertices.chunks(CHUNK))
+                    .enumerate()
+                    .for_each(each);
+            }
+        }
+        Output::Split { positions, normals } => {
+            type Part<'p, const K: usize> =
+                ((&'p mut [[f32; 3]], &'p mut [[f32; 3]]), &'p [Vertex<K>]);
+            let each = |(c, ((p, n), v)): (usize, Part<'_, K>)| {
+                staged(c * CHUNK, v, &chunk, |i, o| {
+                    p[i] = [o[0], o[1], o[2]];
+                    n[i] = [o[3], o[4], o[5]];
+                })
+            };
+            if parallel {
+                positions
+                    .par_chunks_mut(CHUNK)
+                    .zip(normals.par_chunks_mut(CHUNK))
+                    .zip(vertices.par_chunks(CHUNK))
+                    .enumerate()
+                    .for_each(each);
+            } else {
+                positions
+                    .chunks_mut(CHUNK)
+                    .zip(normals.chunks_mut(CHUNK))
+                    .zip(vertices.chunks(CHUNK))
+                    .enumerate()
+                    .for_each(each);
+            }
+        }
+    }
+}
+
+/// One chunk through a stack buffer of [`STAGE`] vertices, each vertex handed to
+/// `put(index in the chunk, its output)`.
+#[inline(always)]
+fn staged<const K: usize>(
+    first: usize,
+    vertices: &[Vertex<K>],
+    chunk: &impl Fn(usize, &mut [Out], &[Vertex<K>]),
+    mut put: impl FnMut(usize, &Out),
+) {
+    let mut buf = [[0f32; 6]; STAGE];
+    for (s, v) in vertices.chunks(STAGE).enumerate() {
+        let o = &mut buf[..v.len()];
+        chunk(first + s * STAGE, o, v);
+        for (i, x) in o.iter().enumerate() {
+            put(s * STAGE + i, x);
+        }
+    }
+}
+
+/// One pose skinned into the caller's buffers: `rig` (laid out once), `palette` (made for
+/// this pose, any method), `output`; on all threads when `parallel`. No allocation.
+#[derive(Debug)]
+pub struct SkinningJob<'a, const K: usize> {
+    /// The rig.
+    pub rig: &'a FastRig<K>,
+    /// The pose's joint data for the method to run.
+    pub palette: &'a Palette,
+    /// Where the skinned vertices go.
+    pub output: Output<'a>,
+    /// All threads (rayon) or the caller's.
+    pub parallel: bool,
+}
+
+impl<const K: usize> SkinningJob<'_, K> {
+    /// Runs the job: an error, before anything is written, if the palette or the output
+    /// does not fit the rig. Output is not checked for finiteness (the caller's buffers may
+    /// be mapped GPU memory); [`super::Skinner`] checks it.
+    pub fn run(self) -> Result<()> {
+        let SkinningJob {
+            rig,
+            palette,
+            output,
+            parallel,
+        } = self;
+        let n = output.vertices()?;
+        super::check(rig, palette.joints(), n)?;
+        let signs = palette.signs();
+        match palette.data() {
+            Joints::Lbs(a) => run_with::<K, LbsKernel>(rig, cast_slice(a), &(), output, parallel),
+            Joints::Dqs(d) => run_with::<K, DqsKernel>(rig, cast_slice(d), signs, output, parallel),
+            Joints::Dib(d) => run_with::<K, DibKernel>(rig, cast_slice(d), &(), output, parallel),
+            Joints::Log(t) => run_with::<K, LogKernel>(rig, cast_slice(t), &(), output, parallel),
+            Joints::Qlb(j) => run_with::<K, QlbKernel>(rig, cast_slice(j), signs, output, parallel),
+            Joints::Sbs { joints, centres } => sbs_into(
+                rig,
+                rig.clusters(),
+                cast_slice(joints),
+                signs,
+                cast_slice(centres),
+                output,
+                parallel,
+            ),
+        }
+    }
+}

@@ -1,0 +1,360 @@
+//! Palettes: per method, exactly what its kernel reads of each joint for one pose — Kavan
+//! et al. 2006, §6's "list L of joint displacements", in the form each blend needs (the
+//! register saving they note: 8 floats a dual quaternion against 12 a matrix). Each entry is
+//! a named `#[repr(C)]` type that can be handed to a GPU or an engine as it is
+//! (`bytemuck::Pod`):
+//!
+//! * LBS: [`Affine3x4`], `C_j`'s top three rows;
+//! * DQS and DIB: [`UnitDualQuat`], `C_j` as a unit dual quaternion (eq. 1; its nearest
+//!   rotation where `C_j` scales);
+//! * Log: [`Twist`], the logarithm of `C_j`'s nearest rigid motion (§5.1);
+//! * QLB and SBS: [`QlbJoint`], rotation quaternion, rigid `[R | t]` and bind origin; SBS also
+//!   one [`RotationCentre`] per vertex cluster (Kavan & Žára 2005), solved for the pose.
+//!
+//! A [`Palette`] is made from a pose's skinning matrices (or a [`JointTransforms`]) without
+//! building what its method does not read, and [`Palette::update`] refills one in place, so
+//! a clip played frame after frame allocates nothing once the first frame has sized it.
+
+use super::antipodes::Antipodes;
+use super::log::row as twist_row;
+use super::qlb::{padded, row as qlb_row};
+use super::{simd, FastRig};
+use crate::error::{Result, SkinError};
+use crate::pose::{rigid_of, JointTransforms};
+use crate::skinning::{twist_of, Method};
+use bytemuck::{Pod, Zeroable};
+use chasles::{DualQuat, Mat4, Vec3};
+
+/// `C_j`'s top three rows, row-major: `[r00 r01 r02 t0; r10 r11 r12 t1; r20 r21 r22 t2]`.
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+#[repr(C)]
+pub struct Affine3x4 {
+    /// The rows.
+    pub rows: [[f32; 4]; 3],
+}
+
+/// A unit dual quaternion `q0 + ε qε`, as 8 floats `[w, x, y, z, wε, xε, yε, zε]`.
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+#[repr(C)]
+pub struct UnitDualQuat {
+    /// `q0 = [w, x, y, z]`, the rotation.
+    pub real: [f32; 4],
+    /// `qε = ½ t q0`.
+    pub dual: [f32; 4],
+}
+
+/// A rigid motion's logarithm `(ω, v)` (rotation vector and the translation's twist), padded
+/// to 8 floats.
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+#[repr(C)]
+pub struct Twist {
+    /// ω, the rotation vector.
+    pub omega: [f32; 3],
+    /// v.
+    pub v: [f32; 3],
+    /// Zeros (two floats, so that a twist is one 8-float register).
+    pub pad: [f32; 2],
+}
+
+/// A joint for decomposed QLB and SBS: its rotation `[w, x, y, z]`, the rows of its rigid
+/// `[R | t]`, its bind origin, then zeros (three 8-float registers).
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+#[repr(C)]
+pub struct QlbJoint {
+    /// The rotation quaternion.
+    pub rotation: [f32; 4],
+    /// `[R | t]`, row-major.
+    pub rigid: [[f32; 4]; 3],
+    /// The joint's origin in the bind pose.
+    pub origin: [f32; 3],
+    /// Zeros.
+    pub pad: [f32; 5],
+}
+
+/// A vertex cluster's centre of rotation for SBS, padded to 8 floats.
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+#[repr(C)]
+pub struct RotationCentre {
+    /// The centre.
+    pub centre: [f32; 3],
+    /// Zeros.
+    pub pad: [f32; 5],
+}
+
+/// One pose's joint data for one skinning method, entry by entry.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Joints {
+    /// Linear blend skinning.
+    Lbs(Vec<Affine3x4>),
+    /// Dual quaternion skinning.
+    Dqs(Vec<UnitDualQuat>),
+    /// Dual quaternion iterative blending.
+    Dib(Vec<UnitDualQuat>),
+    /// Log-matrix skinning.
+    Log(Vec<Twist>),
+    /// Decomposed quaternion linear blending about the joints.
+    Qlb(Vec<QlbJoint>),
+    /// Spherical blend skinning: the joints and each vertex cluster's centre of rotation
+    /// (the clusters of [`FastRig::clusters`]).
+    Sbs {
+        /// The joints.
+        joints: Vec<QlbJoint>,
+        /// One centre per cluster.
+        centres: Vec<RotationCentre>,
+    },
+}
+
+impl Joints {
+    /// An empty list for `method`.
+    pub fn new(method: Method) -> Self {
+        match method {
+            Method::Lbs => Joints::Lbs(Vec::new()),
+            Method::Dqs => Joints::Dqs(Vec::new()),
+            Method::Dib => Joints::Dib(Vec::new()),
+            Method::Log => Joints::Log(Vec::new()),
+            Method::Qlb => Joints::Qlb(Vec::new()),
+            Method::Sbs => Joints::Sbs {
+                joints: Vec::new(),
+                centres: Vec::new(),
+            },
+        }
+    }
+
+    /// The method they are for.
+    pub fn method(&self) -> Method {
+        match self {
+            Joints::Lbs(_) => Method::Lbs,
+            Joints::Dqs(_) => Method::Dqs,
+            Joints::Dib(_) => Method::Dib,
+            Joints::Log(_) => Method::Log,
+            Joints::Qlb(_) => Method::Qlb,
+            Joints::Sbs { .. } => Method::Sbs,
+        }
+    }
+
+    /// How many joints.
+    pub fn len(&self) -> usize {
+        match self {
+            Joints::Lbs(a) => a.len(),
+            Joints::Dqs(d) | Joints::Dib(d) => d.len(),
+            Joints::Log(t) => t.len(),
+            Joints::Qlb(j) | Joints::Sbs { joints: j, .. } => j.len(),
+        }
+    }
+
+    /// Whether there are none.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+}
+
+/// A pose's [`Joints`] for one method, with what its kernel derives from them once per
+/// pose (DQS's, QLB's and SBS's antipodality signs against each pivot joint).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Palette {
+    joints: Joints,
+    signs: Antipodes,
+}
+
+impl Palette {
+    /// An empty palette for `method`, to be filled by [`Palette::update`].
+    pub fn new(method: Method) -> Self {
+        Palette {
+            joints: Joints::new(method),
+            signs: Antipodes::default(),
+        }
+    }
+
+    /// A palette from joint data made elsewhere (an engine's own matrices or dual
+    /// quaternions): checked against `rig`'s joint count (and, for SBS, its cluster count).
+    pub fn from_joints<const K: usize>(rig: &FastRig<K>, joints: Joints) -> Result<Self> {
+        check(rig, joints.len())?;
+        if let Joints::Sbs { centres, .. } = &joints {
+            if centres.len() != rig.clusters().len() {
+                return Err(SkinError::Count {
+                    rig: "the fast rig".into(),
+                    what: "rotation centres",
+                    expected: rig.clusters().len(),
+                    got: centres.len(),
+                });
+            }
+        }
+        let mut p = Palette {
+            joints,
+            signs: Antipodes::default(),
+        };
+        p.sign(rig);
+        Ok(p)
+    }
+
+    /// The joint data.
+    pub fn data(&self) -> &Joints {
+        &self.joints
+    }
+
+    /// The method this palette is for.
+    pub fn method(&self) -> Method {
+        self.joints.method()
+    }
+
+    /// How many joints it holds.
+    pub fn joints(&self) -> usize {
+        self.joints.len()
+    }
+
+    /// The antipodality signs the SIMD kernels read (empty where they would not pay).
+    pub(super) fn signs(&self) -> &Antipodes {
+        &self.signs
+    }
+
+    /// Remakes the sign table for the joints now held (DQS, QLB, SBS on the SIMD path).
+    fn sign<const K: usize>(&mut self, rig: &FastRig<K>) {
+        let n = if simd(K) { rig.vertices().len() } else { 0 };
+        match &self.joints {
+            Joints::Dqs(d) => self.signs.refill::<8>(bytemuck::cast_slice(d), n),
+            Joints::Qlb(j) | Joints::Sbs { joints: j, .. } => {
+                self.signs.refill::<24>(bytemuck::cast_slice(j), n)
+            }
+            _ => self.signs.refill::<8>(&[], 0),
+        }
+    }
+
+    /// `method`'s palette for `rig` from skinning matrices `C_j` (one per joint; see
+    /// [`crate::pose::skinning_matrices`]); SBS's centres are solved on all threads when
+    /// `parallel`.
+    pub fn from_matrices<const K: usize>(
+        method: Method,
+        rig: &FastRig<K>,
+        matrices: &[Mat4<f32>],
+        parallel: bool,
+    ) -> Result<Self> {
+        let mut p = Palette::new(method);
+        p.update(rig, matrices, parallel)?;
+        Ok(p)
+    }
+
+    /// `method`'s palette for `rig` from joint transforms that hold both forms already
+    /// (the dual quaternions are used as they are, not made again from the matrices).
+    pub fn from_joint_transforms<const K: usize>(
+        method: Method,
+        rig: &FastRig<K>,
+        jt: &JointTransforms,
+        parallel: bool,
+    ) -> Result<Self> {
+        check(rig, jt.matrices.len())?;
+        check(rig, jt.dual_quats.len())?;
+        let centres = rig.centres();
+        let joints = match method {
+            Method::Lbs => Joints::Lbs(jt.matrices.iter().map(affine).collect()),
+            Method::Dqs => Joints::Dqs(jt.dual_quats.iter().map(unit).collect()),
+            Method::Dib => Joints::Dib(jt.dual_quats.iter().map(unit).collect()),
+            Method::Log => Joints::Log(
+                jt.matrices
+                    .iter()
+                    .map(|m| twist_of(m).map(|t| bytemuck::cast(twist_row(&t))))
+                    .collect::<Result<_>>()?,
+            ),
+            Method::Qlb => Joints::Qlb(qlb_joints(&jt.dual_quats, centres).collect()),
+            Method::Sbs => Joints::Sbs {
+                joints: qlb_joints(&jt.dual_quats, centres).collect(),
+                centres: sbs_centres(rig, &jt.dual_quats, parallel).collect(),
+            },
+        };
+        let mut p = Palette {
+            joints,
+            signs: Antipodes::default(),
+        };
+        p.sign(rig);
+        Ok(p)
+    }
+
+    /// Refills this palette, in place, from skinning matrices `C_j` of `rig`'s joints:
+    /// only what its method reads is made (no dual quaternions for LBS, no matrices kept
+    /// for the others), into vectors whose capacity is reused from the last pose — no
+    /// allocation once the first pose has sized them, except SBS's centre solve (the
+    /// joints' dual quaternions and per-joint sums, some kilobytes). SBS's centres are
+    /// solved on all threads when `parallel`.
+    pub fn update<const K: usize>(
+        &mut self,
+        rig: &FastRig<K>,
+        matrices: &[Mat4<f32>],
+        parallel: bool,
+    ) -> Result<()> {
+        check(rig, matrices.len())?;
+        let centres = rig.centres();
+        let dual = |m: &Mat4<f32>| rigid_of(m).0;
+        match &mut self.joints {
+            Joints::Lbs(a) => refill(a, matrices.iter().map(affine)),
+            Joints::Dqs(d) | Joints::Dib(d) => refill(d, matrices.iter().map(|m| unit(&dual(m)))),
+            Joints::Log(t) => {
+                t.clear();
+                for m in matrices {
+                    t.push(bytemuck::cast(twist_row(&twist_of(m)?)));
+                }
+            }
+            Joints::Qlb(j) => refill(
+                j,
+                matrices
+                    .iter()
+                    .zip(centres)
+                    .map(|(m, c)| bytemuck::cast(qlb_row(&dual(m), *c))),
+            ),
+            Joints::Sbs { joints, centres: c } => {
+                let d: Vec<DualQuat<f32>> = matrices.iter().map(dual).collect();
+                refill(joints, qlb_joints(&d, centres));
+                refill(c, sbs_centres(rig, &d, parallel));
+            }
+        }
+        self.sign(rig);
+        Ok(())
+    }
+}
+
+/// `v` emptied and filled from `items`, keeping its capacity.
+fn refill<T>(v: &mut Vec<T>, items: impl Iterator<Item = T>) {
+    v.clear();
+    v.extend(items);
+}
+
+/// The joint count `rig` needs.
+fn check<const K: usize>(rig: &FastRig<K>, joints: usize) -> Result<()> {
+    if joints == rig.joints() {
+        Ok(())
+    } else {
+        Err(SkinError::Count {
+            rig: "the fast rig".into(),
+            what: "joint transforms",
+            expected: rig.joints(),
+            got: joints,
+        })
+    }
+}
+
+fn affine(m: &Mat4<f32>) -> Affine3x4 {
+    Affine3x4 {
+        rows: [m.m[0], m.m[1], m.m[2]],
+    }
+}
+
+fn unit(d: &DualQuat<f32>) -> UnitDualQuat {
+    bytemuck::cast(d.to_array())
+}
+
+fn qlb_joints<'a>(
+    d: &'a [DualQuat<f32>],
+    centres: &'a [Vec3<f32>],
+) -> impl Iterator<Item = QlbJoint> + 'a {
+    d.iter()
+        .zip(centres)
+        .map(|(d, c)| bytemuck::cast(qlb_row(d, *c)))
+}
+
+fn sbs_centres<const K: usize>(
+    rig: &FastRig<K>,
+    d: &[DualQuat<f32>],
+    parallel: bool,
+) -> impl Iterator<Item = RotationCentre> {
+    padded(&rig.clusters().centres(d, rig.centres(), parallel))
+        .into_iter()
+        .map(bytemuck::cast)
+}
