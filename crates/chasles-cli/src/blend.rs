@@ -4,39 +4,89 @@
 //! `{"transforms": [T, …], "weights": [w, …]}` (optional `"center": [x, y, z]` for dec and
 //! qlb, `"precision"` and `"max_iterations"` for the iterative methods), or for sclerp
 //! `{"from": T, "to": T, "t": x}`. A transform T is `{"rotation": [w,x,y,z],
-//! "translation": [x,y,z]}`, `{"matrix": [[r00,r01,r02,t0],…,[0,0,0,1]]}` (row-major) or
-//! `{"dq": [8 numbers]}`. Output: a JSON array, one object per case in order, with
+//! "translation": [x,y,z]}`, `{"matrix": [[r00,r01,r02,t0],…,[0,0,0,1]]}` (row-major),
+//! `{"dq": [8 numbers]}` or any other object form of `chasles convert --jsonl`
+//! ([`crate::repr::MotionFields`]). Output: a JSON array, one object per case in order, with
 //! `rotation`, `translation`, `matrix`, `dq`, `rigid` and, for dec, log-iter and dib,
 //! `iterations`. `--plot`, `--render` and `--gif` draw the first case
 //! ([`crate::blend_pictures`]).
+//!
+//! The input is a serde-derived type ([`CaseFile`], its transforms
+//! [`crate::repr::MotionFields`]) read through `serde_path_to_error`: an error names the
+//! case and the path of the bad field (`case 1: transforms[2].rotation[3]: invalid type: …`),
+//! unknown fields are refused (a misspelt `"weight"` is an error, not ignored), so are the
+//! two forms of a case at once, and so is text after the document.
 
 use crate::blend_pictures;
+use crate::json::{from_json, FieldError};
 use crate::output::write_atomic;
 use crate::picture_args::Pictures;
-use crate::repr::motion_from_json;
-use anyhow::{anyhow, bail, Context, Result};
+use crate::repr::MotionObject;
+use anyhow::{anyhow, Context, Result};
 use chasles::blend::{blend_dual_quats, Method, Options};
 use chasles::{DualQuat, Vec3};
-use serde_json::{json, Map, Value};
+use serde::de::value::{MapAccessDeserializer, SeqAccessDeserializer};
+use serde::de::{Deserializer, MapAccess, SeqAccess, Visitor};
+use serde::Deserialize;
+use serde_json::{json, Value};
+use std::fmt;
 use std::io::Read;
 
-fn number(o: &Map<String, Value>, name: &str) -> Result<Option<f64>> {
-    match o.get(name) {
-        None => Ok(None),
-        Some(v) => v
-            .as_f64()
-            .map(Some)
-            .ok_or_else(|| anyhow!("field '{name}': expected a number, found {v}")),
+/// One case as written: `transforms` and `weights`, or sclerp's `from`, `to` and `t`, with
+/// the options. Every field is optional here so that [`case`] can say which form is meant
+/// and what it lacks; unknown fields are refused.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct CaseFile {
+    /// The transforms to blend.
+    transforms: Option<Vec<MotionObject>>,
+    /// One weight per transform.
+    weights: Option<Vec<f64>>,
+    /// sclerp: the transform at t = 0.
+    from: Option<MotionObject>,
+    /// sclerp: the transform at t = 1.
+    to: Option<MotionObject>,
+    /// sclerp: the parameter in [0, 1].
+    t: Option<f64>,
+    /// The centre of rotation for dec and qlb.
+    center: Option<[f64; 3]>,
+    /// Stopping tolerance of the iterative methods.
+    precision: Option<f64>,
+    /// Iteration limit of the iterative methods (a whole number; `5.0` is read as 5).
+    max_iterations: Option<f64>,
+}
+
+/// The input: one case, or an array of cases.
+struct Cases(Vec<CaseFile>);
+
+impl<'de> Deserialize<'de> for Cases {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        /// An object (one case) or an array of them; the path into either is kept.
+        struct V;
+        impl<'de> Visitor<'de> for V {
+            type Value = Cases;
+            fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                f.write_str(
+                    "a case {\"transforms\": [...], \"weights\": [...]} or an array of cases",
+                )
+            }
+            fn visit_seq<A: SeqAccess<'de>>(self, seq: A) -> Result<Cases, A::Error> {
+                Vec::deserialize(SeqAccessDeserializer::new(seq)).map(Cases)
+            }
+            fn visit_map<A: MapAccess<'de>>(self, map: A) -> Result<Cases, A::Error> {
+                CaseFile::deserialize(MapAccessDeserializer::new(map)).map(|c| Cases(vec![c]))
+            }
+        }
+        d.deserialize_any(V)
     }
 }
 
-fn transform(v: &Value, at: &str) -> Result<DualQuat<f64>> {
-    if !v.is_object() {
-        bail!("{at}: expected an object such as {{\"rotation\": [w,x,y,z], \"translation\": [x,y,z]}}");
-    }
-    let m = motion_from_json(v, None).with_context(|| at.to_string())?;
+/// The transform `t` found at `at` (`from`, `transforms[2]`) of case `i`, its notes on
+/// stderr.
+fn transform(t: MotionObject, i: usize, at: &str) -> Result<DualQuat<f64>, FieldError> {
+    let m = t.0.motion().map_err(|e| e.within(at))?;
     for n in &m.notes {
-        eprintln!("note: {at}: {n}");
+        eprintln!("note: case {i}: {at}: {n}");
     }
     Ok(m.dq)
 }
@@ -44,102 +94,110 @@ fn transform(v: &Value, at: &str) -> Result<DualQuat<f64>> {
 /// One case as read: transforms, weights and options.
 type Case = (Vec<DualQuat<f64>>, Vec<f64>, Options<f64>);
 
-/// One case: transforms, weights and options.
-fn case(v: &Value, method: Method) -> Result<Case> {
-    let o = v
-        .as_object()
-        .ok_or_else(|| anyhow!("expected an object with 'transforms' and 'weights'"))?;
+/// Case `i` as blend's inputs for `method`; errors name the field.
+fn case(c: CaseFile, i: usize, method: Method) -> Result<Case, FieldError> {
     let mut opt = Options::default();
-    if let Some(c) = o.get("center") {
-        let c: Vec<f64> = c
-            .as_array()
-            .map(|a| a.iter().filter_map(Value::as_f64).collect())
-            .unwrap_or_default();
-        if c.len() != 3 {
-            bail!("field 'center': expected 3 numbers");
-        }
-        opt.center = Vec3::new(c[0], c[1], c[2]);
+    if let Some([x, y, z]) = c.center {
+        opt.center = Vec3::new(x, y, z);
     }
-    if let Some(p) = number(o, "precision")? {
+    if let Some(p) = c.precision {
         if !(p > 0.0 && p.is_finite()) {
-            bail!("field 'precision': must be positive, got {p}");
+            return Err(FieldError::new(
+                "precision",
+                format!("must be positive, got {p}"),
+            ));
         }
         opt.precision = p;
     }
-    if let Some(n) = number(o, "max_iterations")? {
+    if let Some(n) = c.max_iterations {
         if !(n >= 0.0 && n.fract() == 0.0 && n <= 1e6) {
-            bail!("field 'max_iterations': must be a whole number up to 1e6, got {n}");
+            return Err(FieldError::new(
+                "max_iterations",
+                format!("must be a whole number up to 1e6, got {n}"),
+            ));
         }
         opt.max_iterations = n as usize;
     }
-    if o.contains_key("from") || o.contains_key("to") {
-        if method != Method::ScLerp {
-            bail!(
-                "'from'/'to'/'t' is the sclerp form; for {} give 'transforms' and 'weights'",
-                method.name()
-            );
+    let sclerp = [
+        ("from", c.from.is_some()),
+        ("to", c.to.is_some()),
+        ("t", c.t.is_some()),
+    ];
+    let weighted = [
+        ("transforms", c.transforms.is_some()),
+        ("weights", c.weights.is_some()),
+    ];
+    let given = |fields: &[(&'static str, bool)]| fields.iter().find(|f| f.1).map(|f| f.0);
+    match (given(&sclerp), given(&weighted)) {
+        (Some(a), Some(b)) => Err(FieldError::new(
+            "",
+            format!("conflicting fields `{b}` and `{a}`: give `transforms` and `weights`, or for sclerp `from`, `to` and `t`"),
+        )),
+        (Some(_), None) => {
+            if method != Method::ScLerp {
+                return Err(FieldError::new(
+                    "",
+                    format!(
+                        "`from`/`to`/`t` is the sclerp form; for {} give `transforms` and `weights`",
+                        method.name()
+                    ),
+                ));
+            }
+            let missing = |name: &str| FieldError::new("", format!("missing field `{name}`"));
+            let from = transform(c.from.ok_or_else(|| missing("from"))?, i, "from")?;
+            let to = transform(c.to.ok_or_else(|| missing("to"))?, i, "to")?;
+            let t = c.t.ok_or_else(|| missing("t"))?;
+            if !(0.0..=1.0).contains(&t) {
+                return Err(FieldError::new("t", format!("must be in [0, 1], got {t}")));
+            }
+            Ok((vec![from, to], vec![1.0 - t, t], opt))
         }
-        let from = transform(
-            o.get("from")
-                .ok_or_else(|| anyhow!("missing field 'from'"))?,
-            "from",
-        )?;
-        let to = transform(
-            o.get("to").ok_or_else(|| anyhow!("missing field 'to'"))?,
-            "to",
-        )?;
-        let t = number(o, "t")?.ok_or_else(|| anyhow!("missing field 't'"))?;
-        if !(0.0..=1.0).contains(&t) {
-            bail!("field 't': must be in [0, 1], got {t}");
+        (None, _) => {
+            let ts = c
+                .transforms
+                .ok_or_else(|| FieldError::new("", "missing field `transforms`"))?;
+            let w = c
+                .weights
+                .ok_or_else(|| FieldError::new("", "missing field `weights`"))?;
+            let x = ts
+                .into_iter()
+                .enumerate()
+                .map(|(k, t)| transform(t, i, &format!("transforms[{k}]")))
+                .collect::<Result<Vec<_>, _>>()?;
+            Ok((x, w, opt))
         }
-        return Ok((vec![from, to], vec![1.0 - t, t], opt));
     }
-    let ts = o
-        .get("transforms")
-        .ok_or_else(|| anyhow!("missing field 'transforms'"))?
-        .as_array()
-        .ok_or_else(|| anyhow!("field 'transforms': expected an array"))?;
-    let x = ts
-        .iter()
-        .enumerate()
-        .map(|(i, t)| transform(t, &format!("transforms[{i}]")))
-        .collect::<Result<Vec<_>>>()?;
-    let ws = o
-        .get("weights")
-        .ok_or_else(|| anyhow!("missing field 'weights'"))?
-        .as_array()
-        .ok_or_else(|| anyhow!("field 'weights': expected an array"))?;
-    let w = ws
-        .iter()
-        .enumerate()
-        .map(|(i, v)| {
-            v.as_f64()
-                .ok_or_else(|| anyhow!("weights[{i}]: expected a number, found {v}"))
-        })
-        .collect::<Result<Vec<_>>>()?;
-    Ok((x, w, opt))
+}
+
+/// An error reading the input, its leading `[i]` (the index of the case) written
+/// `case i: `; a single case is case 0.
+fn case_error(e: FieldError) -> anyhow::Error {
+    if e.path.is_empty() {
+        return anyhow!(e);
+    }
+    let indexed = e.path.strip_prefix('[').and_then(|p| p.split_once(']'));
+    match indexed {
+        Some((i, rest)) if i.parse::<usize>().is_ok() => {
+            let rest = rest.strip_prefix('.').unwrap_or(rest);
+            anyhow!("case {i}: {}", FieldError::new(rest, e.reason))
+        }
+        _ => anyhow!("case 0: {e}"),
+    }
 }
 
 /// Blends every case of `input` (JSON text) with `method`, returning the output array and
-/// the first case as read.
+/// the first case as read. The input is read as [`Cases`] through `serde_path_to_error`:
+/// errors name the case and the path of the bad field.
 fn blend_all(method: Method, input: &str) -> Result<(Value, Option<Case>)> {
-    let v: Value =
-        serde_json::from_str(input).map_err(|e| anyhow!("input is not valid JSON: {e}"))?;
-    let cases: Vec<&Value> = match &v {
-        Value::Array(a) => a.iter().collect(),
-        other => vec![other],
-    };
+    let Cases(cases) = from_json(input).map_err(case_error)?;
     let mut out = Vec::with_capacity(cases.len());
     let mut first = None;
-    for (i, c) in cases.iter().enumerate() {
-        let result = case(c, method).and_then(|(x, w, opt)| {
-            let b = blend_dual_quats(method, &x, &w, &opt)?;
-            if first.is_none() {
-                first = Some((x, w, opt));
-            }
-            Ok(b)
-        });
-        let b = result.with_context(|| format!("case {i}"))?;
+    for (i, c) in cases.into_iter().enumerate() {
+        let (x, w, opt) = case(c, i, method).with_context(|| format!("case {i}"))?;
+        let b = blend_dual_quats(method, &x, &w, &opt).with_context(|| format!("case {i}"))?;
+        if first.is_none() {
+            first = Some((x, w, opt));
+        }
         let mut o = json!({
             "rotation": b.dq.real.to_array(),
             "translation": b.matrix.translation().to_array(),

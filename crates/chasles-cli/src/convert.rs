@@ -1,6 +1,8 @@
-//! `chasles convert`: one value between representations, or one JSON value per line.
+//! `chasles convert`: one value between representations, or one JSON value per line
+//! (serde-derived types whose errors name the line and the field's path; see
+//! [`crate::repr::MotionJson`]).
 
-use crate::repr::{motion_from_json, motion_from_numbers, parse_numbers, render, Fmt, Repr};
+use crate::repr::{motion_from_json_line, motion_from_numbers, parse_numbers, render, Fmt, Repr};
 use anyhow::{anyhow, bail, Context, Result};
 use std::io::{BufRead, Write};
 
@@ -45,6 +47,10 @@ pub fn run(args: ConvertArgs) -> Result<i32> {
 /// One JSON value per input line, one JSON result per output line; a bad line gets
 /// `{"line": N, "error": "..."}` in its place (so outputs stay aligned with inputs), a
 /// message on stderr, and the exit code becomes 1. Blank lines are skipped.
+///
+/// Each line is a [`crate::repr::MotionJson`] read through `serde_path_to_error`, so the
+/// error names the line and the path of the bad field (`line 4: rotation[3]: invalid
+/// type: …`); a misspelt field, two forms at once or text after the value are errors.
 pub fn run_jsonl(
     input: impl BufRead,
     out: &mut impl Write,
@@ -59,9 +65,8 @@ pub fn run_jsonl(
         if line.trim().is_empty() {
             continue;
         }
-        let result = serde_json::from_str(&line)
-            .map_err(|e| anyhow!("not valid JSON: {e}"))
-            .and_then(|v| motion_from_json(&v, from))
+        let result = motion_from_json_line(&line, from)
+            .map_err(anyhow::Error::from)
             .and_then(|m| render(&m, to, fmt));
         match result {
             Ok(o) => writeln!(out, "{}", o.json)?,

@@ -14,38 +14,73 @@
 //! ```
 //!
 //! JSON takes the same shape, `{"order": "xyz", "keys": [{"angle": 1, "axis": [1, 3, 0]}, …]}`,
-//! or just the array of keys. Syntax errors name the line and column; other errors name
-//! the key and field, e.g. `keys[2].axis`.
+//! or just the array of keys. Both are serde-derived types read through
+//! `serde_path_to_error`: syntax errors name the line and column, every other error the
+//! path of the key and field, e.g. `keys[2].axis` (a field of the wrong type, a misspelt
+//! field, an unknown Euler order, a zero axis alike).
 
+use crate::json::{from_json, Order};
 use anyhow::{anyhow, bail, Context, Result};
 use chasles::interp::examples;
 use chasles::{EulerOrder, Quat, Vec3};
+use serde::de::value::{MapAccessDeserializer, SeqAccessDeserializer};
+use serde::de::{Deserializer, MapAccess, SeqAccess, Visitor};
 use serde::Deserialize;
+use std::fmt;
 use std::path::Path;
 
+/// A key file: the default Euler order and the keys.
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct Doc {
+    /// The Euler order of keys given as `euler` without their own.
     #[serde(default)]
-    order: Option<String>,
+    order: Option<Order>,
+    /// The keys, in order.
     keys: Vec<Spec>,
 }
 
-#[derive(Deserialize)]
-#[serde(untagged)]
-enum JsonDoc {
-    Doc(Doc),
-    Keys(Vec<Spec>),
+/// A JSON key file: a [`Doc`], or just its array of keys. (Not an untagged enum, which
+/// would hide the path of the bad field.)
+struct JsonDoc(Doc);
+
+impl<'de> Deserialize<'de> for JsonDoc {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        /// An object or an array of keys; the path into either is kept.
+        struct V;
+        impl<'de> Visitor<'de> for V {
+            type Value = JsonDoc;
+            fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                f.write_str("an object {\"keys\": [...]} or an array of keys")
+            }
+            fn visit_seq<A: SeqAccess<'de>>(self, seq: A) -> Result<JsonDoc, A::Error> {
+                let keys = Vec::deserialize(SeqAccessDeserializer::new(seq))?;
+                Ok(JsonDoc(Doc { order: None, keys }))
+            }
+            fn visit_map<A: MapAccess<'de>>(self, map: A) -> Result<JsonDoc, A::Error> {
+                Doc::deserialize(MapAccessDeserializer::new(map)).map(JsonDoc)
+            }
+        }
+        d.deserialize_any(V)
+    }
 }
 
+/// One key: `angle` and `axis`, `quat` or `euler` (with an optional `order`), and an
+/// optional `time`.
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct Spec {
+    /// Radians about `axis`.
     angle: Option<f64>,
+    /// The axis of `angle`.
     axis: Option<[f64; 3]>,
+    /// `[w, x, y, z]`.
     quat: Option<[f64; 4]>,
+    /// Three angles in radians.
     euler: Option<[f64; 3]>,
-    order: Option<String>,
+    /// The Euler order of this key's `euler`.
+    order: Option<Order>,
+    /// The key's time.
     time: Option<f64>,
 }
 
@@ -84,22 +119,35 @@ pub fn load(spec: &str) -> Result<Keys> {
         .unwrap_or("")
         .to_ascii_lowercase();
     let doc = match ext.as_str() {
-        "toml" => toml::from_str::<Doc>(&text)
-            .map_err(|e| anyhow!("{spec}: {}", one_line(&e.to_string())))?,
-        "json" => match serde_json::from_str::<JsonDoc>(&text) {
-            Ok(JsonDoc::Doc(d)) => d,
-            Ok(JsonDoc::Keys(keys)) => Doc { order: None, keys },
-            Err(e) => {
-                // Untagged enums hide the real cause: parse as the object form for it.
-                let detail = serde_json::from_str::<Doc>(&text).err().unwrap_or(e);
-                bail!("{spec}: {detail}")
-            }
-        },
+        "toml" => {
+            let de = toml::Deserializer::parse(&text)
+                .map_err(|e| anyhow!("{spec}: {}", one_line(&e.to_string())))?;
+            serde_path_to_error::deserialize::<_, Doc>(de).map_err(|e| {
+                let path = match e.path().to_string() {
+                    root if root == "." => String::new(),
+                    path => format!("{path}: "),
+                };
+                anyhow!("{spec}: {path}{}", one_line(&e.into_inner().to_string()))
+            })?
+        }
+        "json" => {
+            let doc = from_json::<JsonDoc>(&text).map_err(|e| {
+                // A bare array of keys: its `[i]` is `keys[i]`, as in the object form.
+                let e = if e.path.starts_with('[') {
+                    e.within("keys")
+                } else {
+                    e
+                };
+                anyhow!("{spec}: {e}")
+            })?;
+            doc.0
+        }
         other => bail!("{spec}: key files must end in .toml or .json (got '.{other}')"),
     };
     parse(doc, spec)
 }
 
+/// `s` (a TOML error, drawn over several lines) on one line.
 fn one_line(s: &str) -> String {
     s.lines()
         .map(str::trim)
@@ -108,11 +156,10 @@ fn one_line(s: &str) -> String {
         .join(" ")
 }
 
+/// The keys of `doc` (read from `source`) as rotations, checked: at least two, times on
+/// all or none, each key exactly one form.
 fn parse(doc: Doc, source: &str) -> Result<Keys> {
-    let default_order: EulerOrder = match &doc.order {
-        Some(o) => o.parse().context("field 'order'")?,
-        None => EulerOrder::DAM,
-    };
+    let default_order = doc.order.map_or(EulerOrder::DAM, |Order(o)| o);
     if doc.keys.len() < 2 {
         bail!("{source}: need at least 2 keys, found {}", doc.keys.len());
     }
@@ -135,10 +182,7 @@ fn parse(doc: Doc, source: &str) -> Result<Keys> {
             }
             (None, None, Some(q), None) => Quat::from_array(q).normalize().with_context(|| at("quat"))?,
             (None, None, None, Some(e)) => {
-                let order = match &k.order {
-                    Some(o) => o.parse().with_context(|| at("order"))?,
-                    None => default_order,
-                };
+                let order = k.order.map_or(default_order, |Order(o)| o);
                 if e.iter().any(|v| !v.is_finite()) {
                     bail!("{} is not finite", at("euler"));
                 }

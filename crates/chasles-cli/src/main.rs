@@ -21,6 +21,7 @@ mod choice;
 mod convert;
 mod device;
 mod interp;
+mod json;
 mod keyfile;
 mod output;
 mod picture_args;

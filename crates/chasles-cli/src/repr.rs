@@ -4,10 +4,18 @@
 //! Every value is read into a unit dual quaternion (a rotation is one with no translation),
 //! then written out in the target representation. Quaternions are `[w, x, y, z]`, matrices
 //! row-major, angles in radians, dual quaternions `[w, x, y, z, wε, xε, yε, zε]`.
+//!
+//! In JSON a value is a serde-derived type ([`MotionJson`], [`MotionFields`]) read through
+//! `serde_path_to_error` ([`crate::json`]): every error names the path of the bad field
+//! (`rotation[3]`, `screw.axis`), unknown fields are refused, and so is text after the value.
 
+use crate::json::{from_json_line, FieldError, Numbers, Order};
 use anyhow::{anyhow, bail, Context, Result};
 use chasles::{DualQuat, EulerOrder, Mat3, Mat4, Quat, Screw, Vec3};
-use serde_json::{json, Map, Value};
+use serde::de::value::{MapAccessDeserializer, SeqAccessDeserializer};
+use serde::de::{Deserializer, MapAccess, SeqAccess, Visitor};
+use serde::Deserialize;
+use serde_json::{json, Value};
 use std::fmt;
 use std::str::FromStr;
 
@@ -211,108 +219,247 @@ pub fn motion_from_numbers(repr: Repr, v: &[f64]) -> Result<Motion> {
     })
 }
 
-fn json_numbers(v: &Value, field: &str) -> Result<Vec<f64>> {
-    let mut out = Vec::new();
-    fn walk(v: &Value, field: &str, out: &mut Vec<f64>) -> Result<()> {
-        match v {
-            Value::Number(n) => {
-                out.push(
-                    n.as_f64()
-                        .ok_or_else(|| anyhow!("field '{field}': {n} is not a finite number"))?,
-                );
-                Ok(())
+/// The forms a JSON object may take, for messages.
+const FORMS: &str =
+    "quat, rotation (+ translation), matrix, dq, euler (+ order), axis (+ angle), rotvec, screw";
+
+/// A rigid motion as a JSON object names it: exactly one of `{"quat": [w,x,y,z]}`,
+/// `{"rotation": [w,x,y,z], "translation"?: [x,y,z]}`, `{"matrix": …}` (3×3 or 4×4, rows or
+/// flat), `{"dq": [8 numbers]}`, `{"euler": [a,b,c], "order": "xyz"}`, `{"axis": [x,y,z],
+/// "angle": a}`, `{"rotvec": [x,y,z]}` or `{"screw": {"axis", "point", "angle",
+/// "translation"}}`. Unknown fields are refused; so are two forms at once and a companion
+/// (`translation`, `order`, `angle`) without its form. Numbers may be nested
+/// ([`Numbers`]). The fields `convert --jsonl` writes besides (`gimbal_lock`, a screw's
+/// `moment` and `pitch`) are read and ignored, so its output reads back.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MotionFields {
+    /// `[w, x, y, z]`.
+    quat: Option<Numbers>,
+    /// `[w, x, y, z]`, optionally with `translation`.
+    rotation: Option<Numbers>,
+    /// `[x, y, z]`, applied after `rotation`.
+    translation: Option<Numbers>,
+    /// 9 or 16 numbers row-major, as rows or flat.
+    matrix: Option<Numbers>,
+    /// `[w, x, y, z, wε, xε, yε, zε]`.
+    dq: Option<Numbers>,
+    /// Three angles in radians, in `order`.
+    euler: Option<Numbers>,
+    /// The Euler order of `euler`.
+    order: Option<Order>,
+    /// As `convert --to euler:…` writes it, beside `euler`; ignored.
+    gimbal_lock: Option<bool>,
+    /// The rotation axis of `angle`.
+    axis: Option<Numbers>,
+    /// The angle about `axis`, radians.
+    angle: Option<Numbers>,
+    /// Axis times angle.
+    rotvec: Option<Numbers>,
+    /// A screw motion.
+    screw: Option<ScrewFields>,
+}
+
+/// A screw motion in JSON: the axis direction, a point on it, the angle about it and the
+/// slide along it. `moment` and `pitch`, which `convert --to screw` writes and which follow
+/// from the others, are read and ignored.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ScrewFields {
+    /// The axis direction.
+    axis: Numbers,
+    /// A point on the axis.
+    point: Numbers,
+    /// The rotation angle about the axis, radians.
+    angle: Numbers,
+    /// The slide along the axis.
+    translation: Numbers,
+    /// The axis's moment, point × axis; ignored.
+    #[serde(rename = "moment")]
+    _moment: Option<Numbers>,
+    /// translation / angle (null for a pure translation); ignored.
+    #[serde(rename = "pitch")]
+    _pitch: Option<f64>,
+}
+
+/// `e` (from [`motion_from_numbers`]) as the error of the field at `path`.
+fn at(path: &str) -> impl Fn(anyhow::Error) -> FieldError + '_ {
+    move |e| FieldError::new(path, format!("{e:#}"))
+}
+
+impl MotionFields {
+    /// The motion this object gives; errors name the field (`rotation`, `screw.axis`).
+    pub fn motion(self) -> Result<Motion, FieldError> {
+        let (rotation, euler, axis) = (
+            self.rotation.is_some(),
+            self.euler.is_some(),
+            self.axis.is_some(),
+        );
+        for (field, given, form, form_given) in [
+            (
+                "translation",
+                self.translation.is_some(),
+                "rotation",
+                rotation,
+            ),
+            ("order", self.order.is_some(), "euler", euler),
+            ("gimbal_lock", self.gimbal_lock.is_some(), "euler", euler),
+            ("angle", self.angle.is_some(), "axis", axis),
+        ] {
+            if given && !form_given {
+                return Err(FieldError::new(
+                    field,
+                    format!("given without `{form}`, which it goes with"),
+                ));
             }
-            Value::Array(a) => a.iter().try_for_each(|x| walk(x, field, out)),
-            other => bail!("field '{field}': expected numbers, found {other}"),
         }
-    }
-    walk(v, field, &mut out)?;
-    Ok(out)
-}
-
-fn field<'a>(o: &'a Map<String, Value>, name: &str) -> Result<&'a Value> {
-    o.get(name).ok_or_else(|| anyhow!("missing field '{name}'"))
-}
-
-/// Reads a motion from a JSON value: an array of numbers in the `--from` representation,
-/// or an object that names its own: `{"quat": [w,x,y,z]}`, `{"rotation": [w,x,y,z],
-/// "translation": [x,y,z]}`, `{"matrix": [[...]]}` (3×3 or 4×4, nested or flat),
-/// `{"dq": [8 numbers]}`, `{"euler": [a,b,c], "order": "xyz"}`, `{"axis": [x,y,z],
-/// "angle": a}`, `{"rotvec": [x,y,z]}`, `{"screw": {"axis", "point", "angle",
-/// "translation"}}`.
-pub fn motion_from_json(v: &Value, from: Option<Repr>) -> Result<Motion> {
-    let o = match v {
-        Value::Array(_) => {
-            let repr = from.ok_or_else(|| anyhow!("a bare array needs --from to say what it is; or give an object such as {{\"quat\": [1, 0, 0, 0]}}"))?;
-            return motion_from_numbers(repr, &json_numbers(v, "value")?);
+        let forms = [
+            ("quat", self.quat.is_some()),
+            ("rotation", self.rotation.is_some()),
+            ("matrix", self.matrix.is_some()),
+            ("dq", self.dq.is_some()),
+            ("euler", self.euler.is_some()),
+            ("axis", self.axis.is_some()),
+            ("rotvec", self.rotvec.is_some()),
+            ("screw", self.screw.is_some()),
+        ];
+        let given: Vec<&str> = forms.iter().filter(|f| f.1).map(|f| f.0).collect();
+        if let [a, b, ..] = given[..] {
+            return Err(FieldError::new(
+                "",
+                format!("conflicting fields `{a}` and `{b}`: give exactly one of {FORMS}"),
+            ));
         }
-        Value::Object(o) => o,
-        other => bail!("expected a JSON array or object, found {other}"),
-    };
-    let nums = |name: &str| -> Result<Vec<f64>> { json_numbers(field(o, name)?, name) };
-    let with_field = |name: &'static str, repr: Repr| -> Result<Motion> {
-        motion_from_numbers(repr, &nums(name)?).with_context(|| format!("field '{name}'"))
-    };
-    if o.contains_key("quat") {
-        with_field("quat", Repr::Quat)
-    } else if o.contains_key("rotation") {
-        let mut v = nums("rotation")?;
-        if v.len() != 4 {
-            bail!(
-                "field 'rotation': expected 4 numbers [w, x, y, z], got {}",
-                v.len()
-            );
-        }
-        match o.get("translation") {
-            Some(t) => {
-                let t = json_numbers(t, "translation")?;
-                if t.len() != 3 {
-                    bail!("field 'translation': expected 3 numbers, got {}", t.len());
+        if let Some(q) = self.quat {
+            motion_from_numbers(Repr::Quat, &q.0).map_err(at("quat"))
+        } else if let Some(r) = self.rotation {
+            let r = r.exactly(4, "rotation", "[w, x, y, z]")?;
+            match self.translation {
+                Some(t) => {
+                    let t = t.exactly(3, "translation", "[x, y, z]")?;
+                    let v: Vec<f64> = r.iter().chain(t).copied().collect();
+                    motion_from_numbers(Repr::Rt, &v).map_err(at("rotation"))
                 }
-                v.extend(t);
-                motion_from_numbers(Repr::Rt, &v)
+                None => motion_from_numbers(Repr::Quat, r).map_err(at("rotation")),
             }
-            None => motion_from_numbers(Repr::Quat, &v).context("field 'rotation'"),
-        }
-    } else if o.contains_key("matrix") {
-        with_field("matrix", Repr::Matrix)
-    } else if o.contains_key("dq") {
-        with_field("dq", Repr::Dq)
-    } else if o.contains_key("euler") {
-        let order: EulerOrder = match o.get("order") {
-            Some(Value::String(s)) => s.parse().context("field 'order'")?,
-            Some(other) => bail!("field 'order': expected a string such as \"xyz\", found {other}"),
-            None => bail!("missing field 'order' (e.g. \"xyz\" extrinsic, \"XYZ\" intrinsic)"),
-        };
-        with_field("euler", Repr::Euler(order))
-    } else if o.contains_key("axis") {
-        let mut v = nums("axis")?;
-        if v.len() != 3 {
-            bail!("field 'axis': expected 3 numbers, got {}", v.len());
-        }
-        v.extend(nums("angle")?);
-        motion_from_numbers(Repr::AxisAngle, &v)
-    } else if o.contains_key("rotvec") {
-        with_field("rotvec", Repr::RotVec)
-    } else if let Some(s) = o.get("screw") {
-        let s = s
-            .as_object()
-            .ok_or_else(|| anyhow!("field 'screw': expected an object"))?;
-        let mut v = Vec::new();
-        for (name, n) in [("axis", 3), ("point", 3), ("angle", 1), ("translation", 1)] {
-            let x = json_numbers(field(s, name).context("field 'screw'")?, name)?;
-            if x.len() != n {
-                bail!(
-                    "field 'screw.{name}': expected {n} number(s), got {}",
-                    x.len()
-                );
+        } else if let Some(m) = self.matrix {
+            motion_from_numbers(Repr::Matrix, &m.0).map_err(at("matrix"))
+        } else if let Some(d) = self.dq {
+            motion_from_numbers(Repr::Dq, &d.0).map_err(at("dq"))
+        } else if let Some(e) = self.euler {
+            let Order(order) = self.order.ok_or_else(|| {
+                FieldError::new(
+                    "",
+                    "missing field `order` (e.g. \"xyz\" extrinsic, \"XYZ\" intrinsic)",
+                )
+            })?;
+            motion_from_numbers(Repr::Euler(order), &e.0).map_err(at("euler"))
+        } else if let Some(a) = self.axis {
+            let a = a.exactly(3, "axis", "[x, y, z]")?;
+            let angle = self
+                .angle
+                .ok_or_else(|| FieldError::new("", "missing field `angle` (radians)"))?;
+            let angle = angle.exactly(1, "angle", "")?;
+            let v: Vec<f64> = a.iter().chain(angle).copied().collect();
+            motion_from_numbers(Repr::AxisAngle, &v).map_err(at("axis"))
+        } else if let Some(r) = self.rotvec {
+            motion_from_numbers(Repr::RotVec, &r.0).map_err(at("rotvec"))
+        } else if let Some(s) = self.screw {
+            let mut v = Vec::with_capacity(8);
+            for (name, x, n) in [
+                ("screw.axis", &s.axis, 3),
+                ("screw.point", &s.point, 3),
+                ("screw.angle", &s.angle, 1),
+                ("screw.translation", &s.translation, 1),
+            ] {
+                v.extend(x.exactly(n, name, "")?);
             }
-            v.extend(x);
+            motion_from_numbers(Repr::Screw, &v).map_err(at("screw"))
+        } else {
+            Err(FieldError::new(
+                "",
+                format!("expected one of the fields {FORMS}"),
+            ))
         }
-        motion_from_numbers(Repr::Screw, &v)
-    } else {
-        bail!("unrecognized object: expected one of the keys quat, rotation (+ translation), matrix, dq, euler (+ order), axis (+ angle), rotvec, screw")
     }
+}
+
+/// A rigid motion that must be a JSON object ([`MotionFields`]), as blend's transforms are.
+#[derive(Debug)]
+pub struct MotionObject(pub MotionFields);
+
+impl<'de> Deserialize<'de> for MotionObject {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        /// Accepts an object only, saying what one looks like otherwise.
+        struct V;
+        impl<'de> Visitor<'de> for V {
+            type Value = MotionObject;
+            fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                f.write_str("an object such as {\"rotation\": [w,x,y,z], \"translation\": [x,y,z]}")
+            }
+            fn visit_map<A: MapAccess<'de>>(self, map: A) -> Result<MotionObject, A::Error> {
+                MotionFields::deserialize(MapAccessDeserializer::new(map)).map(MotionObject)
+            }
+        }
+        d.deserialize_map(V)
+    }
+}
+
+/// A rigid motion as one JSON value: a bare array of numbers in the `--from`
+/// representation (nested arrays read flat), or an object that names its form
+/// ([`MotionFields`]).
+#[derive(Debug)]
+pub enum MotionJson {
+    /// A bare array.
+    Numbers(Numbers),
+    /// An object (boxed: it is large beside a bare array).
+    Object(Box<MotionFields>),
+}
+
+impl<'de> Deserialize<'de> for MotionJson {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        /// An array or an object; the path into either is kept.
+        struct V;
+        impl<'de> Visitor<'de> for V {
+            type Value = MotionJson;
+            fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                f.write_str("an array of numbers or an object such as {\"quat\": [1, 0, 0, 0]}")
+            }
+            fn visit_seq<A: SeqAccess<'de>>(self, seq: A) -> Result<MotionJson, A::Error> {
+                Numbers::deserialize(SeqAccessDeserializer::new(seq)).map(MotionJson::Numbers)
+            }
+            fn visit_map<A: MapAccess<'de>>(self, map: A) -> Result<MotionJson, A::Error> {
+                MotionFields::deserialize(MapAccessDeserializer::new(map))
+                    .map(|o| MotionJson::Object(Box::new(o)))
+            }
+        }
+        d.deserialize_any(V)
+    }
+}
+
+impl MotionJson {
+    /// The motion this value gives; `from` says what a bare array is.
+    pub fn motion(self, from: Option<Repr>) -> Result<Motion, FieldError> {
+        match self {
+            MotionJson::Object(o) => o.motion(),
+            MotionJson::Numbers(v) => {
+                let repr = from.ok_or_else(|| {
+                    FieldError::new(
+                        "",
+                        "a bare array needs --from to say what it is; or give an object such as {\"quat\": [1, 0, 0, 0]}",
+                    )
+                })?;
+                motion_from_numbers(repr, &v.0).map_err(at(""))
+            }
+        }
+    }
+}
+
+/// Reads a motion from one line of JSON lines ([`MotionJson`]): `from` says what a bare
+/// array is. Errors name the path of the bad field and the column; text after the value is
+/// refused.
+pub fn motion_from_json_line(text: &str, from: Option<Repr>) -> Result<Motion, FieldError> {
+    from_json_line::<MotionJson>(text)?.motion(from)
 }
 
 /// A converted value, ready to print as text or JSON.

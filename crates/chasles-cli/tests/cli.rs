@@ -633,6 +633,14 @@ fn interp_key_files_json_output_and_errors() {
         ("zeroq.json", "[{\"quat\": [0, 0, 0, 0]}, {\"quat\": [1, 0, 0, 0]}]", "keys[0].quat"),
         ("one.json", "[{\"quat\": [1, 0, 0, 0]}]", "at least 2 keys"),
         ("keys.txt", "", "must end in .toml or .json"),
+        // Serde types read through serde_path_to_error: the path of a bad or misspelt field.
+        ("typo.toml", "[[keys]]\nangle = 1.0\naxis = [1, 3, 0]\n[[keys]]\nquat = [1, 0, 0, 0]\ntine = 2\n", "keys[1].tine: TOML parse error at line 6"),
+        ("type.toml", "[[keys]]\nangle = 1.0\naxis = [1, 3, 0]\n[[keys]]\nquat = [1, 0, \"a\", 0]\n", "keys[1].quat[2]"),
+        ("order.toml", "order = \"xxy\"\n[[keys]]\nquat = [1, 0, 0, 0]\n[[keys]]\nquat = [1, 0, 0, 0]\n", "order: TOML parse error"),
+        ("typo2.json", "[{\"quat\": [1, 0, 0, 0]}, {\"quat\": [1, 0, 0, 0], \"tim\": 2}]", "keys[1].tim: unknown field `tim`"),
+        ("type.json", "{\"keys\": [{\"quat\": [1, 0, 0, 0]}, {\"euler\": [1, true, 0]}]}", "keys[1].euler[1]: invalid type: boolean `true`"),
+        ("order.json", "{\"keys\": [{\"quat\": [1, 0, 0, 0]}, {\"euler\": [1, 0, 0], \"order\": \"xxy\"}]}", "keys[1].order: unknown Euler order"),
+        ("trail.json", "[{\"quat\": [1, 0, 0, 0]}, {\"quat\": [1, 0, 0, 0]}] []", "not valid JSON: trailing characters"),
     ];
     for (name, text, needle) in cases {
         let path = dir.path().join(name);
@@ -824,11 +832,11 @@ fn blend_errors_name_the_case_and_field() {
             r#"{"transforms": [{"matrix": [[2,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]}], "weights": [1]}"#,
             "not a rigid transformation",
         ),
-        ("dlb", r#"{"weights": [1]}"#, "missing field 'transforms'"),
+        ("dlb", r#"{"weights": [1]}"#, "missing field `transforms`"),
         (
             "sclerp",
             r#"{"from": {"rotation": [1,0,0,0]}, "to": {"rotation": [1,0,0,0]}, "t": 2}"#,
-            "field 't'",
+            "case 0: t: must be in [0, 1], got 2",
         ),
         (
             "sclerp",
@@ -836,6 +844,62 @@ fn blend_errors_name_the_case_and_field() {
             "exactly two",
         ),
         ("dlb", "{not json", "not valid JSON"),
+        // Serde types read through serde_path_to_error: the case and the field's path.
+        (
+            "dlb",
+            r#"[{"transforms": [{"rotation": [1,0,0,0]}], "weights": [1]}, {"transforms": [{"quat": [1,0,0,0]}, {"quat": [1,0,0,0]}, {"rotation": [1,0,0,"x"]}], "weights": [1,1,1]}]"#,
+            "case 1: transforms[2].rotation[3]: invalid type: string \"x\"",
+        ),
+        (
+            "dlb",
+            r#"{"transforms": [{"rotation": [1,0,0,0]}], "weight": [1]}"#,
+            "case 0: weight: unknown field `weight`",
+        ),
+        (
+            "dlb",
+            r#"{"transforms": [{"rotation": [1,0,0,0], "translaton": [1,0,0]}], "weights": [1]}"#,
+            "case 0: transforms[0].translaton: unknown field `translaton`",
+        ),
+        (
+            "dlb",
+            r#"{"transforms": [{"quat": [1,0,0,0], "rotation": [1,0,0,0]}], "weights": [1]}"#,
+            "case 0: transforms[0]: conflicting fields `quat` and `rotation`",
+        ),
+        (
+            "dlb",
+            r#"{"transforms": [{"quat": [1,0,0,0], "translation": [1,0,0]}], "weights": [1]}"#,
+            "case 0: transforms[0].translation: given without `rotation`",
+        ),
+        (
+            "dlb",
+            r#"{"transforms": [[1,0,0,0]], "weights": [1]}"#,
+            "case 0: transforms[0]: invalid type: sequence, expected an object",
+        ),
+        (
+            "sclerp",
+            r#"{"from": {"rotation": [1,0,0,0]}, "to": {"screw": {"axis": [0,0,1], "point": [0,0], "angle": 1, "translation": 0}}, "t": 0.5}"#,
+            "case 0: to.screw.point: expected 3 numbers, got 2",
+        ),
+        (
+            "sclerp",
+            r#"{"from": {"rotation": [1,0,0,0]}, "to": {"rotation": [1,0,0,0]}}"#,
+            "case 0: missing field `t`",
+        ),
+        (
+            "sclerp",
+            r#"{"from": {"rotation": [1,0,0,0]}, "to": {"rotation": [1,0,0,0]}, "t": 0.5, "weights": [1, 1]}"#,
+            "case 0: conflicting fields `weights` and `from`",
+        ),
+        (
+            "dlb",
+            r#"{"transforms": [{"rotation": [1,0,0,0]}], "weights": [1], "center": [0, 0]}"#,
+            "case 0: center: invalid length 2",
+        ),
+        (
+            "dlb",
+            r#"{"transforms": [{"rotation": [1,0,0,0]}], "weights": [1]} {"transforms": []}"#,
+            "not valid JSON: trailing characters",
+        ),
         (
             "slerpy",
             "{}",
@@ -847,8 +911,92 @@ fn blend_errors_name_the_case_and_field() {
         let err = String::from_utf8_lossy(&o.stderr);
         assert!(!o.status.success(), "{input}");
         assert!(err.contains(needle), "{input}: {err}");
+        assert_eq!(
+            err.trim().lines().count(),
+            1,
+            "{input}: not one line: {err}"
+        );
         assert!(o.stdout.is_empty(), "no partial output");
     }
+}
+
+#[test]
+fn json_lines_name_the_line_and_the_field() {
+    let input = [
+        r#"{"quatt": [1, 0, 0, 0]}"#,
+        r#"{"rotation": [1, 0, 0, "a"], "translation": [1, 2, 3]}"#,
+        r#"{"quat": [1, 0, 0, 0]} {"quat": [1, 0, 0, 0]}"#,
+        r#"{"matrix": [[1, 0, 0], [0, 1, 0], [0, 0, null]]}"#,
+        r#"{"euler": [0, 0, 0], "order": "xxy"}"#,
+        r#"{"rotvec": [0, 0, 1], "angle": 1}"#,
+        r#"{"screw": {"axis": [0, 0, 1], "point": [0, 0, 0], "angle": 1}}"#,
+        r#"{"axis": [0, 0, 1], "angle": 1}"#,
+    ]
+    .join("\n");
+    let o = with_stdin(&["convert", "--jsonl", "--to", "quat"], &input);
+    assert_eq!(o.status.code(), Some(1));
+    let lines: Vec<serde_json::Value> = String::from_utf8(o.stdout)
+        .unwrap()
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert_eq!(lines.len(), 8, "one output line per input line");
+    let want = [
+        "quatt: unknown field `quatt`",
+        "rotation[3]: invalid type: string \"a\", expected a number",
+        "not valid JSON: trailing characters at column 24",
+        "matrix[2][2]: invalid type: null",
+        "order: unknown Euler order",
+        "angle: given without `axis`",
+        "screw: missing field `translation`",
+    ];
+    for (k, w) in want.iter().enumerate() {
+        assert_eq!(lines[k]["line"], k + 1, "{:?}", lines[k]);
+        let e = lines[k]["error"].as_str().unwrap();
+        assert!(e.starts_with(w), "line {}: {e}", k + 1);
+    }
+    assert!(lines[7]["quat"].is_array(), "a good line after bad ones");
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(stderr.lines().count(), 7, "{stderr}");
+    assert!(
+        stderr.contains("error: line 2: rotation[3]: invalid type"),
+        "{stderr}"
+    );
+}
+
+#[test]
+fn json_output_of_convert_reads_back_as_input() {
+    // convert --jsonl writes the fields it reads, plus gimbal_lock and a screw's moment and
+    // pitch: each is accepted back (and ignored), giving the same motion.
+    let value =
+        r#"{"rotation": [0.7071067811865476, 0, 0, 0.7071067811865476], "translation": [1, 2, 3]}"#;
+    let dq = stdout(&with_stdin(&["convert", "--jsonl", "--to", "dq"], value));
+    for to in ["screw", "rt", "dq", "matrix"] {
+        let written = stdout(&with_stdin(&["convert", "--jsonl", "--to", to], value));
+        let back = stdout(&with_stdin(&["convert", "--jsonl", "--to", "dq"], &written));
+        let (a, b): (serde_json::Value, serde_json::Value) = (
+            serde_json::from_str(&dq).unwrap(),
+            serde_json::from_str(&back).unwrap(),
+        );
+        let num = |v: &serde_json::Value| -> Vec<f64> {
+            v["dq"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|x| x.as_f64().unwrap())
+                .collect()
+        };
+        assert_close(&num(&b), &num(&a), 1e-12);
+    }
+    let euler = stdout(&with_stdin(
+        &["convert", "--jsonl", "--to", "euler:ZYX"],
+        r#"{"quat": [0.9, 0.1, 0.2, 0.3]}"#,
+    ));
+    assert!(euler.contains("gimbal_lock"), "{euler}");
+    let back = stdout(&with_stdin(&["convert", "--jsonl", "--to", "quat"], &euler));
+    let q = numbers(&back);
+    let n = (0.81f64 + 0.01 + 0.04 + 0.09).sqrt();
+    assert_close(&q, &[0.9 / n, 0.1 / n, 0.2 / n, 0.3 / n], 1e-12);
 }
 
 #[test]
