@@ -225,5 +225,61 @@ fn figure_1(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, bench, eight_influences, figure_1);
+/// The skinning job against the per-method functions it replaced, side by side: every
+/// method at 10⁵ vertices on one thread, the palette made once (a job's own cost), into the
+/// packed layout (the kernels' own: no copy), an interleaved vertex buffer of 8 floats a
+/// vertex and split position/normal arrays (both through the stack stage).
+fn job(c: &mut Criterion) {
+    use chasles_skin::fast::{Output, Palette, SkinningJob};
+    let n = 100_000;
+    let rig = synthetic::rig(n, 54, 7);
+    let jt = synthetic::joints(54, 7);
+    let mut out = vec![[0f32; 6]; n];
+    let mut inter = vec![0f32; n * 8];
+    let (mut p, mut nr) = (vec![[0f32; 3]; n], vec![[0f32; 3]; n]);
+    let mut g = c.benchmark_group(format!(
+        "job {n} vertices, 54 joints, 4 influences, 1 thread"
+    ));
+    g.throughput(Throughput::Elements(n as u64));
+    g.sample_size(20);
+    for m in chasles_skin::Method::ALL {
+        let palette = Palette::from_joint_transforms(m, &rig, &jt, false).unwrap();
+        let run = |output: Output<'_>| {
+            SkinningJob {
+                rig: &rig,
+                palette: &palette,
+                output,
+                parallel: false,
+            }
+            .run()
+            .unwrap()
+        };
+        g.bench_function(
+            format!("{} skin_pose (palette made in the run)", m.name()),
+            |b| b.iter(|| skin_pose(&rig, &jt, m, black_box(&mut out), false).unwrap()),
+        );
+        g.bench_function(format!("{} job, packed", m.name()), |b| {
+            b.iter(|| run(Output::Packed(black_box(&mut out))))
+        });
+        g.bench_function(format!("{} job, interleaved stride 8", m.name()), |b| {
+            b.iter(|| {
+                run(Output::Interleaved {
+                    data: black_box(&mut inter),
+                    stride: 8,
+                })
+            })
+        });
+        g.bench_function(format!("{} job, split", m.name()), |b| {
+            b.iter(|| {
+                run(Output::Split {
+                    positions: black_box(&mut p),
+                    normals: black_box(&mut nr),
+                })
+            })
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, bench, eight_influences, figure_1, job);
 criterion_main!(benches);

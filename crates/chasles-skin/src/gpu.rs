@@ -50,6 +50,16 @@ pub enum GpuError {
 
 const WORKGROUP: u32 = 64;
 
+/// The WGSL override constants of DIB's shader: the CPU's precision, stall factor and most
+/// updates (`skin.wgsl` writes none of them).
+fn dib_constants() -> [(&'static str, f64); 3] {
+    [
+        ("dib_precision", f64::from(crate::skinning::DIB_PRECISION)),
+        ("dib_stall", chasles::blend::STALL_FACTOR),
+        ("dib_updates", crate::skinning::DIB_UPDATES as f64),
+    ]
+}
+
 /// A rig uploaded to a GPU, ready to skin pose after pose.
 pub struct GpuSkinner {
     device: wgpu::Device,
@@ -258,13 +268,18 @@ impl GpuSkinner {
             push_constant_ranges: &[],
         });
         let module = device.create_shader_module(wgpu::include_wgsl!("gpu/skin.wgsl"));
+        // DIB's stopping rule, from the constants the CPU paths read.
+        let constants = dib_constants();
         let pipeline = |entry: &str| {
             device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
                 label: Some(entry),
                 layout: Some(&pipeline_layout),
                 module: &module,
                 entry_point: Some(entry),
-                compilation_options: Default::default(),
+                compilation_options: wgpu::PipelineCompilationOptions {
+                    constants: &constants,
+                    ..Default::default()
+                },
                 cache: None,
             })
         };

@@ -245,8 +245,8 @@ fn rigid(m: &Mat4<f32>) -> Mat4<f32> {
     Mat4::from_rotation_translation(&q.to_rotation_matrix(), m.translation())
 }
 
-/// DIB skinning's precision and most updates per vertex, on both CPU paths (the GPU
-/// shader, `gpu/skin.wgsl`, writes the same numbers).
+/// DIB skinning's precision and most updates per vertex, on both CPU paths and on the GPU
+/// (set as the shader's override constants: `gpu/skin.wgsl` writes no number of its own).
 pub const DIB_PRECISION: f32 = 1e-5;
 /// See [`DIB_PRECISION`].
 pub const DIB_UPDATES: usize = 8;

@@ -276,3 +276,24 @@ fn the_skinning_job_runs_on_the_gpu_as_on_the_cpu() {
         Err(GpuError::Rig(_))
     ));
 }
+
+#[test]
+fn the_shader_takes_dib_constants_from_rust() {
+    // The stopping rule is written once: the shader declares overrides and uses no literal.
+    let wgsl = include_str!("../src/gpu/skin.wgsl");
+    for o in [
+        "override dib_precision: f32;",
+        "override dib_stall: f32;",
+        "override dib_updates: u32;",
+    ] {
+        assert!(wgsl.contains(o), "{o}");
+    }
+    let dib = &wgsl[wgsl.find("override dib_precision").unwrap()..];
+    for literal in ["1e-5", "1e-3", "8u", "100.0"] {
+        assert!(
+            !dib.contains(literal),
+            "DIB's shader writes {literal} itself"
+        );
+    }
+    assert_eq!(chasles_skin::skinning::DIB_UPDATES, 8);
+}

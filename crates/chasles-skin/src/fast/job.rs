@@ -177,6 +177,33 @@ fn staged<const K: usize>(
 
 /// One pose skinned into the caller's buffers: `rig` (laid out once), `palette` (made for
 /// this pose, any method), `output`; on all threads when `parallel`. No allocation.
+///
+/// A clip frame after frame into an interleaved vertex buffer of 8 floats a vertex
+/// (position, normal, uv):
+///
+/// ```
+/// use chasles_skin::fast::{FastRig, Output, Palette, SkinningJob};
+/// use chasles_skin::{gltf_load, pose::skinning_matrices, Method, Pose};
+///
+/// let m = chasles_models::FOX;
+/// let rig = gltf_load::load_slice(m.bytes, m.file)?; // or gltf_load::load(path)
+/// let fast = FastRig::<4>::new(&rig)?; // laid out once
+/// let mut palette = Palette::new(Method::Dqs);
+/// let mut vertices = vec![0f32; rig.mesh.positions.len() * 8];
+/// for frame in 0..24 {
+///     let pose = Pose::animated(&rig, 2, frame as f32 / 24.0)?;
+///     palette.update(&fast, &skinning_matrices(&rig, &pose)?, true)?; // in place
+///     SkinningJob {
+///         rig: &fast,
+///         palette: &palette,
+///         output: Output::Interleaved { data: &mut vertices, stride: 8 },
+///         parallel: true,
+///     }
+///     .run()?; // no allocation
+/// }
+/// assert!(vertices.iter().all(|x| x.is_finite()));
+/// # Ok::<(), chasles_skin::SkinError>(())
+/// ```
 #[derive(Debug)]
 pub struct SkinningJob<'a, const K: usize> {
     /// The rig.

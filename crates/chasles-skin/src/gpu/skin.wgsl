@@ -109,8 +109,14 @@ fn store_rigid(i: u32, v: Vertex, r: vec4<f32>, d: vec4<f32>) {
 }
 
 // Dual quaternion iterative blending (Kavan et al. §5): start at DLB, then repeatedly move
-// b by exp(Σ wᵢ log(b* qᵢ)), at most 8 updates, stopping as the CPU does (below 1e-5, or
-// stuck under 100× that). Dual quaternions as (real, dual), quaternions (w, x, y, z).
+// b by exp(Σ wᵢ log(b* qᵢ)), at most dib_updates times, stopping as the CPU does (below
+// dib_precision, or stuck under dib_stall times that). The three are the CPU's own
+// constants (chasles_skin::skinning::DIB_PRECISION, DIB_UPDATES and
+// chasles::blend::STALL_FACTOR), set from Rust when the pipeline is made: none is written
+// here. Dual quaternions as (real, dual), quaternions (w, x, y, z).
+override dib_precision: f32;
+override dib_stall: f32;
+override dib_updates: u32;
 
 struct Dq {
     r: vec4<f32>,
@@ -215,7 +221,7 @@ fn dib(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     var b = dqnormalize(sum);
     var last = 3.0e38;
-    for (var step = 0u; step < 8u; step = step + 1u) {
+    for (var step = 0u; step < dib_updates; step = step + 1u) {
         let bc = Dq(qconj(b.r), qconj(b.d));
         var x = Dq(vec4<f32>(0.0), vec4<f32>(0.0));
         for (var k = 0u; k < 4u; k = k + 1u) {
@@ -230,8 +236,8 @@ fn dib(@builtin(global_invocation_id) id: vec3<u32>) {
             x = Dq(x.r + l.r * wn[k], x.d + l.d * wn[k]);
         }
         let norm = sqrt(dot(x.r, x.r) + dot(x.d, x.d));
-        let converged = norm < 1e-5;
-        let stuck = norm >= last && norm < 1e-3;
+        let converged = norm < dib_precision;
+        let stuck = norm >= last && norm < dib_precision * dib_stall;
         if (converged || stuck) {
             break;
         }

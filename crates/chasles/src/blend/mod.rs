@@ -86,12 +86,17 @@ pub struct Options<T> {
     pub center: Vec3<T>,
 }
 
+/// An iteration whose update no longer shrinks while within this factor of the precision
+/// stops: rounding, not the blend, is setting the update then. The CPU kernels and the GPU
+/// shader (as a WGSL override constant) read this one value.
+pub const STALL_FACTOR: f64 = 100.0;
+
 /// Whether an iteration should go on: the update `norm` is still above `precision`, and
-/// not stuck near it (an update that no longer shrinks while within 100× the precision
-/// means rounding, not the blend, is setting it).
+/// not stuck near it (no smaller than the `last` while within [`STALL_FACTOR`] × the
+/// precision).
 pub(crate) fn keep_going<T: Real>(norm: T, last: T, precision: T) -> bool {
     let converged = norm < precision;
-    let stuck = norm >= last && norm < precision * T::from_f64(100.0);
+    let stuck = norm >= last && norm < precision * T::from_f64(STALL_FACTOR);
     !converged && !stuck && norm.is_finite()
 }
 

@@ -39,6 +39,7 @@ use super::{
     transpose8,
 };
 use crate::skinning::{DIB_PRECISION, DIB_UPDATES};
+use chasles::blend::STALL_FACTOR;
 use std::arch::x86_64::*;
 
 /// A dual quaternion in each lane: w, x, y, z, wε, xε, yε, zε.
@@ -215,7 +216,7 @@ fn exp(x: &Dq) -> Dq {
 
 /// Whether each lane's iteration goes on (`keep_going` of the library): the update's
 /// `norm` is finite, not below the precision, and not stuck (no smaller than the `last`
-/// while within 100× the precision).
+/// while within `STALL_FACTOR` × the precision).
 #[inline]
 #[target_feature(enable = "avx2,fma")]
 fn keep_going(norm: __m256, last: __m256) -> __m256 {
@@ -223,7 +224,7 @@ fn keep_going(norm: __m256, last: __m256) -> __m256 {
     let finite = _mm256_cmp_ps::<_CMP_LT_OQ>(norm, set(f32::INFINITY));
     let stuck = _mm256_and_ps(
         _mm256_cmp_ps::<_CMP_GE_OQ>(norm, last),
-        _mm256_cmp_ps::<_CMP_LT_OQ>(norm, set(DIB_PRECISION * 100.0)),
+        _mm256_cmp_ps::<_CMP_LT_OQ>(norm, set(DIB_PRECISION * STALL_FACTOR as f32)),
     );
     _mm256_andnot_ps(stuck, _mm256_and_ps(above, finite))
 }
