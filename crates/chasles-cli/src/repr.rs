@@ -8,6 +8,10 @@
 //! In JSON a value is a serde-derived type ([`MotionJson`], [`MotionFields`]) read through
 //! `serde_path_to_error` ([`crate::json`]): every error names the path of the bad field
 //! (`rotation[3]`, `screw.axis`), unknown fields are refused, and so is text after the value.
+//!
+//! Past 500 lines because it is one table read both ways — every representation parsed
+//! from numbers and from JSON and printed back — and each form's parse and print sit
+//! together so that a change to a form touches one place.
 
 use crate::json::{from_json_line, FieldError, Numbers, Order};
 use anyhow::{anyhow, bail, Context, Result};

@@ -25,6 +25,7 @@ use crate::pose::JointTransforms;
 use crate::rig::Rig;
 use crate::rotation_centre::{joint_centres, Clusters};
 use chasles::{DualQuat, Vec3};
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::OnceLock;
 
 /// One vertex with K influences (unused slots have weight 0).
@@ -282,11 +283,30 @@ const CHUNK: usize = 4096;
 /// whole blocks and returns how many vertices it did.
 type SimdKernel<const K: usize, J, T> = unsafe fn(&[Vertex<K>], &[J], &T, &mut [Out]) -> usize;
 
-/// Whether the AVX2+FMA kernels run here: x86-64 with both features, and 4 or 8 influences
-/// (the layouts they are written for: whole groups of four weights).
+/// Whether the SIMD kernels may run (they do where the processor has them); see
+/// [`set_simd`].
+static SIMD_ALLOWED: AtomicBool = AtomicBool::new(true);
+
+/// Allows (the default) or forbids the AVX2+FMA kernels for this process: with `false`
+/// every method runs its portable scalar kernel, as on a processor without AVX2 — to test
+/// or measure that fallback on any machine. Takes effect at the next job.
+pub fn set_simd(allowed: bool) {
+    SIMD_ALLOWED.store(allowed, Ordering::Relaxed);
+}
+
+/// Whether jobs on a rig of `k` influences run the SIMD kernels here: x86-64 with AVX2 and
+/// FMA, 4 or 8 influences (the layouts they are written for), and not forbidden by
+/// [`set_simd`].
+pub fn uses_simd(k: usize) -> bool {
+    simd(k)
+}
+
+/// Whether the AVX2+FMA kernels run here: x86-64 with both features, 4 or 8 influences
+/// (the layouts they are written for: whole groups of four weights), and allowed.
 fn simd(k: usize) -> bool {
     #[cfg(target_arch = "x86_64")]
     if (k == 4 || k == 8)
+        && SIMD_ALLOWED.load(Ordering::Relaxed)
         && std::is_x86_feature_detected!("avx2")
         && std::is_x86_feature_detected!("fma")
     {
@@ -444,103 +464,4 @@ fn max_diff(a: &Out, b: &Out) -> f32 {
 }
 
 #[cfg(all(test, target_arch = "x86_64"))]
-mod tests {
-    use super::*;
-    use crate::synthetic;
-
-    /// A SIMD kernel's output on the whole blocks of `rig` (checked to be all of them but
-    /// the last few vertices), and the scalar kernel's on the same vertices.
-    fn both<const K: usize, F: Kernel<K>>(
-        rig: &FastRig<K>,
-        joints: &[F::Joint],
-        kernel: SimdKernel<K, F::Joint, F::Table>,
-    ) -> [Vec<Out>; 2] {
-        let n = rig.vertices.len();
-        let mut simd = vec![[f32::NAN; 6]; n];
-        // SAFETY: the callers check `simd(K)`; the rig's joint indices are below its joint
-        // count, which is `joints.len()`; the table is made from `joints`; `simd` is as
-        // long as the vertices.
-        let done = unsafe { kernel(&rig.vertices, joints, &F::table(joints, n), &mut simd) };
-        assert_eq!(done, n / 8 * 8, "the SIMD kernel did every whole block");
-        simd.truncate(done);
-        let scalar = rig.vertices[..done]
-            .iter()
-            .map(|v| F::vertex(v, joints))
-            .collect();
-        [simd, scalar]
-    }
-
-    /// The largest difference of two outputs, and the share of vertices within `tol`.
-    fn apart(a: &[Out], b: &[Out], tol: f32) -> (f32, f64) {
-        let d: Vec<f32> = a.iter().zip(b).map(|(a, b)| max_diff(a, b)).collect();
-        let within = d.iter().filter(|x| **x <= tol).count() as f64 / d.len() as f64;
-        (d.iter().copied().fold(0f32, f32::max), within)
-    }
-
-    /// 8 influences: the SIMD kernels are the scalar ones (LBS bit for bit, the others to
-    /// rounding; DIB apart only where an update's norm falls on either side of the
-    /// precision), SBS included.
-    #[test]
-    fn the_simd_kernels_take_8_influences() {
-        if !simd(8) {
-            eprintln!("no AVX2+FMA here: nothing to compare");
-            return;
-        }
-        let rig = synthetic::rig_with::<8>(1003, 54, 7);
-        let jt = synthetic::joints(54, 7);
-        let d8 = dual_quats8(&jt);
-        let [a, b] = both::<8, LbsKernel>(&rig, &matrices12(&jt), avx2::lbs);
-        assert_eq!(a, b);
-        let [a, b] = both::<8, DqsKernel>(&rig, &d8, avx2::dqs);
-        assert!(
-            apart(&a, &b, 2e-6).1 == 1.0,
-            "DQS {:?}",
-            apart(&a, &b, 2e-6)
-        );
-        let t = log::rows(&twists(&jt).unwrap());
-        let [a, b] = both::<8, log::LogKernel>(&rig, &t, avx2::log::log);
-        assert!(
-            apart(&a, &b, 2e-6).1 == 1.0,
-            "Log {:?}",
-            apart(&a, &b, 2e-6)
-        );
-        let rows = qlb::rows(&jt.dual_quats, rig.centres());
-        let [a, b] = both::<8, qlb::QlbKernel>(&rig, &rows, avx2::qlb::qlb);
-        assert!(
-            apart(&a, &b, 4e-6).1 == 1.0,
-            "QLB {:?}",
-            apart(&a, &b, 4e-6)
-        );
-        let [a, b] = both::<8, dib::DibKernel>(&rig, &d8, avx2::dib::dib);
-        let (most, within) = apart(&a, &b, 2e-6);
-        assert!(within >= 0.99 && most < 1e-4, "DIB {most} {within}");
-        // SBS: the SIMD kernel against the scalar one about the same cluster centres.
-        let cl = clusters(&rig);
-        let centres = cl.centres(&jt.dual_quats, rig.centres(), false);
-        let padded = qlb::padded(&centres);
-        let mut o = vec![[f32::NAN; 6]; 1003];
-        let table = Antipodes::new(&rows, 1003);
-        // SAFETY: as in `both`, and every cluster index is below `padded.len()`.
-        let done = unsafe {
-            avx2::qlb::sbs(
-                &rig.vertices,
-                &rows,
-                &table,
-                cl.of_vertex(),
-                &padded,
-                &mut o,
-            )
-        };
-        assert_eq!(done, 1000);
-        let want: Vec<Out> = rig.vertices[..done]
-            .iter()
-            .zip(cl.of_vertex())
-            .map(|(v, c)| {
-                let c = centres[*c as usize];
-                qlb::about(v, &qlb::blend(v, &rows), [c.x, c.y, c.z])
-            })
-            .collect();
-        let (most, within) = apart(&o[..done], &want, 4e-6);
-        assert!(within == 1.0, "SBS {most}");
-    }
-}
+mod tests;

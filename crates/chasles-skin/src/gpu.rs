@@ -10,11 +10,11 @@
 //! limit are split into chunks, one dispatch each. Any Vulkan, Metal, DX12 or GL adapter works,
 //! software ones included (Mesa's lavapipe), so the tests run on machines without a GPU.
 
+mod job;
 mod timing;
 
 pub use timing::Clock;
 
-use crate::fast::{Joints, Output, Palette};
 use crate::{JointTransforms, Method, Rig, Skinned};
 use chasles::Vec3;
 use rayon::prelude::*;
@@ -320,101 +320,6 @@ impl GpuSkinner {
         let mut encoder = self.device.create_command_encoder(&Default::default());
         self.encode(&mut encoder, pipeline, None);
         self.queue.submit([encoder.finish()]);
-        Ok(())
-    }
-
-    /// The skinning job on the GPU, as on the CPU ([`crate::fast::SkinningJob`]): the
-    /// palette's joints uploaded as they are (an [`crate::fast::Affine3x4`] or a
-    /// [`crate::fast::UnitDualQuat`] a joint: LBS, DQS and DIB have shaders), the shader run,
-    /// and the skinned vertices read back into the caller's `output` (any layout). An error,
-    /// before anything is uploaded, if the palette or the output does not fit the rig; a
-    /// non-finite position is [`GpuError::NonFinite`].
-    pub fn run(&self, palette: &Palette, output: Output<'_>) -> Result<(), GpuError> {
-        let n = output.vertices()?;
-        let vertices: usize = self.chunks.iter().map(|c| c.vertices).sum();
-        if n != vertices {
-            return Err(GpuError::Rig(crate::SkinError::Count {
-                rig: "the GPU rig".into(),
-                what: "output vertices",
-                expected: vertices,
-                got: n,
-            }));
-        }
-        if palette.joints() != self.joints {
-            return Err(GpuError::JointCount {
-                given: palette.joints(),
-                joints: self.joints,
-            });
-        }
-        let pipeline = match palette.data() {
-            Joints::Lbs(a) => {
-                self.queue
-                    .write_buffer(&self.matrices, 0, bytemuck::cast_slice(a));
-                &self.lbs
-            }
-            Joints::Dqs(d) | Joints::Dib(d) => {
-                self.queue
-                    .write_buffer(&self.dual_quats, 0, bytemuck::cast_slice(d));
-                if palette.method() == Method::Dqs {
-                    &self.dqs
-                } else {
-                    &self.dib
-                }
-            }
-            other => return Err(GpuError::Unsupported(other.method().name())),
-        };
-        let mut encoder = self.device.create_command_encoder(&Default::default());
-        self.encode(&mut encoder, pipeline, None);
-        self.queue.submit([encoder.finish()]);
-        self.read_output(output)
-    }
-
-    /// Brings the last dispatch's vertices back into `output` (checked to hold them all),
-    /// chunk by chunk, copied out on all cores.
-    fn read_output(&self, mut output: Output<'_>) -> Result<(), GpuError> {
-        let mut first = 0;
-        for c in &self.chunks {
-            let size = c.vertices as u64 * 32;
-            let mut encoder = self.device.create_command_encoder(&Default::default());
-            if size > 0 {
-                encoder.copy_buffer_to_buffer(&c.skinned, 0, &self.readback, 0, size);
-            }
-            self.queue.submit([encoder.finish()]);
-            let range = first..first + c.vertices;
-            let bad = self.map_read(&self.readback, size.max(16), |data| {
-                let skinned: &[[f32; 8]] = bytemuck::cast_slice(&data[..size as usize]);
-                let put = |o: &mut [f32], v: &[f32; 8]| {
-                    o[..3].copy_from_slice(&v[..3]);
-                    o[3..6].copy_from_slice(&v[4..7]);
-                };
-                match &mut output {
-                    Output::Packed(o) => o[range.clone()]
-                        .par_iter_mut()
-                        .zip(skinned)
-                        .for_each(|(o, v)| put(o, v)),
-                    Output::Interleaved { data, stride } => data
-                        [range.start * *stride..range.end * *stride]
-                        .par_chunks_mut(*stride)
-                        .zip(skinned)
-                        .for_each(|(o, v)| put(o, v)),
-                    Output::Split { positions, normals } => positions[range.clone()]
-                        .par_iter_mut()
-                        .zip(&mut normals[range.clone()])
-                        .zip(skinned)
-                        .for_each(|((p, n), v)| {
-                            *p = [v[0], v[1], v[2]];
-                            *n = [v[4], v[5], v[6]];
-                        }),
-                }
-                skinned
-                    .par_iter()
-                    .position_first(|v| !v[..3].iter().all(|x| x.is_finite()))
-            })?;
-            if let Some(v) = bad {
-                return Err(GpuError::NonFinite(first + v));
-            }
-            first += c.vertices;
-        }
         Ok(())
     }
 

@@ -112,8 +112,11 @@ pub(super) fn for_chunks<const K: usize>(
         ),
         Output::Interleaved { data, stride } => {
             let each = |(c, (d, v)): (usize, (&mut [f32], &[Vertex<K>]))| {
-                staged(c * CHUNK, v, &chunk, |i, o| {
-                    d[i * stride..i * stride + 6].copy_from_slice(o)
+                let stages = d.chunks_mut(STAGE * stride);
+                staged(c * CHUNK, v, &chunk, stages, |d, o| {
+                    for (d, x) in d.chunks_exact_mut(stride).zip(o) {
+                        d[..6].copy_from_slice(x);
+                    }
                 })
             };
             if parallel {
@@ -132,9 +135,12 @@ pub(super) fn for_chunks<const K: usize>(
             type Part<'p, const K: usize> =
                 ((&'p mut [[f32; 3]], &'p mut [[f32; 3]]), &'p [Vertex<K>]);
             let each = |(c, ((p, n), v)): (usize, Part<'_, K>)| {
-                staged(c * CHUNK, v, &chunk, |i, o| {
-                    p[i] = [o[0], o[1], o[2]];
-                    n[i] = [o[3], o[4], o[5]];
+                let stages = p.chunks_mut(STAGE).zip(n.chunks_mut(STAGE));
+                staged(c * CHUNK, v, &chunk, stages, |(p, n), o| {
+                    for ((p, n), x) in p.iter_mut().zip(n.iter_mut()).zip(o) {
+                        *p = [x[0], x[1], x[2]];
+                        *n = [x[3], x[4], x[5]];
+                    }
                 })
             };
             if parallel {
@@ -156,22 +162,22 @@ pub(super) fn for_chunks<const K: usize>(
     }
 }
 
-/// One chunk through a stack buffer of [`STAGE`] vertices, each vertex handed to
-/// `put(index in the chunk, its output)`.
+/// One chunk through a stack buffer of [`STAGE`] vertices: each stage of `vertices` skinned
+/// into the buffer, then handed with the matching stage of the destination (`stages`, one
+/// item per [`STAGE`] vertices) to `put`.
 #[inline(always)]
-fn staged<const K: usize>(
+fn staged<const K: usize, S>(
     first: usize,
     vertices: &[Vertex<K>],
     chunk: &impl Fn(usize, &mut [Out], &[Vertex<K>]),
-    mut put: impl FnMut(usize, &Out),
+    stages: impl Iterator<Item = S>,
+    mut put: impl FnMut(S, &[Out]),
 ) {
     let mut buf = [[0f32; 6]; STAGE];
-    for (s, v) in vertices.chunks(STAGE).enumerate() {
+    for ((s, v), dst) in vertices.chunks(STAGE).enumerate().zip(stages) {
         let o = &mut buf[..v.len()];
         chunk(first + s * STAGE, o, v);
-        for (i, x) in o.iter().enumerate() {
-            put(s * STAGE + i, x);
-        }
+        put(dst, o);
     }
 }
 

@@ -29,6 +29,10 @@
 //! 6.16–6.17) and [`SpringConfig::spring`] (the same with key weight c_k = 1.3, Figure
 //! 6.20). The result is normalized to unit quaternions at the end; the report regards
 //! normalizing *during* the descent as cheating, and so do we.
+//!
+//! Past 500 lines because the energy, its analytic gradient and the descent that uses them
+//! are one algorithm whose parts must change together (a term added to F needs its
+//! gradient beside it); the configuration and presets are a quarter of it.
 
 use super::slerp::slerp;
 use super::timing::{self, Timing};
