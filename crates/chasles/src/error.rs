@@ -155,7 +155,7 @@ pub enum Error {
     UnknownEulerOrder(String),
 }
 
-/// Result with the crate's [`Error`].
+/// Result with the crate's [`Error`](enum@Error).
 pub type Result<T> = core::result::Result<T, Error>;
 
 /// Returns `Err(NonFinite)` unless every value is finite.

@@ -2,7 +2,7 @@
 //!
 //! Two-key methods, applied interval by interval: [`lin_euler`] (eq. 6.1), [`lin_mat`]
 //! (eq. 6.2), [`lerp`] (eq. 6.3), [`slerp`] (eq. 6.4 and 6.13). Curves over many keys:
-//! [`squad`] (Definition 17, eq. 6.14–6.16) and [`spring`] (§6.3.7: curvature minimized by
+//! [`squad`] (Definition 17, eq. 6.14–6.16) and [`spring`](mod@spring) (§6.3.7: curvature minimized by
 //! gradient descent). [`timing`] shares the frames among the intervals (§6.2). The
 //! report's example key sets are in [`examples`].
 //!
