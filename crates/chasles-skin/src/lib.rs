@@ -1,11 +1,23 @@
 //! # chasles-skin — skeletal skinning with every rigid blend
 //!
 //! The case study of Kavan et al. 2006, §6, on real rigged meshes: a [`rig::Rig`] (mesh,
-//! node hierarchy, skin, per-vertex influences, animations) loaded from glTF 2.0
-//! ([`gltf_load`]) or a plain JSON format ([`json_rig`]), posed ([`pose`]), and deformed by [`skinning`] with linear blend
-//! skinning, dual quaternion skinning and the other blends of `chasles::blend`. The
-//! candy-wrapper artifact is measured on a twisted cylinder built in code ([`cylinder`]).
-//! Deformed meshes are written as OBJ or PLY ([`writers`]).
+//! node hierarchy, skin, per-vertex influences, animations; built and checked once by
+//! [`Rig::new`]) loaded from glTF 2.0 ([`gltf_load`], from a file or bytes) or a plain JSON
+//! format ([`json_rig`]), posed ([`pose`]: clips sampled by the glTF rules), and deformed by
+//! linear blend skinning, dual quaternion skinning, DIB, Log, decomposed QLB and SBS:
+//!
+//! * [`skinning`] — the reference path, each method as the papers write it;
+//! * [`fast`] — the fast path: a rig laid out once ([`fast::FastRig`], 4 or 8 influences),
+//!   a per-method [`fast::Palette`] of `#[repr(C)]` joint types for each pose, and one
+//!   [`fast::SkinningJob`] into the caller's buffers (packed, interleaved, split), AVX2+FMA
+//!   kernels chosen at run time with a portable fallback, all cores;
+//! * `gpu` (feature `gpu`) — WGSL compute shaders for LBS, DQS and DIB through wgpu, taking
+//!   the same palette and output.
+//!
+//! The candy-wrapper artifact is measured on a twisted cylinder built in code
+//! ([`cylinder`]), linear blending's volume loss by [`volume`]; deformed meshes are written
+//! whole or not at all as OBJ, PLY, glTF or JSON ([`writers`]). Every error is a
+//! [`SkinError`] variant naming the file, item or field.
 
 #![warn(missing_docs)]
 
