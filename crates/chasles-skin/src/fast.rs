@@ -63,13 +63,20 @@ pub use skinner::{skin_pose, Skinner};
 
 /// A rig laid out for the fast path. Its joint indices are checked on construction (the
 /// SIMD kernels rely on it), so the fields are private.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone)]
 pub struct FastRig<const K: usize> {
     vertices: Vec<Vertex<K>>,
     /// Each joint's bind-pose origin (decomposed QLB and SBS rotate about these).
     centres: Vec<Vec3<f32>>,
     /// SBS's vertex clusters, made on first use.
     clusters: OnceLock<Clusters>,
+}
+
+/// Two layouts are equal when their vertices and joint origins are: the clusters are a cache.
+impl<const K: usize> PartialEq for FastRig<K> {
+    fn eq(&self, other: &Self) -> bool {
+        self.vertices == other.vertices && self.centres == other.centres
+    }
 }
 
 /// Output: position and normal per vertex.

@@ -279,8 +279,8 @@ fn from_document(doc: &gltf::Document, buffers: &[Vec<u8>], name: &str) -> Resul
         lists.extend(per_vertex);
         positions.extend(p);
     }
-    let influences = Influences::from_lists(&lists, nj)
-        .map_err(|e| gltf_content(name, "JOINTS/WEIGHTS", e.to_string()))?;
+    // Weight errors keep their type (BadWeights, JointOutOfRange: they name the vertex).
+    let influences = Influences::from_lists(&lists, nj)?;
     if !have_normals || normals.len() != positions.len() {
         normals = compute_normals(&positions, &triangles);
     }

@@ -141,6 +141,51 @@ impl Influences {
         }
         Ok(out)
     }
+    /// Checks rows built by hand (the fields are public): starts from 0, never decreasing,
+    /// ending at the number of joints and weights; every joint below `joints`; every weight
+    /// finite and not negative, each vertex's summing above 0. `rig` names it in errors.
+    pub fn check(&self, joints: usize, rig: &str) -> Result<()> {
+        let total = self.joints.len();
+        let rows_ok = self.start.first() == Some(&0)
+            && self.start.windows(2).all(|w| w[0] <= w[1])
+            && self.start.last().map(|&e| e as usize) == Some(total)
+            && self.weights.len() == total;
+        if !rows_ok {
+            return Err(SkinError::Count {
+                rig: rig.to_string(),
+                what: "influences in the rows (start must run from 0 up to the joints and weights held)",
+                expected: self.start.last().map_or(0, |&e| e as usize),
+                got: total.min(self.weights.len()),
+            });
+        }
+        for v in 0..self.vertices() {
+            let mut sum = 0.0f64;
+            for (joint, w) in self.of(v) {
+                if joint >= joints {
+                    return Err(SkinError::JointOutOfRange {
+                        vertex: v,
+                        joint,
+                        joints,
+                    });
+                }
+                if !w.is_finite() || w < 0.0 {
+                    return Err(SkinError::BadWeights {
+                        vertex: v,
+                        reason: format!("weight {w} for joint {joint} is negative or not finite"),
+                    });
+                }
+                sum += f64::from(w);
+            }
+            if sum <= 0.0 {
+                return Err(SkinError::BadWeights {
+                    vertex: v,
+                    reason: "the weights sum to zero (the vertex is bound to no joint)".into(),
+                });
+            }
+        }
+        Ok(())
+    }
+
     /// Number of vertices.
     pub fn vertices(&self) -> usize {
         self.start.len().saturating_sub(1)
@@ -227,6 +272,7 @@ impl Rig {
             }
         };
         count("influence lists", n, self.influences.vertices())?;
+        self.influences.check(self.joints.len(), &self.name)?;
         count("normals", n, self.mesh.normals.len())?;
         count(
             "inverse bind matrices",

@@ -28,18 +28,18 @@ fn the_scalar_fallback_skins_every_method_as_the_reference_does() {
         skin_pose(&f4, &jt, method, &mut scalar, true).unwrap();
         skin_pose(&f8, &jt, method, &mut scalar8, false).unwrap();
         set_simd(true);
-        for (v, ((s, s8), p)) in scalar.iter().zip(&scalar8).zip(&want.positions).enumerate() {
+        let pn = want.positions.iter().zip(&want.normals);
+        for (v, ((s, s8), (p, nr))) in scalar.iter().zip(&scalar8).zip(pn).enumerate() {
+            let (p, nr) = (p.to_array(), nr.to_array());
             for k in 0..3 {
-                assert!(
-                    (s[k] - p.to_array()[k]).abs() <= 1e-5 * size,
-                    "{} vertex {v}",
-                    method.name()
-                );
-                assert!(
-                    (s8[k] - p.to_array()[k]).abs() <= 1e-5 * size,
-                    "{} K = 8, vertex {v}",
-                    method.name()
-                );
+                for (got, what) in [(s, "K = 4"), (s8, "K = 8")] {
+                    let m = method.name();
+                    assert!(
+                        (got[k] - p[k]).abs() <= 1e-5 * size,
+                        "{m} {what} vertex {v}"
+                    );
+                    assert!((got[3 + k] - nr[k]).abs() <= 1e-4, "{m} {what} normal {v}");
+                }
             }
         }
         if method == Method::Lbs {

@@ -275,6 +275,17 @@ fn the_skinning_job_runs_on_the_gpu_as_on_the_cpu() {
         gpu.run(&dqs, Output::Packed(&mut short)),
         Err(GpuError::Rig(_))
     ));
+    let fox = gltf_load::load_slice(chasles_models::FOX.bytes, "fox").unwrap();
+    let fox = FastRig::<4>::new(&fox).unwrap();
+    let fox_jt = chasles_skin::synthetic::joints(fox.joints(), 2);
+    let other = Palette::from_joint_transforms(Method::Dqs, &fox, &fox_jt, false).unwrap();
+    assert!(matches!(
+        gpu.run(&other, Output::Packed(&mut out)),
+        Err(GpuError::JointCount {
+            given: 24,
+            joints: 19
+        })
+    ));
 }
 
 #[test]

@@ -292,6 +292,19 @@ fn bad_shapes_are_refused_before_anything_is_written() {
     // Joint data made elsewhere, whole: the same palette.
     let rebuilt = Palette::from_joints(&f, Joints::Sbs { joints, centres }).unwrap();
     assert_eq!(rebuilt, sbs_palette);
+    // An empty rig takes an empty buffer of any stride (no chunk size is computed from it).
+    let empty = FastRig::<4>::from_vertices(Vec::new(), f.centres().to_vec()).unwrap();
+    let none = Palette::from_joint_transforms(Method::Lbs, &empty, &jt, false).unwrap();
+    let job = SkinningJob {
+        rig: &empty,
+        palette: &none,
+        output: Output::Interleaved {
+            data: &mut [],
+            stride: usize::MAX,
+        },
+        parallel: true,
+    };
+    assert!(job.run().is_ok());
     // Matrices for another rig.
     assert!(matches!(
         Palette::from_matrices(Method::Lbs, &f, &jt.matrices[1..], false),

@@ -806,3 +806,60 @@ fn rig_new_checks_the_parts_with_typed_errors() {
         Err(SkinError::UnknownFormat { .. })
     ));
 }
+
+#[test]
+fn rig_new_checks_influences_built_by_hand() {
+    use chasles::Mat4;
+    use chasles_skin::{Mesh, Node, Rig, Trs};
+    let mesh = Mesh {
+        positions: vec![Vec3::new(0.0, 0.0, 0.0), Vec3::new(1.0, 0.0, 0.0)],
+        normals: vec![Vec3::new(0.0, 0.0, 1.0); 2],
+        triangles: vec![],
+    };
+    let node = Node {
+        name: "a".into(),
+        parent: None,
+        rest: Trs::default(),
+    };
+    let new = |inf: Influences| {
+        Rig::new(
+            "hand".into(),
+            mesh.clone(),
+            vec![node.clone()],
+            vec![0],
+            vec![Mat4::identity()],
+            inf,
+            vec![],
+        )
+    };
+    let good = Influences::from_lists(&[vec![(0, 1.0)], vec![(0, 1.0)]], 1).unwrap();
+    assert!(new(good.clone()).is_ok());
+    let mut far = good.clone();
+    far.joints[1] = 3;
+    assert!(matches!(
+        new(far),
+        Err(SkinError::JointOutOfRange {
+            vertex: 1,
+            joint: 3,
+            joints: 1
+        })
+    ));
+    let mut backwards = good.clone();
+    backwards.start = vec![0, 2, 1];
+    assert!(matches!(new(backwards), Err(SkinError::Count { .. })));
+    let mut short = good.clone();
+    short.weights.pop();
+    assert!(matches!(new(short), Err(SkinError::Count { .. })));
+    let mut nan = good.clone();
+    nan.weights[0] = f32::NAN;
+    assert!(matches!(
+        new(nan),
+        Err(SkinError::BadWeights { vertex: 0, .. })
+    ));
+    let mut zero = good;
+    zero.weights[1] = 0.0;
+    assert!(matches!(
+        new(zero),
+        Err(SkinError::BadWeights { vertex: 1, .. })
+    ));
+}

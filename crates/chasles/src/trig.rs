@@ -14,8 +14,9 @@
 //!
 //! The polynomials were fitted in 50-digit arithmetic (unweighted least squares at Chebyshev
 //! nodes of the first kind, near-minimax; every coefficient of `ACOS` free, the constant
-//! rounding to exactly 1) on `y ≤ 1.0001` and `|x| ≤ 0.8` by `scripts/fit_trig.py`, which
-//! reproduces the tables bit for bit (`--check`, run in CI); in `f64` they are within about 3 ulp (the
+//! rounding to exactly 1) on `y ≤ 1.0001` and `|x| ≤ 0.8` by `scripts/fit_trig.py`, whose
+//! refit reproduces the tables bit for bit (its `--check`, run in CI, reports that and fails
+//! if the tables' values drift past these bounds); in `f64` they are within about 3 ulp (the
 //! angle) and 1.5 ulp (sin, cos) of the true values there — the tests check this against
 //! the library functions. They are evaluated by Estrin's scheme (short dependency chains),
 //! with fused multiply-adds where the build has them (`fma` target feature), and are generic

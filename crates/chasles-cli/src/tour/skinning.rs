@@ -116,8 +116,18 @@ fn characters_of(s: &mut Section) -> anyhow::Result<Vec<Character>> {
     let Some(dir) = std::env::var_os("CHASLES_DATA") else {
         return Ok(out);
     };
-    let mut files: Vec<std::path::PathBuf> = std::fs::read_dir(&dir)
-        .map_err(|e| anyhow::anyhow!("CHASLES_DATA={}: {e}", dir.to_string_lossy()))?
+    let entries = match std::fs::read_dir(&dir) {
+        Ok(e) => e,
+        Err(e) => {
+            // The built-in characters stay; the extra folder is reported.
+            s.text(format!(
+                "($CHASLES_DATA={} cannot be read, no extra characters: {e})",
+                dir.to_string_lossy()
+            ));
+            return Ok(out);
+        }
+    };
+    let mut files: Vec<std::path::PathBuf> = entries
         .filter_map(|e| e.ok().map(|e| e.path()))
         .filter(|p| {
             matches!(

@@ -89,6 +89,9 @@ pub(super) fn for_chunks<const K: usize>(
     parallel: bool,
     chunk: impl Fn(usize, &mut [Out], &[Vertex<K>]) + Sync,
 ) {
+    if vertices.is_empty() {
+        return; // and no chunk size to compute from a stride
+    }
     match out {
         Output::Packed(o) => {
             let each = |(c, (o, v)): (usize, (&mut [Out], &[Vertex<K>]))| chunk(c * CHUNK, o, v);
@@ -182,7 +185,9 @@ fn staged<const K: usize, S>(
 }
 
 /// One pose skinned into the caller's buffers: `rig` (laid out once), `palette` (made for
-/// this pose, any method), `output`; on all threads when `parallel`. No allocation.
+/// this pose, any method, for this rig: a palette is checked against the rig's joint and
+/// cluster counts, not against which rig made it), `output`; on all threads when `parallel`.
+/// On one thread it allocates nothing; on all, only what rayon's scheduler does.
 ///
 /// A clip frame after frame into an interleaved vertex buffer of 8 floats a vertex
 /// (position, normal, uv):

@@ -273,7 +273,8 @@ impl Palette {
     /// for the others), into vectors whose capacity is reused from the last pose — no
     /// allocation once the first pose has sized them, except SBS's centre solve (the
     /// joints' dual quaternions and per-joint sums, some kilobytes). SBS's centres are
-    /// solved on all threads when `parallel`.
+    /// solved on all threads when `parallel`. On an error the palette is left empty (no job
+    /// takes it) rather than half filled.
     pub fn update<const K: usize>(
         &mut self,
         rig: &FastRig<K>,
@@ -289,7 +290,13 @@ impl Palette {
             Joints::Log(t) => {
                 t.clear();
                 for m in matrices {
-                    t.push(bytemuck::cast(twist_row(&twist_of(m)?)));
+                    match twist_of(m) {
+                        Ok(x) => t.push(bytemuck::cast(twist_row(&x))),
+                        Err(e) => {
+                            t.clear(); // an empty palette, which no job takes
+                            return Err(e);
+                        }
+                    }
                 }
             }
             Joints::Qlb(j) => refill(
