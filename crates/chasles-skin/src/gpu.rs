@@ -394,6 +394,21 @@ impl GpuSkinner {
         out.normals.clear();
         out.positions.reserve(n);
         out.normals.reserve(n);
+        // Split into positions and normals on all cores: one core's copy out of the mapped
+        // buffer is what limits a read-back of millions of vertices.
+        self.read_chunks(|_, skinned| {
+            out.positions
+                .par_extend(skinned.par_iter().map(|v| Vec3::new(v[0], v[1], v[2])));
+            out.normals
+                .par_extend(skinned.par_iter().map(|v| Vec3::new(v[4], v[5], v[6])));
+        })
+    }
+
+    /// Copies each chunk's skinned vertices (8 floats: position, 0, normal, 0) back and hands
+    /// them to `put(index of the chunk's first vertex, vertices)`, in order; then
+    /// [`GpuError::NonFinite`] names the first vertex whose position is not finite.
+    fn read_chunks(&self, mut put: impl FnMut(usize, &[[f32; 8]])) -> Result<(), GpuError> {
+        let mut first = 0;
         for c in &self.chunks {
             let size = c.vertices as u64 * 32;
             let mut encoder = self.device.create_command_encoder(&Default::default());
@@ -401,22 +416,17 @@ impl GpuSkinner {
                 encoder.copy_buffer_to_buffer(&c.skinned, 0, &self.readback, 0, size);
             }
             self.queue.submit([encoder.finish()]);
-            // Split into positions and normals on all cores: one core's copy out of the
-            // mapped buffer is what limits a read-back of millions of vertices.
-            let offset = out.positions.len();
             let bad = self.map_read(&self.readback, size.max(16), |data| {
                 let skinned: &[[f32; 8]] = bytemuck::cast_slice(&data[..size as usize]);
-                out.positions
-                    .par_extend(skinned.par_iter().map(|v| Vec3::new(v[0], v[1], v[2])));
-                out.normals
-                    .par_extend(skinned.par_iter().map(|v| Vec3::new(v[4], v[5], v[6])));
+                put(first, skinned);
                 skinned
                     .par_iter()
                     .position_first(|v| !v[..3].iter().all(|x| x.is_finite()))
             })?;
             if let Some(v) = bad {
-                return Err(GpuError::NonFinite(offset + v));
+                return Err(GpuError::NonFinite(first + v));
             }
+            first += c.vertices;
         }
         Ok(())
     }

@@ -52,6 +52,14 @@
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
+// The integration tests' helpers (tests/common: tolerances, random inputs), for the unit
+// tests too; they name this crate `chasles`.
+#[cfg(test)]
+extern crate self as chasles;
+#[cfg(test)]
+#[path = "../tests/common/mod.rs"]
+mod test_common;
+
 pub mod analysis;
 pub mod blend;
 pub mod convert;

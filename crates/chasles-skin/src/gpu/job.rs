@@ -57,49 +57,31 @@ impl GpuSkinner {
     /// Brings the last dispatch's vertices back into `output` (checked to hold them all),
     /// chunk by chunk, copied out on all cores.
     fn read_output(&self, mut output: Output<'_>) -> Result<(), GpuError> {
-        let mut first = 0;
-        for c in &self.chunks {
-            let size = c.vertices as u64 * 32;
-            let mut encoder = self.device.create_command_encoder(&Default::default());
-            if size > 0 {
-                encoder.copy_buffer_to_buffer(&c.skinned, 0, &self.readback, 0, size);
+        let put = |o: &mut [f32], v: &[f32; 8]| {
+            o[..3].copy_from_slice(&v[..3]);
+            o[3..6].copy_from_slice(&v[4..7]);
+        };
+        self.read_chunks(|first, skinned| {
+            let range = first..first + skinned.len();
+            match &mut output {
+                Output::Packed(o) => o[range]
+                    .par_iter_mut()
+                    .zip(skinned)
+                    .for_each(|(o, v)| put(o, v)),
+                Output::Interleaved { data, stride } => data
+                    [range.start * *stride..range.end * *stride]
+                    .par_chunks_mut(*stride)
+                    .zip(skinned)
+                    .for_each(|(o, v)| put(o, v)),
+                Output::Split { positions, normals } => positions[range.clone()]
+                    .par_iter_mut()
+                    .zip(&mut normals[range])
+                    .zip(skinned)
+                    .for_each(|((p, n), v)| {
+                        *p = [v[0], v[1], v[2]];
+                        *n = [v[4], v[5], v[6]];
+                    }),
             }
-            self.queue.submit([encoder.finish()]);
-            let range = first..first + c.vertices;
-            let bad = self.map_read(&self.readback, size.max(16), |data| {
-                let skinned: &[[f32; 8]] = bytemuck::cast_slice(&data[..size as usize]);
-                let put = |o: &mut [f32], v: &[f32; 8]| {
-                    o[..3].copy_from_slice(&v[..3]);
-                    o[3..6].copy_from_slice(&v[4..7]);
-                };
-                match &mut output {
-                    Output::Packed(o) => o[range.clone()]
-                        .par_iter_mut()
-                        .zip(skinned)
-                        .for_each(|(o, v)| put(o, v)),
-                    Output::Interleaved { data, stride } => data
-                        [range.start * *stride..range.end * *stride]
-                        .par_chunks_mut(*stride)
-                        .zip(skinned)
-                        .for_each(|(o, v)| put(o, v)),
-                    Output::Split { positions, normals } => positions[range.clone()]
-                        .par_iter_mut()
-                        .zip(&mut normals[range.clone()])
-                        .zip(skinned)
-                        .for_each(|((p, n), v)| {
-                            *p = [v[0], v[1], v[2]];
-                            *n = [v[4], v[5], v[6]];
-                        }),
-                }
-                skinned
-                    .par_iter()
-                    .position_first(|v| !v[..3].iter().all(|x| x.is_finite()))
-            })?;
-            if let Some(v) = bad {
-                return Err(GpuError::NonFinite(first + v));
-            }
-            first += c.vertices;
-        }
-        Ok(())
+        })
     }
 }

@@ -242,31 +242,10 @@ fn general<T: Real>(p: DualQuat<T>, q: DualQuat<T>, x: T, d2: T, t: T) -> DualQu
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::test_common::random_rigid;
     use crate::Vec3;
     use rand::rngs::StdRng;
     use rand::{Rng, SeedableRng};
-
-    /// A random rigid transformation: uniform rotation, translation in [−2, 2]³.
-    fn random_rigid(rng: &mut StdRng) -> DualQuat<f64> {
-        let q = loop {
-            let q = Quat::new(
-                rng.random_range(-1.0..1.0),
-                rng.random_range(-1.0..1.0),
-                rng.random_range(-1.0..1.0),
-                rng.random_range(-1.0..1.0),
-            );
-            let n = q.norm();
-            if n > 0.1 && n <= 1.0 {
-                break q / n;
-            }
-        };
-        let t = Vec3::new(
-            rng.random_range(-2.0..2.0),
-            rng.random_range(-2.0..2.0),
-            rng.random_range(-2.0..2.0),
-        );
-        DualQuat::from_rotation_translation(q, t)
-    }
 
     /// The largest difference of two blends, as 8 numbers.
     fn diff(a: DualQuat<f64>, b: DualQuat<f64>) -> f64 {
