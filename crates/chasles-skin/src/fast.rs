@@ -19,6 +19,14 @@
 //! quadratic in the blend, that normalization is one factor 2/‖q0‖² (no square root). The
 //! antipodality signs depend only on the pair (pivot joint, joint), so the SIMD kernel
 //! looks them up in a table made once per pose (`antipodes`).
+//!
+//! The quaternion and dual-quaternion algebra the kernels share — cross products, rotation
+//! by an unnormalized quaternion, DQS's transformation, products, Horner's rule, Log's
+//! exponential — is written once in `lane`, generic over the lane type (`f32` for the scalar
+//! kernels, `__m256` for the AVX2 ones). What stays kernel-specific is the data movement
+//! (loads, blends, transposes, stores) and DIB's per-lane logarithm with its branch-free
+//! angle reduction; Log's AVX2 kernel writes the exponential's steps out in its own order
+//! with the algebra's parts (the generic one inlined there measured 6 % slower).
 
 use crate::error::{Result, SkinError};
 use crate::pose::JointTransforms;
@@ -47,6 +55,7 @@ mod antipodes;
 mod avx2;
 mod dib;
 mod job;
+mod lane;
 mod log;
 mod palette;
 mod qlb;
@@ -237,43 +246,18 @@ fn dqs_vertex<const K: usize>(v: &Vertex<K>, d: &[[f32; 8]]) -> Out {
             b[i] += w * dj[i];
         }
     }
-    // The unit dual quaternion is b / ‖b0‖; every term below is quadratic in b, so the
-    // normalization is one factor s = 2 / ‖b0‖² (no square root, no eight divisions):
-    // p' = p + s (v0 × (v0 × p + w0 p) + w0 vε − wε v0 + v0 × vε), n' = n + s v0 × (v0 × n + w0 n)
-    let s = 2.0 / real_dot(&b, &b);
-    let [w0, x0, y0, z0, we, xe, ye, ze] = b;
-    let [px, py, pz] = v.p;
-    let [tx, ty, tz] = inner([w0, x0, y0, z0], v.p);
-    let qx = px + s * ((y0 * tz - z0 * ty) + (w0 * xe - we * x0 + y0 * ze - z0 * ye));
-    let qy = py + s * ((z0 * tx - x0 * tz) + (w0 * ye - we * y0 + z0 * xe - x0 * ze));
-    let qz = pz + s * ((x0 * ty - y0 * tx) + (w0 * ze - we * z0 + x0 * ye - y0 * xe));
-    let [mx, my, mz] = rotate_scaled([w0, x0, y0, z0], s, v.n);
-    [qx, qy, qz, mx, my, mz]
+    // The unit dual quaternion is b / ‖b0‖; every term is quadratic in b, so the
+    // normalization is one factor 2 / ‖b0‖² (no square root, no eight divisions).
+    lane::transform(b, v.p, v.n)
 }
 
 /// `x + s v × (v × x + w x)` for a quaternion `(w, v)` and `s = 2 / ‖(w, v)‖²`: x rotated by
-/// the unit quaternion `(w, v) / ‖(w, v)‖` with no square root (the normals of DQS, and
-/// QLB's rotation about a centre).
+/// the unit quaternion `(w, v) / ‖(w, v)‖` with no square root (QLB's rotation about a
+/// centre); the lane algebra's [`lane::rotate`] on one vertex.
 #[inline(always)]
 fn rotate_scaled(q: [f32; 4], s: f32, x: [f32; 3]) -> [f32; 3] {
-    let [_, x0, y0, z0] = q;
-    let [nx, ny, nz] = x;
-    let [sx, sy, sz] = inner(q, x);
-    [
-        nx + s * (y0 * sz - z0 * sy),
-        ny + s * (z0 * sx - x0 * sz),
-        nz + s * (x0 * sy - y0 * sx),
-    ]
-}
-
-/// `v × x + w x` for a quaternion `(w, v)`: the inner step of rotating x by it.
-#[inline(always)]
-fn inner([w0, x0, y0, z0]: [f32; 4], [x, y, z]: [f32; 3]) -> [f32; 3] {
-    [
-        y0 * z - z0 * y + w0 * x,
-        z0 * x - x0 * z + w0 * y,
-        x0 * y - y0 * x + w0 * z,
-    ]
+    let [w0, x0, y0, z0] = q;
+    lane::rotate(w0, [x0, y0, z0], s, x)
 }
 
 /// A vertex's output from its position and normal.

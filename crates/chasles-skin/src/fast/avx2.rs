@@ -11,6 +11,7 @@
 //! by a transpose and masked stores. Log, QLB/SBS and DIB are in the submodules; DIB ends
 //! with DQS's transformation (`transform`).
 
+use super::lane::{dot, horner, rotate, taylor, transform, two_over_norm2};
 use super::{Antipodes, Out, Vertex};
 use std::arch::x86_64::*;
 
@@ -71,90 +72,11 @@ unsafe fn blend_one<const K: usize>(vx: &Vertex<K>, db: *const f32) -> __m256 {
     }
 }
 
-/// Component c of `a × b`: `a_j b_k − a_k b_j`, (c, j, k) cyclic, with one fused
-/// multiply-subtract. Shared by the kernels' lane math, which calls it only from AVX2+FMA
-/// code: `inline(always)` (it cannot also carry `target_feature`) puts it and its intrinsics
-/// there.
-#[inline(always)]
-unsafe fn cross(a: [__m256; 3], b: [__m256; 3], c: usize) -> __m256 {
-    unsafe {
-        let (j, k) = ((c + 1) % 3, (c + 2) % 3);
-        _mm256_fmsub_ps(a[j], b[k], _mm256_mul_ps(a[k], b[j]))
-    }
-}
-
-/// `v × x + w x`, lane by lane: the inner step of rotating x by the quaternion (w, v).
-#[inline(always)]
-unsafe fn inner(w: __m256, v: [__m256; 3], x: [__m256; 3]) -> [__m256; 3] {
-    unsafe {
-        let e = |c: usize| _mm256_fmadd_ps(w, x[c], cross(v, x, c));
-        [e(0), e(1), e(2)]
-    }
-}
-
-/// `x + s v × (v × x + w x)`, lane by lane: x rotated by the unit quaternion
-/// `(w, v) / ‖(w, v)‖` given `s = 2 / ‖(w, v)‖²` (no square root).
-#[inline(always)]
-unsafe fn rotate(w: __m256, v: [__m256; 3], s: __m256, x: [__m256; 3]) -> [__m256; 3] {
-    unsafe {
-        let t = inner(w, v, x);
-        let f = |c: usize| _mm256_fmadd_ps(s, cross(v, t, c), x[c]);
-        [f(0), f(1), f(2)]
-    }
-}
-
 /// `[f(0), …, f(7)]`, written out: through `array::from_fn` the kernels' per-vertex blends
 /// stayed calls, one per vertex.
 #[inline(always)]
 fn eight<R>(f: impl Fn(usize) -> R) -> [R; 8] {
     [f(0), f(1), f(2), f(3), f(4), f(5), f(6), f(7)]
-}
-
-/// `Σ x[c] y[c]`, lane by lane, over two equally long runs of components.
-#[inline]
-#[target_feature(enable = "avx2,fma")]
-fn dot(x: &[__m256], y: &[__m256]) -> __m256 {
-    let mut a = _mm256_mul_ps(x[0], y[0]);
-    for c in 1..x.len() {
-        a = _mm256_fmadd_ps(x[c], y[c], a);
-    }
-    a
-}
-
-/// `s = 2 / ‖q‖²` of a quaternion `q` in lanes: the factor by which [`rotate`] and
-/// [`transform`] turn by `q / ‖q‖` without a square root.
-#[inline]
-#[target_feature(enable = "avx2,fma")]
-fn two_over_norm2(q: &[__m256]) -> __m256 {
-    _mm256_div_ps(_mm256_set1_ps(2.0), dot(q, q))
-}
-
-/// `(−1)ᵏ / (2k + first)!` for k = 0, 1, …
-const fn taylor<const N: usize>(first: u32) -> [f32; N] {
-    let mut out = [0f32; N];
-    let mut k = 0;
-    while k < N {
-        let mut f = 1f64;
-        let mut i = 2;
-        while i <= 2 * k as u32 + first {
-            f *= i as f64;
-            i += 1;
-        }
-        out[k] = (if k % 2 == 0 { 1.0 } else { -1.0 } / f) as f32;
-        k += 1;
-    }
-    out
-}
-
-/// `Σ cₖ sᵏ` by Horner's rule with fused multiply-adds.
-#[inline]
-#[target_feature(enable = "avx2,fma")]
-fn horner<const N: usize>(c: &[f32; N], s: __m256) -> __m256 {
-    let mut a = _mm256_set1_ps(c[N - 1]);
-    for k in (0..N - 1).rev() {
-        a = _mm256_fmadd_ps(a, s, _mm256_set1_ps(c[k]));
-    }
-    a
 }
 
 /// `Σ cₖ sᵏ` in f64: the tests' value of a series' f32 coefficients.
@@ -286,39 +208,6 @@ unsafe fn dqs_blocks<const K: usize>(
             store_rows(o, i, transform(b, [px, py, pz], [nx, ny, nz]));
         }
         blocks * 8
-    }
-}
-
-/// Eight positions and normals moved by eight blended dual quaternions `b` (lane by lane,
-/// `[w0, x0, y0, z0, wε, xε, yε, zε]`, not necessarily unit): normalized by `s = 2 / ‖b0‖²`
-/// (see `dqs_vertex`), `p' = p + s (v0 × (v0 × p + w0 p) + w0 vε − wε v0 + v0 × vε)` and
-/// `n' = n + s v0 × (v0 × n + w0 n)`. The last step of DQS and DIB.
-#[inline]
-#[target_feature(enable = "avx2,fma")]
-fn transform(b: [__m256; 8], p: [__m256; 3], n: [__m256; 3]) -> [__m256; 6] {
-    let mul = |a, b| _mm256_mul_ps(a, b);
-    let add = |a, b| _mm256_add_ps(a, b);
-    // a·b + c, a·b − c, c − a·b, each rounded once.
-    let fma = |a, b, c| _mm256_fmadd_ps(a, b, c);
-    let fms = |a, b, c| _mm256_fmsub_ps(a, b, c);
-    let fnma = |a, b, c| _mm256_fnmadd_ps(a, b, c);
-    let s = two_over_norm2(&b[..4]);
-    let [w0, x0, y0, z0, we, xe, ye, ze] = b;
-    let (v0, ve) = ([x0, y0, z0], [xe, ye, ze]);
-    // SAFETY (of the helpers below): this function has AVX2 and FMA.
-    unsafe {
-        let t = inner(w0, v0, p);
-        let q = |c: usize| {
-            let (j, k) = ((c + 1) % 3, (c + 2) % 3);
-            let tr = fnma(
-                v0[k],
-                ve[j],
-                fma(v0[j], ve[k], fms(w0, ve[c], mul(we, v0[c]))),
-            );
-            fma(s, add(cross(v0, t, c), tr), p[c])
-        };
-        let m = rotate(w0, v0, s, n);
-        [q(0), q(1), q(2), m[0], m[1], m[2]]
     }
 }
 

@@ -4,15 +4,14 @@
 //! the sum back by the closed-form exponential — no allocation, rayon over chunks, as for
 //! LBS and DQS; eight vertices at a time with AVX2 and FMA where the processor has them (4 or
 //! 8 influences: `avx2::log`, the exponential's coefficients by their Taylor series, no
-//! trigonometric calls). The scalar kernel runs the reference path's formulas
-//! ([`crate::skinning`]); tests check both against it to 1e-5 on every model and clip.
+//! trigonometric calls). The scalar kernel runs the same exponential (the lane algebra's
+//! `exp_twist`, on one vertex; valid for the logarithm's range θ ≤ π); tests check both
+//! against the reference path to 1e-5 on every model and clip.
 
-use super::{out_of, run, Kernel, Out, Vertex};
+use super::{run, Kernel, Out, Vertex};
 use crate::error::Result;
-use crate::skinning::exp_twist_vertex;
 pub use crate::skinning::twists;
 use chasles::blend::log::Twist;
-use chasles::Vec3;
 
 /// A twist as `[ω, v, 0, 0]`: one 8-float register.
 type Row = [f32; 8];
@@ -26,12 +25,7 @@ fn log_vertex<const K: usize>(v: &Vertex<K>, t: &[Row]) -> Out {
             b[i] += v.w[k] * tj[i];
         }
     }
-    let x = Twist {
-        w: Vec3::new(b[0], b[1], b[2]),
-        v: Vec3::new(b[3], b[4], b[5]),
-    };
-    let (p, n) = exp_twist_vertex(&x, Vec3::from_array(v.p), Vec3::from_array(v.n));
-    out_of(p, n)
+    super::lane::exp_twist([b[0], b[1], b[2]], [b[3], b[4], b[5]], v.p, v.n)
 }
 
 pub(super) struct LogKernel;

@@ -33,10 +33,10 @@
 //! (a positive dual number, which normalizing removes) is left out, and `½ ln‖r0‖²` is taken
 //! as `½ (‖r0‖² − 1)` (r̂ is a product of unit dual quaternions: off by under 1e-14).
 
+use super::super::lane::dqmul;
 use super::super::{Out, Vertex};
 use super::{
-    cross, dot, eight, horner, load_head, store_rows, taylor, transform, transpose4_halves,
-    transpose8,
+    dot, eight, horner, load_head, store_rows, taylor, transform, transpose4_halves, transpose8,
 };
 use crate::skinning::{DIB_PRECISION, DIB_UPDATES};
 use chasles::blend::STALL_FACTOR;
@@ -93,39 +93,6 @@ const fn derivative<const N: usize, const M: usize>(c: [f32; N]) -> [f32; M] {
 #[target_feature(enable = "avx2,fma")]
 fn set(x: f32) -> __m256 {
     _mm256_set1_ps(x)
-}
-
-/// The quaternion product `a b = (a0 b0 − a⃗·b⃗, a0 b⃗ + b0 a⃗ + a⃗ × b⃗)`, lane by lane.
-#[inline]
-#[target_feature(enable = "avx2,fma")]
-fn qmul(a: &[__m256], b: &[__m256]) -> [__m256; 4] {
-    let fnma = _mm256_fnmadd_ps;
-    let (av, bv) = ([a[1], a[2], a[3]], [b[1], b[2], b[3]]);
-    // SAFETY (of `cross`): this function has AVX2 and FMA.
-    let v = |c: usize| unsafe {
-        _mm256_fmadd_ps(a[0], bv[c], _mm256_fmadd_ps(av[c], b[0], cross(av, bv, c)))
-    };
-    [
-        fnma(
-            a[3],
-            b[3],
-            fnma(a[2], b[2], fnma(a[1], b[1], _mm256_mul_ps(a[0], b[0]))),
-        ),
-        v(0),
-        v(1),
-        v(2),
-    ]
-}
-
-/// The dual quaternion product `a b = a0 b0 + ε (a0 bε + aε b0)`, lane by lane.
-#[inline]
-#[target_feature(enable = "avx2,fma")]
-fn dqmul(a: &Dq, b: &Dq) -> Dq {
-    let r = qmul(&a[..4], &b[..4]);
-    let d1 = qmul(&a[..4], &b[4..]);
-    let d2 = qmul(&a[4..], &b[..4]);
-    let d = |c: usize| _mm256_add_ps(d1[c], d2[c]);
-    [r[0], r[1], r[2], r[3], d(0), d(1), d(2), d(3)]
 }
 
 /// The unit dual quaternion of `q` (real part to unit length, dual part made orthogonal
