@@ -1079,7 +1079,11 @@ fn properties_table_and_claims() {
 
 /// A built-in model's file on disk (`chasles skin` takes paths).
 fn gltf(name: &str) -> String {
-    chasles_models::dir().join(name).display().to_string()
+    chasles_models::on_disk()
+        .unwrap()
+        .join(name)
+        .display()
+        .to_string()
 }
 
 #[test]

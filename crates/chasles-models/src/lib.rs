@@ -6,8 +6,10 @@
 //! the repository is read. Each [`Model`] carries its licence and credit, which every
 //! picture of it must show (see this crate's README).
 //!
-//! Load one with `chasles_skin::gltf_load::load_slice(model.bytes, model.file)`; the files
-//! also lie on disk under [`dir`] for tests of the command line, which takes paths.
+//! Load one with `chasles_skin::gltf_load::load_slice(model.bytes, model.file)`; a tool that
+//! takes paths gets a file with [`Model::write_to`] or all of them with [`on_disk`] (tests of
+//! the command line do). No path
+//! is compiled in: the bytes are all there is, wherever the build was made or moved.
 
 #![forbid(unsafe_code)]
 
@@ -38,9 +40,12 @@ impl Model {
         self.file.rsplit_once('.').map_or(self.file, |(s, _)| s)
     }
 
-    /// The file on disk in this crate's `gltf/` folder (for tools that take a path).
-    pub fn path(&self) -> PathBuf {
-        dir().join(self.file)
+    /// Writes the model into `dir` under its file name and returns that path (for tools
+    /// that take a path).
+    pub fn write_to(&self, dir: &Path) -> std::io::Result<PathBuf> {
+        let p = dir.join(self.file);
+        std::fs::write(&p, self.bytes)?;
+        Ok(p)
     }
 }
 
@@ -102,14 +107,30 @@ pub const SIMPLE_SKIN: Model = Model {
 /// Every built-in model, in the README's order.
 pub const ALL: [Model; 5] = [CESIUM_MAN, RIGGED_FIGURE, RIGGED_SIMPLE, FOX, SIMPLE_SKIN];
 
+/// Every model as a file, in one folder of the system's temporary directory
+/// (`chasles-models-VERSION`), for tools and tests that take paths: written on the first call
+/// of a process where missing or different (each file whole, by a rename), then reused.
+pub fn on_disk() -> std::io::Result<&'static Path> {
+    static DIR: std::sync::OnceLock<PathBuf> = std::sync::OnceLock::new();
+    if let Some(d) = DIR.get() {
+        return Ok(d);
+    }
+    let dir = std::env::temp_dir().join(concat!("chasles-models-", env!("CARGO_PKG_VERSION")));
+    std::fs::create_dir_all(&dir)?;
+    for m in ALL {
+        let p = dir.join(m.file);
+        if std::fs::read(&p).ok().as_deref() != Some(m.bytes) {
+            let tmp = dir.join(format!(".{}.{}", m.file, std::process::id()));
+            std::fs::write(&tmp, m.bytes)?;
+            std::fs::rename(&tmp, &p)?;
+        }
+    }
+    Ok(DIR.get_or_init(|| dir))
+}
+
 /// The model with this file name (`"Fox.glb"`), if built in.
 pub fn by_file(file: &str) -> Option<&'static Model> {
     ALL.iter().find(|m| m.file == file)
-}
-
-/// The folder the model files lie in, inside this crate (`crates/chasles-models/gltf`).
-pub fn dir() -> &'static Path {
-    Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/gltf"))
 }
 
 #[cfg(test)]
@@ -117,12 +138,21 @@ mod tests {
     use super::*;
 
     #[test]
-    fn the_built_in_bytes_are_the_files_on_disk() {
+    fn the_built_in_bytes_are_the_files_of_gltf_and_write_back() {
+        // At test time cargo names this crate's folder: the sources beside the bytes.
+        let here = Path::new(&std::env::var_os("CARGO_MANIFEST_DIR").unwrap()).join("gltf");
+        let out = std::env::temp_dir().join(format!("chasles-models-{}", std::process::id()));
+        std::fs::create_dir_all(&out).unwrap();
         for m in ALL {
-            let disk = std::fs::read(m.path()).unwrap();
-            assert_eq!(disk.len(), m.bytes.len(), "{}", m.file);
+            let disk = std::fs::read(here.join(m.file)).unwrap();
             assert!(disk == m.bytes, "{}", m.file);
+            let written = m.write_to(&out).unwrap();
+            assert_eq!(written.file_name().unwrap(), m.file);
+            assert!(std::fs::read(&written).unwrap() == m.bytes, "{}", m.file);
+            let shared = on_disk().unwrap().join(m.file);
+            assert!(std::fs::read(&shared).unwrap() == m.bytes, "{}", m.file);
         }
+        std::fs::remove_dir_all(&out).unwrap();
     }
 
     #[test]

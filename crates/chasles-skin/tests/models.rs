@@ -11,9 +11,9 @@ use chasles_skin::{
 };
 use std::path::PathBuf;
 
-/// A built-in model's file on disk (the tests load by path, as users do).
+/// A built-in model as a file (the tests load by path, as users do).
 fn data(name: &str) -> PathBuf {
-    chasles_models::dir().join(name)
+    chasles_models::on_disk().unwrap().join(name)
 }
 
 /// The scale positions are compared at: the farthest vertex from the origin, at least 1.
