@@ -18,7 +18,7 @@ use std::path::{Path, PathBuf};
 /// One built-in model: its file name, what it is, its size and its licence.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Model {
-    /// The file name (`CesiumMan.glb`); also its name in [`dir`].
+    /// The file name (`CesiumMan.glb`); also its name in [`on_disk`].
     pub file: &'static str,
     /// What the model is, in a few words.
     pub what: &'static str,
