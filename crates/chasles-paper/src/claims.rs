@@ -74,10 +74,8 @@ pub fn dlb_vs_sclerp(samples: usize, seed: u64) -> Result<DlbVsScLerp> {
     let mut best_a = (0.0, (0.0, 0.0));
     let mut best_t = (0.0, (0.0, 0.0));
     let (nt, nh) = (300, 200);
-    let scan = |lo_th: f64,
-                hi_th: f64,
-                lo_t: f64,
-                hi_t: f64,
+    // Scans the box [θ0, θ1] × [t0, t1], keeping the largest angle and slide differences.
+    let scan = |[lo_th, hi_th, lo_t, hi_t]: [f64; 4],
                 ba: &mut (f64, (f64, f64)),
                 bt: &mut (f64, (f64, f64))|
      -> Result<()> {
@@ -100,33 +98,21 @@ pub fn dlb_vs_sclerp(samples: usize, seed: u64) -> Result<DlbVsScLerp> {
         Ok(())
     };
     let pi = std::f64::consts::PI;
-    scan(0.0, pi, 0.0, 1.0, &mut best_a, &mut best_t)?;
-    // Refine around each maximum.
+    scan([0.0, pi, 0.0, 1.0], &mut best_a, &mut best_t)?;
+    // Refine around each maximum, in a small box about its (θ, t).
+    let around = |(th, t): (f64, f64)| {
+        [
+            (th - 0.02).max(0.0),
+            (th + 0.02).min(pi),
+            (t - 0.01).max(0.0),
+            (t + 0.01).min(1.0),
+        ]
+    };
     for _ in 0..2 {
-        let (th, t) = best_a.1;
-        let mut a = best_a;
-        let mut dummy = best_t;
-        scan(
-            (th - 0.02).max(0.0),
-            (th + 0.02).min(pi),
-            (t - 0.01).max(0.0),
-            (t + 0.01).min(1.0),
-            &mut a,
-            &mut dummy,
-        )?;
-        best_a = a;
-        let (th, t) = best_t.1;
-        let mut b = best_t;
-        let mut dummy = best_a;
-        scan(
-            (th - 0.02).max(0.0),
-            (th + 0.02).min(pi),
-            (t - 0.01).max(0.0),
-            (t + 0.01).min(1.0),
-            &mut dummy,
-            &mut b,
-        )?;
-        best_t = b;
+        let mut unused = best_t;
+        scan(around(best_a.1), &mut best_a, &mut unused)?;
+        let mut unused = best_a;
+        scan(around(best_t.1), &mut unused, &mut best_t)?;
     }
     // Same screw axis on random pairs (axis direction and moment of p̂* DLB vs p̂* q̂).
     let mut rng = StdRng::seed_from_u64(seed);

@@ -216,6 +216,23 @@ pub enum ChannelProblem {
 /// Result with [`SkinError`].
 pub type Result<T> = std::result::Result<T, SkinError>;
 
+/// `Ok` when `got` is `expected`, else the [`SkinError::Count`] naming `what` of `rig`.
+pub(crate) fn same_count(rig: &str, what: &'static str, expected: usize, got: usize) -> Result<()> {
+    if expected == got {
+        Ok(())
+    } else {
+        Err(SkinError::Count {
+            rig: rig.to_string(),
+            what,
+            expected,
+            got,
+        })
+    }
+}
+
+/// The name the fast path's size errors give its rig.
+pub(crate) const FAST_RIG: &str = "the fast rig";
+
 /// A [`SkinError::GltfContent`] for `item` of `file`.
 pub(crate) fn gltf_content(
     file: &str,

@@ -28,7 +28,7 @@
 //! angle reduction; Log's AVX2 kernel writes the exponential's steps out in its own order
 //! with the algebra's parts (the generic one inlined there measured 6 % slower).
 
-use crate::error::{Result, SkinError};
+use crate::error::{same_count, Result, SkinError, FAST_RIG};
 use crate::pose::JointTransforms;
 use crate::rig::Rig;
 use crate::rotation_centre::{joint_centres, Clusters};
@@ -57,7 +57,7 @@ mod dib;
 mod job;
 mod lane;
 mod log;
-mod palette;
+pub(crate) mod palette;
 mod qlb;
 mod skinner;
 
@@ -172,7 +172,7 @@ impl<const K: usize> FastRig<K> {
 pub fn matrices12(jt: &JointTransforms) -> Vec<[f32; 12]> {
     jt.matrices
         .iter()
-        .map(|m| core::array::from_fn(|k| m.m[k / 4][k % 4]))
+        .map(|m| bytemuck::cast(palette::affine(m)))
         .collect()
 }
 
@@ -183,7 +183,7 @@ pub fn dual_quats8(jt: &JointTransforms) -> Vec<[f32; 8]> {
 
 /// Dual quaternions as 8 floats each, as the kernels read them.
 fn arrays8(d: &[DualQuat<f32>]) -> Vec<[f32; 8]> {
-    d.iter().map(|d| d.to_array()).collect()
+    d.iter().map(|d| bytemuck::cast(palette::unit(d))).collect()
 }
 
 #[inline(always)]
@@ -373,23 +373,8 @@ impl<const K: usize> Kernel<K> for DqsKernel {
 
 /// The sizes every fast skinning checks: one output per vertex, one transform per joint.
 fn check<const K: usize>(rig: &FastRig<K>, joints: usize, out: usize) -> Result<()> {
-    if out != rig.vertices.len() {
-        return Err(SkinError::Count {
-            rig: "the fast rig".into(),
-            what: "output vertices",
-            expected: rig.vertices.len(),
-            got: out,
-        });
-    }
-    if joints != rig.joints() {
-        return Err(SkinError::Count {
-            rig: "the fast rig".into(),
-            what: "joint transforms",
-            expected: rig.joints(),
-            got: joints,
-        });
-    }
-    Ok(())
+    same_count(FAST_RIG, "output vertices", rig.vertices.len(), out)?;
+    same_count(FAST_RIG, "joint transforms", rig.joints(), joints)
 }
 
 fn run<const K: usize, F: Kernel<K>>(

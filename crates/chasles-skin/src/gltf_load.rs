@@ -12,7 +12,7 @@
 //! indices and weights are checked per vertex ([`Influences::from_lists`]).
 
 use crate::animation::{Animation, Channel, Interpolation, Path as ChannelPath};
-use crate::error::{gltf_content, Result, SkinError};
+use crate::error::{gltf_content, same_count, Result, SkinError};
 use crate::rig::{compute_normals, Influences, Mesh, Node, Rig, Trs};
 use base64::Engine;
 use chasles::{Mat4, Quat, Vec3};
@@ -294,14 +294,7 @@ fn from_document(doc: &gltf::Document, buffers: &[Vec<u8>], name: &str) -> Resul
                 // glTF matrices are column-major: cols[c][r].
                 .map(|cols| Mat4::from_rows(cols).transpose())
                 .collect();
-            if m.len() != nj {
-                return Err(SkinError::Count {
-                    rig: name.to_string(),
-                    what: "inverse bind matrices",
-                    expected: nj,
-                    got: m.len(),
-                });
-            }
+            same_count(name, "inverse bind matrices", nj, m.len())?;
             m
         }
         None => vec![Mat4::identity(); nj],

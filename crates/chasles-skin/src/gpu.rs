@@ -15,6 +15,8 @@ mod timing;
 
 pub use timing::Clock;
 
+use crate::fast::palette::{affine, unit};
+use crate::fast::Joints;
 use crate::{JointTransforms, Method, Rig, Skinned};
 use chasles::Vec3;
 use rayon::prelude::*;
@@ -317,9 +319,7 @@ impl GpuSkinner {
     /// on the GPU (see [`GpuSkinner::read`]).
     pub fn dispatch(&self, jt: &JointTransforms, method: Method) -> Result<(), GpuError> {
         let pipeline = self.prepare(jt, method)?;
-        let mut encoder = self.device.create_command_encoder(&Default::default());
-        self.encode(&mut encoder, pipeline, None);
-        self.queue.submit([encoder.finish()]);
+        self.submit(pipeline);
         Ok(())
     }
 
@@ -336,25 +336,47 @@ impl GpuSkinner {
                 joints: self.joints,
             });
         }
-        Ok(match method {
-            Method::Lbs => {
-                let rows: Vec<f32> = jt.matrices.iter().flat_map(|m| m.m[..3].concat()).collect();
-                self.queue
-                    .write_buffer(&self.matrices, 0, bytemuck::cast_slice(&rows));
+        let joints = match method {
+            Method::Lbs => Joints::Lbs(jt.matrices.iter().map(affine).collect()),
+            Method::Dqs => Joints::Dqs(jt.dual_quats.iter().map(unit).collect()),
+            Method::Dib => Joints::Dib(jt.dual_quats.iter().map(unit).collect()),
+            other => return Err(GpuError::Unsupported(other.name())),
+        };
+        self.upload_joints(&joints)
+    }
+
+    /// Checks `joints` against the rig, queues their upload as they are (the palette types
+    /// are the shaders' layout) and returns their method's pipeline.
+    fn upload_joints(&self, joints: &Joints) -> Result<&wgpu::ComputePipeline, GpuError> {
+        if joints.len() != self.joints {
+            return Err(GpuError::JointCount {
+                given: joints.len(),
+                joints: self.joints,
+            });
+        }
+        let write = |buffer, bytes: &[u8]| self.queue.write_buffer(buffer, 0, bytes);
+        Ok(match joints {
+            Joints::Lbs(a) => {
+                write(&self.matrices, bytemuck::cast_slice(a));
                 &self.lbs
             }
-            Method::Dqs | Method::Dib => {
-                let dq: Vec<f32> = jt.dual_quats.iter().flat_map(|d| d.to_array()).collect();
-                self.queue
-                    .write_buffer(&self.dual_quats, 0, bytemuck::cast_slice(&dq));
-                if method == Method::Dqs {
-                    &self.dqs
-                } else {
-                    &self.dib
-                }
+            Joints::Dqs(d) => {
+                write(&self.dual_quats, bytemuck::cast_slice(d));
+                &self.dqs
             }
-            other => return Err(GpuError::Unsupported(other.name())),
+            Joints::Dib(d) => {
+                write(&self.dual_quats, bytemuck::cast_slice(d));
+                &self.dib
+            }
+            other => return Err(GpuError::Unsupported(other.method().name())),
         })
+    }
+
+    /// Records and submits one skinning pass with `pipeline`.
+    fn submit(&self, pipeline: &wgpu::ComputePipeline) {
+        let mut encoder = self.device.create_command_encoder(&Default::default());
+        self.encode(&mut encoder, pipeline, None);
+        self.queue.submit([encoder.finish()]);
     }
 
     /// Records one compute pass that skins every chunk with `pipeline`, with the pass's

@@ -2,7 +2,7 @@
 //! every joint, `C_j = World(joint_j) · InverseBind_j` (glTF 2.0 §3.7.3; Kavan et al. 2006
 //! §6: "the list L of joint displacements from the reference to the animated skeleton").
 
-use crate::error::{Result, SkinError};
+use crate::error::{same_count, Result, SkinError};
 use crate::rig::{Node, Rig, Trs};
 use chasles::{DualQuat, Mat4, Quat};
 
@@ -66,14 +66,8 @@ impl JointTransforms {
 
 /// World transforms of all nodes (parents before children is not assumed).
 pub fn world(rig: &Rig, pose: &Pose) -> Result<Vec<Mat4<f32>>> {
-    if pose.local.len() != rig.nodes.len() {
-        return Err(SkinError::Count {
-            rig: rig.name.clone(),
-            what: "node transforms in the pose",
-            expected: rig.nodes.len(),
-            got: pose.local.len(),
-        });
-    }
+    let (nodes, given) = (rig.nodes.len(), pose.local.len());
+    same_count(&rig.name, "node transforms in the pose", nodes, given)?;
     Ok(world_of(&rig.nodes, &pose.local))
 }
 

@@ -3,7 +3,7 @@
 //! list L of rigid transformations, and weights for every vertex").
 
 use crate::animation::Animation;
-use crate::error::{Result, SkinError};
+use crate::error::{same_count, Result, SkinError};
 use chasles::{Mat4, Quat, Vec3};
 
 /// A node's local transform: translation, rotation, scale (applied as T · R · S).
@@ -76,6 +76,41 @@ pub struct Influences {
     pub weights: Vec<f32>,
 }
 
+/// One vertex's influences checked — every weight finite and not negative, every joint below
+/// `joints` (with `every_joint` false, only those of a positive weight) — and their sum,
+/// which must be above 0.
+fn checked_sum(
+    vertex: usize,
+    pairs: impl Iterator<Item = (usize, f32)>,
+    joints: usize,
+    every_joint: bool,
+) -> Result<f64> {
+    let mut sum = 0.0f64;
+    for (joint, w) in pairs {
+        if !w.is_finite() || w < 0.0 {
+            return Err(SkinError::BadWeights {
+                vertex,
+                reason: format!("weight {w} for joint {joint} is negative or not finite"),
+            });
+        }
+        if (every_joint || w > 0.0) && joint >= joints {
+            return Err(SkinError::JointOutOfRange {
+                vertex,
+                joint,
+                joints,
+            });
+        }
+        sum += f64::from(w);
+    }
+    if sum <= 0.0 {
+        return Err(SkinError::BadWeights {
+            vertex,
+            reason: "the weights sum to zero (the vertex is bound to no joint)".into(),
+        });
+    }
+    Ok(sum)
+}
+
 /// Sorts one vertex's influences by weight, heaviest first, ties keeping their order (an
 /// insertion sort: a vertex has a handful).
 fn sort_heaviest_first(joints: &mut [u16], weights: &mut [f32]) {
@@ -103,29 +138,8 @@ impl Influences {
         };
         out.start.push(0);
         for (vertex, list) in lists.iter().enumerate() {
-            let mut sum = 0.0f64;
-            for &(joint, w) in list {
-                if !w.is_finite() || w < 0.0 {
-                    return Err(SkinError::BadWeights {
-                        vertex,
-                        reason: format!("weight {w} for joint {joint} is negative or not finite"),
-                    });
-                }
-                if w > 0.0 && joint >= joints {
-                    return Err(SkinError::JointOutOfRange {
-                        vertex,
-                        joint,
-                        joints,
-                    });
-                }
-                sum += f64::from(w);
-            }
-            if sum <= 0.0 {
-                return Err(SkinError::BadWeights {
-                    vertex,
-                    reason: "the weights sum to zero (the vertex is bound to no joint)".into(),
-                });
-            }
+            // Joints of weight 0 are dropped below, so only the others must exist.
+            let sum = checked_sum(vertex, list.iter().copied(), joints, false)?;
             let first = out.joints.len();
             for &(joint, w) in list {
                 if w > 0.0 {
@@ -159,29 +173,8 @@ impl Influences {
             });
         }
         for v in 0..self.vertices() {
-            let mut sum = 0.0f64;
-            for (joint, w) in self.of(v) {
-                if joint >= joints {
-                    return Err(SkinError::JointOutOfRange {
-                        vertex: v,
-                        joint,
-                        joints,
-                    });
-                }
-                if !w.is_finite() || w < 0.0 {
-                    return Err(SkinError::BadWeights {
-                        vertex: v,
-                        reason: format!("weight {w} for joint {joint} is negative or not finite"),
-                    });
-                }
-                sum += f64::from(w);
-            }
-            if sum <= 0.0 {
-                return Err(SkinError::BadWeights {
-                    vertex: v,
-                    reason: "the weights sum to zero (the vertex is bound to no joint)".into(),
-                });
-            }
+            // Every stored joint is read by the kernels, whatever its weight.
+            checked_sum(v, self.of(v), joints, true)?;
         }
         Ok(())
     }
@@ -259,18 +252,7 @@ impl Rig {
     pub fn validate(&self) -> Result<()> {
         let rig = || self.name.clone();
         let n = self.mesh.positions.len();
-        let count = |what, expected, got| {
-            if expected == got {
-                Ok(())
-            } else {
-                Err(SkinError::Count {
-                    rig: rig(),
-                    what,
-                    expected,
-                    got,
-                })
-            }
-        };
+        let count = |what, expected, got| same_count(&self.name, what, expected, got);
         count("influence lists", n, self.influences.vertices())?;
         self.influences.check(self.joints.len(), &self.name)?;
         count("normals", n, self.mesh.normals.len())?;

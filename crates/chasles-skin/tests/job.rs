@@ -5,7 +5,8 @@
 //! job runs (counted by this test binary's allocator, per thread).
 
 use chasles_skin::fast::{
-    dib, dqs, lbs, log, qlb, sbs, twists, FastRig, Joints, Output, Palette, SkinningJob,
+    dib, dqs, dual_quats8, lbs, log, matrices12, qlb, sbs, twists, FastRig, Joints, Output,
+    Palette, SkinningJob,
 };
 use chasles_skin::pose::skinning_matrices;
 use chasles_skin::{gltf_load, joint_transforms, Method, Pose, SkinError};
@@ -65,12 +66,7 @@ fn direct<const K: usize>(
 ) -> Vec<[f32; 6]> {
     let mut out = vec![[0f32; 6]; f.vertices().len()];
     let d = &jt.dual_quats;
-    let m12: Vec<[f32; 12]> = jt
-        .matrices
-        .iter()
-        .map(|m| core::array::from_fn(|k| m.m[k / 4][k % 4]))
-        .collect();
-    let d8: Vec<[f32; 8]> = d.iter().map(|d| d.to_array()).collect();
+    let (m12, d8) = (matrices12(jt), dual_quats8(jt));
     match method {
         Method::Lbs => lbs(f, &m12, &mut out, parallel),
         Method::Dqs => dqs(f, &d8, &mut out, parallel),

@@ -2,7 +2,7 @@
 //! escaped), claims as a list with the verdict in bold, pictures as images.
 
 use crate::section::{Item, Section};
-use crate::table::{Cell, Table};
+use crate::table::Table;
 
 /// `s` made safe inside a pipe-table cell.
 fn cell_text(s: &str) -> String {
@@ -21,7 +21,8 @@ fn table(t: &Table, out: &mut String) {
         out.push('|');
         for c in r {
             let text = cell_text(&c.to_string());
-            if c.agrees() || !matches!(c, Cell::Check { .. }) {
+            // Only a check can disagree with the paper (`agrees` is true for other cells).
+            if c.agrees() {
                 out.push_str(&format!(" {text} |"));
             } else {
                 out.push_str(&format!(" **{text}** |"));

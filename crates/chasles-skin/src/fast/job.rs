@@ -10,7 +10,7 @@ use super::qlb::{sbs_into, QlbKernel};
 use super::{
     dib::DibKernel, log::LogKernel, run_with, DqsKernel, FastRig, LbsKernel, Out, Vertex, CHUNK,
 };
-use crate::error::{Result, SkinError};
+use crate::error::{same_count, Result, SkinError};
 use bytemuck::cast_slice;
 use rayon::prelude::*;
 
@@ -61,16 +61,8 @@ impl Output<'_> {
                 }
             }
             Output::Split { positions, normals } => {
-                if positions.len() == normals.len() {
-                    Ok(positions.len())
-                } else {
-                    Err(SkinError::Count {
-                        rig: "the output".into(),
-                        what: "normals",
-                        expected: positions.len(),
-                        got: normals.len(),
-                    })
-                }
+                same_count("the output", "normals", positions.len(), normals.len())?;
+                Ok(positions.len())
             }
         }
     }
@@ -238,8 +230,7 @@ impl<const K: usize> SkinningJob<'_, K> {
             output,
             parallel,
         } = self;
-        let n = output.vertices()?;
-        super::check(rig, palette.joints(), n)?;
+        // run_with and sbs_into check the palette and the output before writing.
         let signs = palette.signs();
         match palette.data() {
             Joints::Lbs(a) => run_with::<K, LbsKernel>(rig, cast_slice(a), &(), output, parallel),

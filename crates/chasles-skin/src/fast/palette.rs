@@ -19,7 +19,7 @@ use super::antipodes::Antipodes;
 use super::log::row as twist_row;
 use super::qlb::{padded, row as qlb_row};
 use super::{simd, FastRig};
-use crate::error::{Result, SkinError};
+use crate::error::{same_count, Result, FAST_RIG};
 use crate::pose::{rigid_of, JointTransforms};
 use crate::skinning::{twist_of, Method};
 use bytemuck::{Pod, Zeroable};
@@ -170,14 +170,12 @@ impl Palette {
     pub fn from_joints<const K: usize>(rig: &FastRig<K>, joints: Joints) -> Result<Self> {
         check(rig, joints.len())?;
         if let Joints::Sbs { centres, .. } = &joints {
-            if centres.len() != rig.clusters().len() {
-                return Err(SkinError::Count {
-                    rig: "the fast rig".into(),
-                    what: "rotation centres",
-                    expected: rig.clusters().len(),
-                    got: centres.len(),
-                });
-            }
+            same_count(
+                FAST_RIG,
+                "rotation centres",
+                rig.clusters().len(),
+                centres.len(),
+            )?;
         }
         let mut p = Palette {
             joints,
@@ -241,30 +239,9 @@ impl Palette {
         jt: &JointTransforms,
         parallel: bool,
     ) -> Result<Self> {
-        check(rig, jt.matrices.len())?;
         check(rig, jt.dual_quats.len())?;
-        let centres = rig.centres();
-        let joints = match method {
-            Method::Lbs => Joints::Lbs(jt.matrices.iter().map(affine).collect()),
-            Method::Dqs => Joints::Dqs(jt.dual_quats.iter().map(unit).collect()),
-            Method::Dib => Joints::Dib(jt.dual_quats.iter().map(unit).collect()),
-            Method::Log => Joints::Log(
-                jt.matrices
-                    .iter()
-                    .map(|m| twist_of(m).map(|t| bytemuck::cast(twist_row(&t))))
-                    .collect::<Result<_>>()?,
-            ),
-            Method::Qlb => Joints::Qlb(qlb_joints(&jt.dual_quats, centres).collect()),
-            Method::Sbs => Joints::Sbs {
-                joints: qlb_joints(&jt.dual_quats, centres).collect(),
-                centres: sbs_centres(rig, &jt.dual_quats, parallel).collect(),
-            },
-        };
-        let mut p = Palette {
-            joints,
-            signs: Antipodes::default(),
-        };
-        p.sign(rig);
+        let mut p = Palette::new(method);
+        p.fill(rig, &jt.matrices, Some(&jt.dual_quats), parallel)?;
         Ok(p)
     }
 
@@ -281,12 +258,25 @@ impl Palette {
         matrices: &[Mat4<f32>],
         parallel: bool,
     ) -> Result<()> {
+        self.fill(rig, matrices, None, parallel)
+    }
+
+    /// [`Palette::update`], with the joints' dual quaternions taken from `given` where the
+    /// caller has them (one per matrix) instead of made from the matrices.
+    fn fill<const K: usize>(
+        &mut self,
+        rig: &FastRig<K>,
+        matrices: &[Mat4<f32>],
+        given: Option<&[DualQuat<f32>]>,
+        parallel: bool,
+    ) -> Result<()> {
         check(rig, matrices.len())?;
         let centres = rig.centres();
-        let dual = |m: &Mat4<f32>| rigid_of(m).0;
+        let dual = |i: usize| given.map_or_else(|| rigid_of(&matrices[i]).0, |d| d[i]);
+        let n = matrices.len();
         match &mut self.joints {
             Joints::Lbs(a) => refill(a, matrices.iter().map(affine)),
-            Joints::Dqs(d) | Joints::Dib(d) => refill(d, matrices.iter().map(|m| unit(&dual(m)))),
+            Joints::Dqs(d) | Joints::Dib(d) => refill(d, (0..n).map(|i| unit(&dual(i)))),
             Joints::Log(t) => {
                 t.clear();
                 for m in matrices {
@@ -299,17 +289,18 @@ impl Palette {
                     }
                 }
             }
-            Joints::Qlb(j) => refill(
-                j,
-                matrices
-                    .iter()
-                    .zip(centres)
-                    .map(|(m, c)| bytemuck::cast(qlb_row(&dual(m), *c))),
-            ),
+            Joints::Qlb(j) => refill(j, (0..n).map(|i| qlb_joint(&dual(i), centres[i]))),
             Joints::Sbs { joints, centres: c } => {
-                let d: Vec<DualQuat<f32>> = matrices.iter().map(dual).collect();
-                refill(joints, qlb_joints(&d, centres));
-                refill(c, sbs_centres(rig, &d, parallel));
+                let made: Vec<DualQuat<f32>>;
+                let d = match given {
+                    Some(d) => d,
+                    None => {
+                        made = (0..n).map(dual).collect();
+                        &made
+                    }
+                };
+                refill(joints, d.iter().zip(centres).map(|(d, c)| qlb_joint(d, *c)));
+                refill(c, sbs_centres(rig, d, parallel));
             }
         }
         self.sign(rig);
@@ -325,35 +316,24 @@ fn refill<T>(v: &mut Vec<T>, items: impl Iterator<Item = T>) {
 
 /// The joint count `rig` needs.
 fn check<const K: usize>(rig: &FastRig<K>, joints: usize) -> Result<()> {
-    if joints == rig.joints() {
-        Ok(())
-    } else {
-        Err(SkinError::Count {
-            rig: "the fast rig".into(),
-            what: "joint transforms",
-            expected: rig.joints(),
-            got: joints,
-        })
-    }
+    same_count(FAST_RIG, "joint transforms", rig.joints(), joints)
 }
 
-fn affine(m: &Mat4<f32>) -> Affine3x4 {
+/// `C_j`'s top three rows: LBS's joint.
+pub(crate) fn affine(m: &Mat4<f32>) -> Affine3x4 {
     Affine3x4 {
         rows: [m.m[0], m.m[1], m.m[2]],
     }
 }
 
-fn unit(d: &DualQuat<f32>) -> UnitDualQuat {
+/// A dual quaternion as DQS's and DIB's joint.
+pub(crate) fn unit(d: &DualQuat<f32>) -> UnitDualQuat {
     bytemuck::cast(d.to_array())
 }
 
-fn qlb_joints<'a>(
-    d: &'a [DualQuat<f32>],
-    centres: &'a [Vec3<f32>],
-) -> impl Iterator<Item = QlbJoint> + 'a {
-    d.iter()
-        .zip(centres)
-        .map(|(d, c)| bytemuck::cast(qlb_row(d, *c)))
+/// A joint's rigid motion `d` and bind origin `c` as QLB's and SBS's joint.
+fn qlb_joint(d: &DualQuat<f32>, c: Vec3<f32>) -> QlbJoint {
+    bytemuck::cast(qlb_row(d, c))
 }
 
 fn sbs_centres<const K: usize>(

@@ -25,7 +25,7 @@ use super::{
     check, for_chunks, pose_table, rotate_scaled, run, Antipodes, FastRig, Kernel, Out, Output,
     Vertex,
 };
-use crate::error::{Result, SkinError};
+use crate::error::{same_count, Result, FAST_RIG};
 use crate::rotation_centre::Clusters;
 use chasles::DualQuat;
 
@@ -151,24 +151,9 @@ pub(super) fn sbs_into<const K: usize>(
     parallel: bool,
 ) -> Result<()> {
     check(rig, rows.len(), out.vertices()?)?;
-    let count = |what, expected, got| {
-        if expected == got {
-            Ok(())
-        } else {
-            Err(SkinError::Count {
-                rig: "the fast rig".into(),
-                what,
-                expected,
-                got,
-            })
-        }
-    };
-    count(
-        "vertices in the clusters",
-        rig.vertices().len(),
-        clusters.of_vertex().len(),
-    )?;
-    count("rotation centres", clusters.len(), centres.len())?;
+    let (n, of_vertex) = (rig.vertices().len(), clusters.of_vertex().len());
+    same_count(FAST_RIG, "vertices in the clusters", n, of_vertex)?;
+    same_count(FAST_RIG, "rotation centres", clusters.len(), centres.len())?;
     let simd = super::simd(K);
     let cluster = clusters.of_vertex();
     for_chunks(out, rig.vertices(), parallel, |first, o, v| {

@@ -3,8 +3,7 @@
 //! [`crate::fast::SkinningJob`] does on the CPU (Kavan et al. 2006, §6).
 
 use super::{GpuError, GpuSkinner};
-use crate::fast::{Joints, Output, Palette};
-use crate::Method;
+use crate::fast::{Output, Palette};
 use rayon::prelude::*;
 
 impl GpuSkinner {
@@ -17,40 +16,9 @@ impl GpuSkinner {
     pub fn run(&self, palette: &Palette, output: Output<'_>) -> Result<(), GpuError> {
         let n = output.vertices()?;
         let vertices: usize = self.chunks.iter().map(|c| c.vertices).sum();
-        if n != vertices {
-            return Err(GpuError::Rig(crate::SkinError::Count {
-                rig: "the GPU rig".into(),
-                what: "output vertices",
-                expected: vertices,
-                got: n,
-            }));
-        }
-        if palette.joints() != self.joints {
-            return Err(GpuError::JointCount {
-                given: palette.joints(),
-                joints: self.joints,
-            });
-        }
-        let pipeline = match palette.data() {
-            Joints::Lbs(a) => {
-                self.queue
-                    .write_buffer(&self.matrices, 0, bytemuck::cast_slice(a));
-                &self.lbs
-            }
-            Joints::Dqs(d) | Joints::Dib(d) => {
-                self.queue
-                    .write_buffer(&self.dual_quats, 0, bytemuck::cast_slice(d));
-                if palette.method() == Method::Dqs {
-                    &self.dqs
-                } else {
-                    &self.dib
-                }
-            }
-            other => return Err(GpuError::Unsupported(other.method().name())),
-        };
-        let mut encoder = self.device.create_command_encoder(&Default::default());
-        self.encode(&mut encoder, pipeline, None);
-        self.queue.submit([encoder.finish()]);
+        crate::error::same_count("the GPU rig", "output vertices", vertices, n)?;
+        let pipeline = self.upload_joints(palette.data())?;
+        self.submit(pipeline);
         self.read_output(output)
     }
 
