@@ -22,11 +22,13 @@
 //!
 //! The quaternion and dual-quaternion algebra the kernels share — cross products, rotation
 //! by an unnormalized quaternion, DQS's transformation, products, Horner's rule, Log's
-//! exponential — is written once in `lane`, generic over the lane type (`f32` for the scalar
-//! kernels, `__m256` for the AVX2 ones). What stays kernel-specific is the data movement
-//! (loads, blends, transposes, stores) and DIB's per-lane logarithm with its branch-free
-//! angle reduction; Log's AVX2 kernel writes the exponential's steps out in its own order
-//! with the algebra's parts (the generic one inlined there measured 6 % slower).
+//! exponential, and DIB whole (`lane::dib`: normalization, the branch-free logarithm and
+//! exponential by series, the stopping rule, the iteration) — is written once in `lane`,
+//! generic over the lane type (`f32`, `__m256`). What stays kernel-specific is the data
+//! movement (loads, blends, transposes, stores); Log's AVX2 kernel writes the exponential's
+//! steps out in its own order with the algebra's parts (the generic one inlined there
+//! measured 6 % slower). The scalar DIB kernel runs the library's `dib_convex` instead of
+//! `lane::dib` on `f32`, so that it equals the reference path bit for bit.
 
 use crate::error::{same_count, Result, SkinError, FAST_RIG};
 use crate::pose::JointTransforms;

@@ -11,7 +11,7 @@
 //! by a transpose and masked stores. Log, QLB/SBS and DIB are in the submodules; DIB ends
 //! with DQS's transformation (`transform`).
 
-use super::lane::{dot, horner, rotate, taylor, transform, two_over_norm2};
+use super::lane::{rotate, transform, two_over_norm2};
 use super::{Antipodes, Out, Vertex};
 use std::arch::x86_64::*;
 

@@ -1,8 +1,9 @@
 //! The fast path for DIB skinning (Kavan et al. 2006, §4, the DIB algorithm box, per vertex):
 //! the DLB start, then `b̂ ← b̂ exp(Σ wᵢ log(b̂* q̂ᵢ))` until the update is below
 //! [`DIB_PRECISION`] or [`DIB_UPDATES`] were made, with rayon over chunks of vertices. With
-//! AVX2+FMA (4 or 8 influences), eight vertices at a time (`avx2::dib`: the algorithm in lanes,
-//! the logarithm and exponential by series; it agrees with the scalar kernel to rounding,
+//! AVX2+FMA (4 or 8 influences), eight vertices at a time (`avx2::dib` runs the lane
+//! algebra's `lane::dib` on `__m256`: the algorithm branch-free in lanes, the logarithm and
+//! exponential by series; it agrees with the scalar kernel to rounding,
 //! except where an update's norm falls on either side of the precision, and then both stay
 //! within the stopping rule's reach of the exact blend). Elsewhere, and for the last few
 //! vertices, each vertex's influences are gathered on the stack and blended by the library's

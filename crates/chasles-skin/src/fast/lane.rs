@@ -14,13 +14,40 @@
 #[cfg(target_arch = "x86_64")]
 use std::arch::x86_64::*;
 
-/// What the algebra needs of a number: ring operations, division, constants and the three
-/// multiply-adds.
+pub(super) mod dib;
+
+/// What the algebra needs of a number: ring operations, division, square root, constants,
+/// the three multiply-adds, and per-lane comparisons and choices (DIB's branch-free
+/// logarithm and stopping rule).
 pub(super) trait Lane: Copy {
+    /// The outcome of a comparison in each lane: `bool` for `f32`, all-ones or all-zeros
+    /// lanes for `__m256`.
+    type Mask: Copy;
     /// `x` in every lane.
     fn splat(x: f32) -> Self;
     /// `self + b`.
     fn add(self, b: Self) -> Self;
+    /// `self − b`.
+    fn sub(self, b: Self) -> Self;
+    /// `√self`.
+    fn sqrt(self) -> Self;
+    /// `self < b` (false where either is NaN).
+    fn lt(self, b: Self) -> Self::Mask;
+    /// `self ≤ b` (false where either is NaN).
+    fn le(self, b: Self) -> Self::Mask;
+    /// `a` where `m`, else `b`.
+    fn select(m: Self::Mask, a: Self, b: Self) -> Self;
+    /// `a and b`.
+    fn and(a: Self::Mask, b: Self::Mask) -> Self::Mask;
+    /// `b and not a`.
+    fn and_not(a: Self::Mask, b: Self::Mask) -> Self::Mask;
+    /// Whether `m` holds in some lane.
+    fn any(m: Self::Mask) -> bool;
+    /// `self` with its sign flipped where `m` holds.
+    fn neg_where(self, m: Self::Mask) -> Self;
+    /// `self` with its sign flipped where `of`'s sign bit is set (−0 and NaNs included):
+    /// `|of| · self / of` without the division.
+    fn flip_by_sign_of(self, of: Self) -> Self;
     /// `self · b`.
     fn mul(self, b: Self) -> Self;
     /// `self / b`.
@@ -36,6 +63,7 @@ pub(super) trait Lane: Copy {
 }
 
 impl Lane for f32 {
+    type Mask = bool;
     #[inline(always)]
     fn splat(x: f32) -> Self {
         x
@@ -43,6 +71,54 @@ impl Lane for f32 {
     #[inline(always)]
     fn add(self, b: Self) -> Self {
         self + b
+    }
+    #[inline(always)]
+    fn sub(self, b: Self) -> Self {
+        self - b
+    }
+    #[inline(always)]
+    fn sqrt(self) -> Self {
+        f32::sqrt(self)
+    }
+    #[inline(always)]
+    fn lt(self, b: Self) -> bool {
+        self < b
+    }
+    #[inline(always)]
+    fn le(self, b: Self) -> bool {
+        self <= b
+    }
+    #[inline(always)]
+    fn select(m: bool, a: Self, b: Self) -> Self {
+        if m {
+            a
+        } else {
+            b
+        }
+    }
+    #[inline(always)]
+    fn and(a: bool, b: bool) -> bool {
+        a && b
+    }
+    #[inline(always)]
+    fn and_not(a: bool, b: bool) -> bool {
+        !a && b
+    }
+    #[inline(always)]
+    fn any(m: bool) -> bool {
+        m
+    }
+    #[inline(always)]
+    fn neg_where(self, m: bool) -> Self {
+        if m {
+            -self
+        } else {
+            self
+        }
+    }
+    #[inline(always)]
+    fn flip_by_sign_of(self, of: Self) -> Self {
+        f32::from_bits(self.to_bits() ^ (of.to_bits() & 0x8000_0000))
     }
     #[inline(always)]
     fn mul(self, b: Self) -> Self {
@@ -80,6 +156,7 @@ impl Lane for f32 {
 /// into those kernels as one instruction.
 #[cfg(target_arch = "x86_64")]
 impl Lane for __m256 {
+    type Mask = __m256;
     #[inline(always)]
     fn splat(x: f32) -> Self {
         // SAFETY: see the impl's doc: only called from AVX2+FMA code.
@@ -89,6 +166,56 @@ impl Lane for __m256 {
     fn add(self, b: Self) -> Self {
         // SAFETY: as for splat.
         unsafe { _mm256_add_ps(self, b) }
+    }
+    #[inline(always)]
+    fn sub(self, b: Self) -> Self {
+        // SAFETY: as for splat.
+        unsafe { _mm256_sub_ps(self, b) }
+    }
+    #[inline(always)]
+    fn sqrt(self) -> Self {
+        // SAFETY: as for splat.
+        unsafe { _mm256_sqrt_ps(self) }
+    }
+    #[inline(always)]
+    fn lt(self, b: Self) -> __m256 {
+        // SAFETY: as for splat.
+        unsafe { _mm256_cmp_ps::<_CMP_LT_OQ>(self, b) }
+    }
+    #[inline(always)]
+    fn le(self, b: Self) -> __m256 {
+        // SAFETY: as for splat.
+        unsafe { _mm256_cmp_ps::<_CMP_LE_OQ>(self, b) }
+    }
+    #[inline(always)]
+    fn select(m: __m256, a: Self, b: Self) -> Self {
+        // SAFETY: as for splat.
+        unsafe { _mm256_blendv_ps(b, a, m) }
+    }
+    #[inline(always)]
+    fn and(a: __m256, b: __m256) -> __m256 {
+        // SAFETY: as for splat.
+        unsafe { _mm256_and_ps(a, b) }
+    }
+    #[inline(always)]
+    fn and_not(a: __m256, b: __m256) -> __m256 {
+        // SAFETY: as for splat.
+        unsafe { _mm256_andnot_ps(a, b) }
+    }
+    #[inline(always)]
+    fn any(m: __m256) -> bool {
+        // SAFETY: as for splat.
+        unsafe { _mm256_movemask_ps(m) != 0 }
+    }
+    #[inline(always)]
+    fn neg_where(self, m: __m256) -> Self {
+        // SAFETY: as for splat.
+        unsafe { _mm256_xor_ps(self, _mm256_and_ps(m, _mm256_set1_ps(-0.0))) }
+    }
+    #[inline(always)]
+    fn flip_by_sign_of(self, of: Self) -> Self {
+        // SAFETY: as for splat.
+        unsafe { _mm256_xor_ps(self, _mm256_and_ps(of, _mm256_set1_ps(-0.0))) }
     }
     #[inline(always)]
     fn mul(self, b: Self) -> Self {

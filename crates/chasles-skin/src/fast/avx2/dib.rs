@@ -1,200 +1,14 @@
-//! DIB skinning (`super::super::dib`) eight vertices at a time with AVX2 and FMA: the DIB
-//! algorithm of Kavan et al. 2006 (§4, the box "DIB"), one vertex per lane. Each vertex's
-//! K (4 or 8) joint dual quaternions are transposed into lanes (slots of weight 0 in all
-//! eight vertices skipped at the end); the start is DLB against the pivot (the first of the
-//! heaviest influences); then `b̂ ← b̂ exp(Σ wᵢ log(b̂* q̂ᵢ))`, normalized, in all eight
-//! lanes until every lane has stopped by the scalar rule (the update's norm below
-//! [`DIB_PRECISION`], or no longer shrinking within 100× of it, or not finite: a lane that
-//! stops keeps its blend), at most [`DIB_UPDATES`] times. The last step is DQS's transform.
-//!
-//! No trigonometric calls. For `r̂ = b̂* q̂ᵢ` taken to `w ≥ 0`, with `r0 = (w, a)`,
-//! `rε = (wε, b)`, `n = ‖a‖`, `s = n²` (eq. 2 and the library's `DualQuat::log`):
-//!
-//! ```text
-//! log r̂ = [½ ln‖r0‖², h a] + ε [r0·rε / ‖r0‖², h b + a (2 ∂h/∂s a·b − wε / ‖r0‖²)],
-//! h = atan2(n, w) / n
-//! ```
-//!
-//! The angle is reduced to `|t| ≤ tan(π/8)` and summed by the series
-//! `Q(z) = atan(√z)/√z = Σ (−1)ᵏ zᵏ/(2k+1)`, z = t² ≤ 0.172, ten terms to 1e-9:
-//!
-//! ```text
-//! n ≤ tan(π/8) w:   t = n/w,             h = Q(t²)/w,  ∂h/∂s = −G(t²)/(2w³)
-//! n ≥ w/tan(π/8):   t = w/n,             θ = π/2 − t Q(t²)
-//! between:          t = (n − w)/(n + w), θ = π/4 + t Q(t²)
-//! ```
-//!
-//! with `G(z) = Σ (−1)ᵏ 2(k+1)/(2k+3) zᵏ` (the library's series) and, in the last two rows
-//! (n > 0.38 ‖r0‖, no cancellation), `h = θ/n`, `∂h/∂s = (w n/‖r0‖² − θ)/(2 n s)`. The
-//! exponential's `cos √s`, `sinc √s` and `d sinc √s / ds` are Taylor series in `s = ‖a‖²`
-//! for the update's `a`, truncated below 1e-8 at `s = (π/2)²` (a convex blend of
-//! half-angles in [0, π/2] stays in it). Two shortcuts, both exact after the normalization
-//! that follows, which only the update's norm sees: the exponential's scalar factor `e^ŵ`
-//! (a positive dual number, which normalizing removes) is left out, and `½ ln‖r0‖²` is taken
-//! as `½ (‖r0‖² − 1)` (r̂ is a product of unit dual quaternions: off by under 1e-14).
+//! DIB skinning (`super::super::dib`) eight vertices at a time with AVX2 and FMA: each
+//! vertex's K (4 or 8) joint dual quaternions and weights are transposed into lanes (slots
+//! of weight 0 in all eight vertices skipped at the end, unused ones replaced by the
+//! identity), and the lane algebra's branch-free DIB (`lane::dib`, where the series and the
+//! stopping rule are) runs on `__m256`, one vertex per lane. The last step is DQS's
+//! transform.
 
-use super::super::lane::dqmul;
+use super::super::lane::dib::{convex, dib as blend};
 use super::super::{Out, Vertex};
-use super::{
-    dot, eight, horner, load_head, store_rows, taylor, transform, transpose4_halves, transpose8,
-};
-use crate::skinning::{DIB_PRECISION, DIB_UPDATES};
-use chasles::blend::STALL_FACTOR;
+use super::{eight, load_head, store_rows, transform, transpose4_halves, transpose8};
 use std::arch::x86_64::*;
-
-/// A dual quaternion in each lane: w, x, y, z, wε, xε, yε, zε.
-type Dq = [__m256; 8];
-
-/// `tan(π/8) = √2 − 1`: where the angle reductions change.
-const TAN_PI_8: f32 = 0.414_213_57;
-/// `Q(z) = atan(√z)/√z`: `(−1)ᵏ/(2k+1)`; the next term is below 1e-9 at `z = tan²(π/8)`.
-const Q: [f32; 10] = series(0);
-/// `G(z) = (atan √z − √z/(1+z))/z^{3/2}`: `(−1)ᵏ 2(k+1)/(2k+3)`; next term below 4e-9.
-const G: [f32; 11] = series(1);
-/// `cos √s = Σ (−1)ᵏ sᵏ/(2k)!`: next term below 7e-9 at `s = (π/2)²`.
-const COS: [f32; 7] = taylor(0);
-/// `sinc √s = Σ (−1)ᵏ sᵏ/(2k+1)!`: next term below 5e-10 at `s = (π/2)²`.
-const SINC: [f32; 7] = taylor(1);
-/// `d sinc √s / ds`, the derivative of [`SINC`]'s series term by term (one term fewer).
-const D_SINC: [f32; 6] = derivative(SINC);
-
-/// The alternating coefficients `(−1)ᵏ cₖ` of [`Q`] (`g = 0`: `cₖ = 1/(2k+1)`) and of
-/// [`G`] (`g = 1`: `cₖ = 2(k+1)/(2k+3)`).
-const fn series<const N: usize>(g: u32) -> [f32; N] {
-    let mut out = [0f32; N];
-    let mut k = 0;
-    while k < N {
-        let sign = if k % 2 == 0 { 1.0 } else { -1.0 };
-        let kf = k as f64;
-        let c = if g == 0 {
-            1.0 / (2.0 * kf + 1.0)
-        } else {
-            2.0 * (kf + 1.0) / (2.0 * kf + 3.0)
-        };
-        out[k] = (sign * c) as f32;
-        k += 1;
-    }
-    out
-}
-
-/// The coefficients of the derivative of `Σ cₖ sᵏ`: `(k + 1) cₖ₊₁`.
-const fn derivative<const N: usize, const M: usize>(c: [f32; N]) -> [f32; M] {
-    let mut out = [0f32; M];
-    let mut k = 0;
-    while k < M {
-        out[k] = (k + 1) as f32 * c[k + 1];
-        k += 1;
-    }
-    out
-}
-
-/// `x` in every lane.
-#[inline]
-#[target_feature(enable = "avx2,fma")]
-fn set(x: f32) -> __m256 {
-    _mm256_set1_ps(x)
-}
-
-/// The unit dual quaternion of `q` (real part to unit length, dual part made orthogonal
-/// to it), as `DualQuat::normalize`.
-#[inline]
-#[target_feature(enable = "avx2,fma")]
-fn normalize(q: &Dq) -> Dq {
-    let inv = _mm256_div_ps(set(1.0), _mm256_sqrt_ps(dot(&q[..4], &q[..4])));
-    let u: Dq = eight(|c| _mm256_mul_ps(q[c], inv));
-    let along = dot(&u[..4], &u[4..]);
-    eight(|c| {
-        if c < 4 {
-            u[c]
-        } else {
-            _mm256_fnmadd_ps(u[c - 4], along, u[c])
-        }
-    })
-}
-
-/// `log r̂` of the module docs, for `r̂` or `−r̂`, whichever has `w ≥ 0`.
-#[inline]
-#[target_feature(enable = "avx2,fma")]
-fn log(r: &Dq) -> Dq {
-    let (mul, add, sub, div) = (_mm256_mul_ps, _mm256_add_ps, _mm256_sub_ps, _mm256_div_ps);
-    let (fma, fms, blend) = (_mm256_fmadd_ps, _mm256_fmsub_ps, _mm256_blendv_ps);
-    let sign = _mm256_and_ps(r[0], set(-0.0));
-    let r: Dq = eight(|c| _mm256_xor_ps(r[c], sign));
-    let (w, wd) = (r[0], r[4]);
-    let s = dot(&r[1..4], &r[1..4]);
-    let ab = dot(&r[1..4], &r[5..8]);
-    let n2 = fma(w, w, s);
-    let inv_n2 = div(set(1.0), n2);
-    let n = _mm256_sqrt_ps(s);
-    let near = _mm256_cmp_ps::<_CMP_LE_OQ>(n, mul(set(TAN_PI_8), w));
-    let far = _mm256_cmp_ps::<_CMP_LT_OQ>(w, mul(set(TAN_PI_8), n));
-    let num = blend(blend(sub(n, w), w, far), n, near);
-    let den = blend(blend(add(n, w), n, far), w, near);
-    let t = div(num, den);
-    let z = mul(t, t);
-    let q = horner(&Q, z);
-    let offset = blend(
-        blend(
-            set(std::f32::consts::FRAC_PI_4),
-            set(std::f32::consts::FRAC_PI_2),
-            far,
-        ),
-        _mm256_setzero_ps(),
-        near,
-    );
-    let theta = fma(_mm256_xor_ps(t, _mm256_and_ps(far, set(-0.0))), q, offset);
-    let h = div(blend(theta, q, near), blend(n, w, near));
-    let h_s = div(
-        blend(
-            fms(mul(w, n), inv_n2, theta),
-            sub(_mm256_setzero_ps(), horner(&G, z)),
-            near,
-        ),
-        blend(mul(add(n, n), s), mul(add(w, w), mul(w, w)), near),
-    );
-    // ∂h = ∂h/∂s · 2 a·b − wε / ‖r0‖².
-    let h_du = fms(add(h_s, h_s), ab, mul(inv_n2, wd));
-    let ln = mul(set(0.5), sub(n2, set(1.0)));
-    let ln_du = mul(fma(w, wd, ab), inv_n2);
-    eight(|c| match c {
-        0 => ln,
-        1..=3 => mul(r[c], h),
-        4 => ln_du,
-        _ => fma(r[c], h, mul(r[c - 4], h_du)),
-    })
-}
-
-/// `exp x̂` of a dual quaternion's vector parts (`a + ε b`), its scalar factor `e^ŵ` left out
-/// (see the module docs): `[cos √s, k a] + ε [−k a·b, k b + 2 ∂k/∂s a·b a]`, `k = sinc √s`.
-#[inline]
-#[target_feature(enable = "avx2,fma")]
-fn exp(x: &Dq) -> Dq {
-    let s = dot(&x[1..4], &x[1..4]);
-    let ab = dot(&x[1..4], &x[5..8]);
-    let (k, cos) = (horner(&SINC, s), horner(&COS, s));
-    let k_du = _mm256_mul_ps(_mm256_add_ps(ab, ab), horner(&D_SINC, s));
-    eight(|c| match c {
-        0 => cos,
-        1..=3 => _mm256_mul_ps(k, x[c]),
-        4 => _mm256_sub_ps(_mm256_setzero_ps(), _mm256_mul_ps(k, ab)),
-        _ => _mm256_fmadd_ps(k, x[c], _mm256_mul_ps(k_du, x[c - 4])),
-    })
-}
-
-/// Whether each lane's iteration goes on (`keep_going` of the library): the update's
-/// `norm` is finite, not below the precision, and not stuck (no smaller than the `last`
-/// while within `STALL_FACTOR` × the precision).
-#[inline]
-#[target_feature(enable = "avx2,fma")]
-fn keep_going(norm: __m256, last: __m256) -> __m256 {
-    let above = _mm256_cmp_ps::<_CMP_GE_OQ>(norm, set(DIB_PRECISION));
-    let finite = _mm256_cmp_ps::<_CMP_LT_OQ>(norm, set(f32::INFINITY));
-    let stuck = _mm256_and_ps(
-        _mm256_cmp_ps::<_CMP_GE_OQ>(norm, last),
-        _mm256_cmp_ps::<_CMP_LT_OQ>(norm, set(DIB_PRECISION * STALL_FACTOR as f32)),
-    );
-    _mm256_andnot_ps(stuck, _mm256_and_ps(above, finite))
-}
 
 /// DIB for the first `v.len() / 8 * 8` vertices with the joints' dual quaternions as
 /// `[w, x, y, z, wε, xε, yε, zε]`; returns how many were done. Influences of weight 0 are
@@ -209,7 +23,7 @@ pub unsafe fn dib<const K: usize>(v: &[Vertex<K>], d: &[[f32; 8]], _: &(), o: &m
     unsafe {
         let db = d.as_ptr() as *const f32;
         let zero = _mm256_setzero_ps();
-        let identity: Dq = eight(|c| if c == 0 { set(1.0) } else { zero });
+        let identity = eight(|c| if c == 0 { _mm256_set1_ps(1.0) } else { zero });
         let blocks = v.len() / 8;
         for blk in 0..blocks {
             let i = blk * 8;
@@ -223,20 +37,7 @@ pub unsafe fn dib<const K: usize>(v: &[Vertex<K>], d: &[[f32; 8]], _: &(), o: &m
                 let t = transpose4_halves([0, 1, 2, 3].map(|l| _mm256_set_m128(w(l + 4), w(l))));
                 raw[4 * g..4 * g + 4].copy_from_slice(&t);
             }
-            let used = raw.map(|w| _mm256_cmp_ps::<_CMP_GT_OQ>(w, zero));
-            let mut wp = [zero; K];
-            let mut sum = zero;
-            for k in 0..K {
-                wp[k] = _mm256_and_ps(raw[k], used[k]);
-                sum = _mm256_add_ps(sum, wp[k]);
-            }
-            let w = wp.map(|x| _mm256_div_ps(x, sum));
-            // Trailing slots of weight 0 in all eight vertices (neighbours in a mesh tend to
-            // have as many influences) are skipped: their terms would be exact zeros.
-            let slots = (0..K)
-                .rev()
-                .find(|&k| _mm256_movemask_ps(used[k]) != 0)
-                .map_or(0, |k| k + 1);
+            let (w, used, slots) = convex(raw);
             // Joints in lanes; unused ones replaced by the identity.
             let mut q = [identity; K];
             for k in 0..slots {
@@ -245,41 +46,7 @@ pub unsafe fn dib<const K: usize>(v: &[Vertex<K>], d: &[[f32; 8]], _: &(), o: &m
                 }));
                 q[k] = eight(|c| _mm256_blendv_ps(identity[c], t[c], used[k]));
             }
-            // DLB against the pivot: the first of the heaviest (slot 0 in a `FastRig::new`).
-            let (mut pivot, mut heaviest) = (q[0], w[0]);
-            for k in 1..slots {
-                let more = _mm256_cmp_ps::<_CMP_GT_OQ>(w[k], heaviest);
-                pivot = eight(|c| _mm256_blendv_ps(pivot[c], q[k][c], more));
-                heaviest = _mm256_blendv_ps(heaviest, w[k], more);
-            }
-            let mut sum = [zero; 8];
-            for k in 0..slots {
-                let flip = _mm256_cmp_ps::<_CMP_LT_OQ>(dot(&q[k][..4], &pivot[..4]), zero);
-                let wk = _mm256_xor_ps(w[k], _mm256_and_ps(flip, set(-0.0)));
-                sum = eight(|c| _mm256_fmadd_ps(wk, q[k][c], sum[c]));
-            }
-            let mut b = normalize(&sum);
-            let mut last = set(f32::INFINITY);
-            let mut active = _mm256_castsi256_ps(_mm256_set1_epi32(-1));
-            for _ in 0..DIB_UPDATES {
-                let conj: Dq = eight(|c| match c {
-                    0 | 4 => b[c],
-                    _ => _mm256_xor_ps(b[c], set(-0.0)),
-                });
-                let mut x = [zero; 8];
-                for k in 0..slots {
-                    let l = log(&dqmul(&conj, &q[k]));
-                    x = eight(|c| _mm256_fmadd_ps(w[k], l[c], x[c]));
-                }
-                let norm = _mm256_sqrt_ps(dot(&x, &x));
-                active = _mm256_and_ps(active, keep_going(norm, last));
-                if _mm256_movemask_ps(active) == 0 {
-                    break;
-                }
-                last = norm;
-                let next = normalize(&dqmul(&b, &exp(&x)));
-                b = eight(|c| _mm256_blendv_ps(b[c], next[c], active));
-            }
+            let b = blend(&q, &w, slots);
             store_rows(o, i, transform(b, [px, py, pz], [nx, ny, nz]));
         }
         blocks * 8
@@ -290,41 +57,9 @@ pub unsafe fn dib<const K: usize>(v: &[Vertex<K>], d: &[[f32; 8]], _: &(), o: &m
 mod tests {
     use super::*;
     use crate::fast::{simd, Kernel};
+    use crate::skinning::DIB_PRECISION;
     use crate::synthetic;
     use chasles::{DualQuat, Quat, Vec3};
-
-    #[test]
-    fn the_series_are_the_closed_forms() {
-        let sum = super::super::sum64;
-        for i in 0..=1000 {
-            let f = f64::from(i) / 1000.0;
-            // Q and G up to tan²(π/8).
-            let z = f * (2f64.sqrt() - 1.0).powi(2);
-            let r = z.sqrt();
-            let (q, g) = if z == 0.0 {
-                (1.0, 2.0 / 3.0)
-            } else {
-                (r.atan() / r, (r.atan() - r / (1.0 + z)) / (z * r))
-            };
-            assert!((sum(&Q, z) - q).abs() < 2e-8, "Q({z})");
-            // G's closed form loses digits to cancellation near 0.
-            let tol = if z < 0.01 { 1e-5 } else { 5e-8 };
-            assert!(
-                (sum(&G, z) - g).abs() < tol,
-                "G({z}): {} vs {g}",
-                sum(&G, z)
-            );
-            // cos √s, sinc √s and its derivative up to s = (π/2)².
-            let x = f * std::f64::consts::FRAC_PI_2;
-            let s = x * x;
-            assert!((sum(&COS, s) - x.cos()).abs() < 5e-8, "cos {x}");
-            if x > 0.1 {
-                assert!((sum(&SINC, s) - x.sin() / x).abs() < 5e-8, "sinc {x}");
-                let d = (x.cos() - x.sin() / x) / (2.0 * s);
-                assert!((sum(&D_SINC, s) - d).abs() < 5e-8, "d sinc {x}");
-            }
-        }
-    }
 
     /// Joints of every angle (w < 0 included: the DLB's antipodality and the logarithm's
     /// hemisphere both matter), translations up to 2.

@@ -1,0 +1,378 @@
+//! DIB (Kavan et al. 2006, §4, the box "DIB") in the lane algebra, branch-free, so that one
+//! vertex runs in each lane: the start is DLB against the pivot (the first of the heaviest
+//! influences); then `b̂ ← b̂ exp(Σ wᵢ log(b̂* q̂ᵢ))`, normalized, until every lane has stopped
+//! by the library's rule (the update's norm below [`DIB_PRECISION`], or no longer shrinking
+//! within [`STALL_FACTOR`] × of it, or not finite: a lane that stops keeps its blend), at
+//! most [`DIB_UPDATES`] times. The AVX2 kernel (`avx2::dib`) runs it on `__m256`, eight
+//! vertices at once; on `f32` it is the same algorithm one vertex at a time, which the tests
+//! hold against the library's `dib` (the scalar fast path itself runs the library's
+//! `dib_convex`, the reference's very calls, so that it equals the reference bit for bit).
+//!
+//! No trigonometric calls. For `r̂ = b̂* q̂ᵢ` taken to `w ≥ 0`, with `r0 = (w, a)`,
+//! `rε = (wε, b)`, `n = ‖a‖`, `s = n²` (eq. 2 and the library's `DualQuat::log`):
+//!
+//! ```text
+//! log r̂ = [½ ln‖r0‖², h a] + ε [r0·rε / ‖r0‖², h b + a (2 ∂h/∂s a·b − wε / ‖r0‖²)],
+//! h = atan2(n, w) / n
+//! ```
+//!
+//! The angle is reduced to `|t| ≤ tan(π/8)` and summed by the series
+//! `Q(z) = atan(√z)/√z = Σ (−1)ᵏ zᵏ/(2k+1)`, z = t² ≤ 0.172, ten terms to 1e-9:
+//!
+//! ```text
+//! n ≤ tan(π/8) w:   t = n/w,             h = Q(t²)/w,  ∂h/∂s = −G(t²)/(2w³)
+//! n ≥ w/tan(π/8):   t = w/n,             θ = π/2 − t Q(t²)
+//! between:          t = (n − w)/(n + w), θ = π/4 + t Q(t²)
+//! ```
+//!
+//! with `G(z) = Σ (−1)ᵏ 2(k+1)/(2k+3) zᵏ` (the library's series) and, in the last two rows
+//! (n > 0.38 ‖r0‖, no cancellation), `h = θ/n`, `∂h/∂s = (w n/‖r0‖² − θ)/(2 n s)`. The
+//! exponential's `cos √s`, `sinc √s` and `d sinc √s / ds` are Taylor series in `s = ‖a‖²`
+//! for the update's `a`, truncated below 1e-8 at `s = (π/2)²` (a convex blend of
+//! half-angles in [0, π/2] stays in it). Two shortcuts, both exact after the normalization
+//! that follows, which only the update's norm sees: the exponential's scalar factor `e^ŵ`
+//! (a positive dual number, which normalizing removes) is left out, and `½ ln‖r0‖²` is taken
+//! as `½ (‖r0‖² − 1)` (r̂ is a product of unit dual quaternions: off by under 1e-14).
+
+use super::{dot, dqmul, horner, taylor, Lane};
+use crate::skinning::{DIB_PRECISION, DIB_UPDATES};
+use chasles::blend::STALL_FACTOR;
+
+/// `tan(π/8) = √2 − 1`: where the angle reductions change.
+const TAN_PI_8: f32 = 0.414_213_57;
+/// `Q(z) = atan(√z)/√z`: `(−1)ᵏ/(2k+1)`; the next term is below 1e-9 at `z = tan²(π/8)`.
+pub(in crate::fast) const Q: [f32; 10] = series(0);
+/// `G(z) = (atan √z − √z/(1+z))/z^{3/2}`: `(−1)ᵏ 2(k+1)/(2k+3)`; next term below 4e-9.
+pub(in crate::fast) const G: [f32; 11] = series(1);
+/// `cos √s = Σ (−1)ᵏ sᵏ/(2k)!`: next term below 7e-9 at `s = (π/2)²`.
+pub(in crate::fast) const COS: [f32; 7] = taylor(0);
+/// `sinc √s = Σ (−1)ᵏ sᵏ/(2k+1)!`: next term below 5e-10 at `s = (π/2)²`.
+pub(in crate::fast) const SINC: [f32; 7] = taylor(1);
+/// `d sinc √s / ds`, the derivative of [`SINC`]'s series term by term (one term fewer).
+pub(in crate::fast) const D_SINC: [f32; 6] = derivative(SINC);
+
+/// The alternating coefficients `(−1)ᵏ cₖ` of [`Q`] (`g = 0`: `cₖ = 1/(2k+1)`) and of
+/// [`G`] (`g = 1`: `cₖ = 2(k+1)/(2k+3)`).
+const fn series<const N: usize>(g: u32) -> [f32; N] {
+    let mut out = [0f32; N];
+    let mut k = 0;
+    while k < N {
+        let sign = if k % 2 == 0 { 1.0 } else { -1.0 };
+        let kf = k as f64;
+        let c = if g == 0 {
+            1.0 / (2.0 * kf + 1.0)
+        } else {
+            2.0 * (kf + 1.0) / (2.0 * kf + 3.0)
+        };
+        out[k] = (sign * c) as f32;
+        k += 1;
+    }
+    out
+}
+
+/// The coefficients of the derivative of `Σ cₖ sᵏ`: `(k + 1) cₖ₊₁`.
+const fn derivative<const N: usize, const M: usize>(c: [f32; N]) -> [f32; M] {
+    let mut out = [0f32; M];
+    let mut k = 0;
+    while k < M {
+        out[k] = (k + 1) as f32 * c[k + 1];
+        k += 1;
+    }
+    out
+}
+
+/// `[f(0), …, f(7)]`, written out (no closures left as calls in the kernels).
+#[inline(always)]
+fn eight<L>(f: impl Fn(usize) -> L) -> [L; 8] {
+    [f(0), f(1), f(2), f(3), f(4), f(5), f(6), f(7)]
+}
+
+/// The unit dual quaternion of `q` (real part to unit length, dual part made orthogonal
+/// to it), as `DualQuat::normalize`.
+#[inline(always)]
+pub(in crate::fast) fn normalize<L: Lane>(q: &[L; 8]) -> [L; 8] {
+    let inv = L::splat(1.0).div(dot(&q[..4], &q[..4]).sqrt());
+    let u = eight(|c| q[c].mul(inv));
+    let along = dot(&u[..4], &u[4..]);
+    eight(|c| {
+        if c < 4 {
+            u[c]
+        } else {
+            u[c - 4].nmadd(along, u[c])
+        }
+    })
+}
+
+/// `log r̂` of the module docs, for `r̂` or `−r̂`, whichever has `w ≥ 0`.
+#[inline(always)]
+pub(in crate::fast) fn log<L: Lane>(r: &[L; 8]) -> [L; 8] {
+    let zero = L::splat(0.0);
+    let r = eight(|c| r[c].flip_by_sign_of(r[0]));
+    let (w, wd) = (r[0], r[4]);
+    let s = dot(&r[1..4], &r[1..4]);
+    let ab = dot(&r[1..4], &r[5..8]);
+    let n2 = w.madd(w, s);
+    let inv_n2 = L::splat(1.0).div(n2);
+    let n = s.sqrt();
+    let near = n.le(L::splat(TAN_PI_8).mul(w));
+    let far = w.lt(L::splat(TAN_PI_8).mul(n));
+    let num = L::select(near, n, L::select(far, w, n.sub(w)));
+    let den = L::select(near, w, L::select(far, n, n.add(w)));
+    let t = num.div(den);
+    let z = t.mul(t);
+    let q = horner(&Q, z);
+    let offset = L::select(
+        near,
+        zero,
+        L::select(
+            far,
+            L::splat(std::f32::consts::FRAC_PI_2),
+            L::splat(std::f32::consts::FRAC_PI_4),
+        ),
+    );
+    let theta = t.neg_where(far).madd(q, offset);
+    let h = L::select(near, q, theta).div(L::select(near, w, n));
+    let h_s = L::select(near, zero.sub(horner(&G, z)), w.mul(n).msub(inv_n2, theta))
+        .div(L::select(near, w.add(w).mul(w.mul(w)), n.add(n).mul(s)));
+    // ∂h = ∂h/∂s · 2 a·b − wε / ‖r0‖².
+    let h_du = h_s.add(h_s).msub(ab, inv_n2.mul(wd));
+    let ln = L::splat(0.5).mul(n2.sub(L::splat(1.0)));
+    let ln_du = w.madd(wd, ab).mul(inv_n2);
+    eight(|c| match c {
+        0 => ln,
+        1..=3 => r[c].mul(h),
+        4 => ln_du,
+        _ => r[c].madd(h, r[c - 4].mul(h_du)),
+    })
+}
+
+/// `exp x̂` of a dual quaternion's vector parts (`a + ε b`), its scalar factor `e^ŵ` left out
+/// (see the module docs): `[cos √s, k a] + ε [−k a·b, k b + 2 ∂k/∂s a·b a]`, `k = sinc √s`.
+#[inline(always)]
+pub(in crate::fast) fn exp<L: Lane>(x: &[L; 8]) -> [L; 8] {
+    let s = dot(&x[1..4], &x[1..4]);
+    let ab = dot(&x[1..4], &x[5..8]);
+    let (k, cos) = (horner(&SINC, s), horner(&COS, s));
+    let k_du = ab.add(ab).mul(horner(&D_SINC, s));
+    eight(|c| match c {
+        0 => cos,
+        1..=3 => k.mul(x[c]),
+        4 => L::splat(0.0).sub(k.mul(ab)),
+        _ => k.madd(x[c], k_du.mul(x[c - 4])),
+    })
+}
+
+/// Whether each lane's iteration goes on (`keep_going` of the library): the update's
+/// `norm` is finite, not below the precision, and not stuck (no smaller than the `last`
+/// while within `STALL_FACTOR` × the precision).
+#[inline(always)]
+fn keep_going<L: Lane>(norm: L, last: L) -> L::Mask {
+    let precision = L::splat(DIB_PRECISION);
+    let above = precision.le(norm);
+    let finite = norm.lt(L::splat(f32::INFINITY));
+    let stuck = L::and(
+        last.le(norm),
+        norm.lt(L::splat(DIB_PRECISION * STALL_FACTOR as f32)),
+    );
+    L::and_not(stuck, L::and(above, finite))
+}
+
+/// A vertex's weights `raw` (in slots of K) as DIB takes them: the positive ones scaled to
+/// sum to 1 (in the scalar kernel's order), the others 0; which slots are used; and how
+/// many slots count — trailing slots unused in every lane are left out (in a mesh, vertices
+/// side by side tend to have as many influences): their terms would be exact zeros.
+#[inline(always)]
+pub(in crate::fast) fn convex<L: Lane, const K: usize>(
+    raw: [L; K],
+) -> ([L; K], [L::Mask; K], usize) {
+    let zero = L::splat(0.0);
+    let used = raw.map(|w| zero.lt(w));
+    let mut positive = [zero; K];
+    let mut sum = zero;
+    for k in 0..K {
+        positive[k] = L::select(used[k], raw[k], zero);
+        sum = sum.add(positive[k]);
+    }
+    let slots = (0..K).rev().find(|&k| L::any(used[k])).map_or(0, |k| k + 1);
+    (positive.map(|x| x.div(sum)), used, slots)
+}
+
+/// The DIB blend of the first `slots` joint dual quaternions `q` with the convex weights
+/// `w` ([`convex`]; unused slots hold the identity with weight 0), in each lane: DLB
+/// against the pivot, then the iteration of the module docs.
+#[inline(always)]
+pub(in crate::fast) fn dib<L: Lane, const K: usize>(
+    q: &[[L; 8]; K],
+    w: &[L; K],
+    slots: usize,
+) -> [L; 8] {
+    let zero = L::splat(0.0);
+    // DLB against the pivot: the first of the heaviest (slot 0 in a `FastRig::new`).
+    let (mut pivot, mut heaviest) = (q[0], w[0]);
+    for k in 1..slots {
+        let more = heaviest.lt(w[k]);
+        pivot = eight(|c| L::select(more, q[k][c], pivot[c]));
+        heaviest = L::select(more, w[k], heaviest);
+    }
+    let mut sum = [zero; 8];
+    for k in 0..slots {
+        let wk = w[k].neg_where(dot(&q[k][..4], &pivot[..4]).lt(zero));
+        sum = eight(|c| wk.madd(q[k][c], sum[c]));
+    }
+    let mut b = normalize(&sum);
+    let mut last = L::splat(f32::INFINITY);
+    let mut active = zero.le(zero);
+    let minus = L::splat(-1.0);
+    for _ in 0..DIB_UPDATES {
+        let conj = eight(|c| match c {
+            0 | 4 => b[c],
+            _ => b[c].flip_by_sign_of(minus),
+        });
+        let mut x = [zero; 8];
+        for k in 0..slots {
+            let l = log(&dqmul(&conj, &q[k]));
+            x = eight(|c| w[k].madd(l[c], x[c]));
+        }
+        let norm = dot(&x, &x).sqrt();
+        active = L::and(active, keep_going(norm, last));
+        if !L::any(active) {
+            break;
+        }
+        last = norm;
+        let next = normalize(&dqmul(&b, &exp(&x)));
+        b = eight(|c| L::select(active, next[c], b[c]));
+    }
+    b
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use chasles::{DualQuat, Quat, Vec3};
+
+    /// `Σ cₖ sᵏ` in f64: the value of a series' f32 coefficients.
+    fn sum64(c: &[f32], s: f64) -> f64 {
+        c.iter().rev().fold(0.0, |a, k| a * s + f64::from(*k))
+    }
+
+    #[test]
+    fn the_series_are_the_closed_forms() {
+        for i in 0..=1000 {
+            let f = f64::from(i) / 1000.0;
+            // Q and G up to tan²(π/8).
+            let z = f * (2f64.sqrt() - 1.0).powi(2);
+            let r = z.sqrt();
+            let (q, g) = if z == 0.0 {
+                (1.0, 2.0 / 3.0)
+            } else {
+                (r.atan() / r, (r.atan() - r / (1.0 + z)) / (z * r))
+            };
+            assert!((sum64(&Q, z) - q).abs() < 2e-8, "Q({z})");
+            // G's closed form loses digits to cancellation near 0.
+            let tol = if z < 0.01 { 1e-5 } else { 5e-8 };
+            let got = sum64(&G, z);
+            assert!((got - g).abs() < tol, "G({z}): {got} vs {g}");
+            // cos √s, sinc √s and its derivative up to s = (π/2)².
+            let x = f * std::f64::consts::FRAC_PI_2;
+            let s = x * x;
+            assert!((sum64(&COS, s) - x.cos()).abs() < 5e-8, "cos {x}");
+            if x > 0.1 {
+                assert!((sum64(&SINC, s) - x.sin() / x).abs() < 5e-8, "sinc {x}");
+                let d = (x.cos() - x.sin() / x) / (2.0 * s);
+                assert!((sum64(&D_SINC, s) - d).abs() < 5e-8, "d sinc {x}");
+            }
+        }
+    }
+
+    /// A unit dual quaternion turning by `angle` about a varying axis and moving by up to 2.
+    fn rigid(f: f32, angle: f32) -> DualQuat<f32> {
+        let axis = Vec3::new(1.0, 3.0 * f - 1.0, (7.0 * f).sin());
+        let q = Quat::from_axis_angle(axis, angle).unwrap();
+        let t = Vec3::new(2.0 * f, 1.0 - f, (3.0 * f).cos());
+        DualQuat::from_rotation_translation(q, t)
+    }
+
+    /// On one lane the series' logarithm and exponential are the library's `DualQuat::log`
+    /// and `exp` (eq. 2 and its inverse; the exponential up to its positive scalar factor,
+    /// which the normalization removes) at every angle of all three reduction rows, both
+    /// hemispheres, −0 included.
+    #[test]
+    fn the_lane_log_and_exp_are_the_librarys() {
+        for i in 0..=400 {
+            let f = i as f32 / 400.0;
+            // Half-angles 0 … π: w from 1 through 0 to −1.
+            let d = rigid(f, std::f32::consts::TAU * f);
+            let got = log(&d.to_array());
+            let want = if d.real.w < 0.0 { -d } else { d }
+                .log()
+                .unwrap()
+                .to_array();
+            for c in 0..8 {
+                let tol = 2e-6 * (1.0 + want[c].abs());
+                assert!((got[c] - want[c]).abs() < tol, "{f}: {got:?} vs {want:?}");
+            }
+            // The exponential of a convex blend's update: half-angles up to π/2.
+            let mut x = rigid(f, std::f32::consts::PI * f).log().unwrap().to_array();
+            x[0] = 0.0;
+            x[4] = 0.0;
+            let got = normalize(&exp(&x));
+            let want = DualQuat::from_array(x)
+                .exp()
+                .normalize()
+                .unwrap()
+                .to_array();
+            for c in 0..8 {
+                assert!((got[c] - want[c]).abs() < 2e-6, "{f}: {got:?} vs {want:?}");
+            }
+        }
+        // w = −0: the sign bit alone takes r̂ to −r̂ (the identity's antipode's log is 0).
+        let mut antipode = [0f32; 8];
+        antipode[0] = -1.0;
+        assert_eq!(log(&antipode), [0.0; 8]);
+        let mut half_turn = [0f32; 8];
+        (half_turn[0], half_turn[1]) = (-0.0, -1.0);
+        let l = log(&half_turn);
+        assert!((l[1] - std::f32::consts::FRAC_PI_2).abs() < 1e-6, "{l:?}");
+    }
+
+    /// On one lane the branch-free DIB is the library's DIB: the same blend to within the
+    /// stopping rule's reach, on convex weights of two to four joints at every angle, and a
+    /// NaN joint with weight gives NaN (or stops at once) rather than a number.
+    #[test]
+    fn the_lane_dib_is_the_librarys() {
+        for i in 0..200 {
+            let f = i as f32 / 200.0;
+            let joints = [0.1, 0.4, 0.7, 0.9].map(|g| rigid((f + g) % 1.0, 2.8 * (f + g)));
+            let raw = [
+                0.5 * (1.0 - f),
+                0.3,
+                0.2 * f,
+                if i % 3 == 0 { 0.0 } else { 0.1 },
+            ];
+            let (w, used, slots) = convex(raw);
+            let q = std::array::from_fn(|k| {
+                if used[k] {
+                    joints[k].to_array()
+                } else {
+                    DualQuat::<f32>::identity().to_array()
+                }
+            });
+            let got = DualQuat::from_array(dib::<f32, 4>(&q, &w, slots));
+            let (qs, ws): (Vec<DualQuat<f64>>, Vec<f64>) = (0..4)
+                .filter(|&k| used[k])
+                .map(|k| (joints[k].cast::<f64>(), f64::from(w[k])))
+                .unzip();
+            let (want, _) = chasles::blend::dib::dib(&qs, &ws, 1e-12, 200).unwrap();
+            let p = Vec3::new(0.5f32, -1.0, 2.0);
+            let exact = want.transform_point(p.cast::<f64>());
+            let off = (got.transform_point(p).cast::<f64>() - exact).norm();
+            // The stopping rule's reach at a lever of ‖p‖ ≈ 2.3, and rounding.
+            let reach = 2.0 * f64::from(DIB_PRECISION) * (1.0 + 2.0 * 2.3) + 1e-5;
+            assert!(off <= reach, "{i}: {off}");
+        }
+        let mut q = [DualQuat::<f32>::identity().to_array(); 4];
+        q[1][2] = f32::NAN;
+        let (w, _, slots) = convex([0.5f32, 0.5, 0.0, 0.0]);
+        assert!(dib::<f32, 4>(&q, &w, slots).iter().all(|c| c.is_nan()));
+    }
+}
