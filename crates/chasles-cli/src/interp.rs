@@ -5,6 +5,7 @@ use crate::choice::InterpMethod;
 use crate::keyfile;
 use crate::output::{extension, num, write_atomic};
 use crate::picture_args::Pictures;
+use crate::spring_args::{configure, options, SpringArgs};
 use anyhow::{bail, Context, Result};
 use chasles::analysis::curvature::{curvature_energy, Width};
 use chasles::analysis::velocity::velocity_chord;
@@ -15,7 +16,7 @@ use chasles::{EulerOrder, Quat};
 use indicatif::{ProgressBar, ProgressStyle};
 use serde_json::json;
 use std::fmt::Write as _;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 /// Options of `chasles interp`.
@@ -24,30 +25,35 @@ pub struct InterpArgs {
     pub method: InterpMethod,
     /// Key file or `builtin:NAME`.
     pub keys: String,
-    /// Frames in total.
-    pub frames: usize,
+    /// Frames in total (default 200, or the last of `--levels`).
+    pub frames: Option<usize>,
     /// Frame distribution.
     pub timing: Timing,
     /// Output file (.csv or .json); stdout CSV when absent.
     pub out: Option<PathBuf>,
     /// Keep the keys' signs instead of chaining hemispheres.
     pub keep_signs: bool,
-    /// Override of the Spring key-frame weight c_k.
-    pub key_weight: Option<f64>,
-    /// Override of the Spring constant-velocity weight c_w.
-    pub velocity_weight: Option<f64>,
+    /// Spring's controls given on the command line.
+    pub spring: SpringArgs,
+    /// A folder for the frames as numbered PNGs.
+    pub frames_dir: Option<PathBuf>,
     /// The pictures asked for (`--plot` SVG or PNG).
     pub pictures: Pictures,
 }
+
+/// Frames when neither `--frames` nor `--levels` says.
+const DEFAULT_FRAMES: usize = 200;
 
 enum Plan {
     Piecewise(Method),
     Spring(SpringConfig),
 }
 
-fn plan(method: InterpMethod) -> Plan {
+/// What `method` runs; LinEuler in `order` (the keys' own when they were given as Euler
+/// triples, else the report's).
+fn plan(method: InterpMethod, order: EulerOrder) -> Plan {
     match method {
-        InterpMethod::LinEuler => Plan::Piecewise(Method::LinEuler(EulerOrder::DAM)),
+        InterpMethod::LinEuler => Plan::Piecewise(Method::LinEuler(order)),
         InterpMethod::LinMat => Plan::Piecewise(Method::LinMat),
         InterpMethod::Lerp => Plan::Piecewise(Method::Nlerp),
         InterpMethod::Slerp => Plan::Piecewise(Method::Slerp),
@@ -71,26 +77,47 @@ pub struct Run {
 
 /// Computes the curve and its summary.
 pub fn compute(args: &InterpArgs) -> Result<Run> {
-    let plan = plan(args.method);
     let keys = keyfile::load(&args.keys)?;
     let hemisphere = if args.keep_signs {
         Hemisphere::AsGiven
     } else {
         Hemisphere::Chain
     };
-    let kf = KeyFrames::new(&keys.quats, keys.times.as_deref(), hemisphere)
-        .with_context(|| keys.source.clone())?;
+    let kf = match &keys.euler {
+        Some((order, triples)) => {
+            KeyFrames::from_euler(*order, triples, keys.times.as_deref(), hemisphere)
+        }
+        None => KeyFrames::new(&keys.quats, keys.times.as_deref(), hemisphere),
+    }
+    .with_context(|| keys.source.clone())?;
+    let plan = plan(
+        args.method,
+        keys.euler.as_ref().map_or(EulerOrder::DAM, |e| e.0),
+    );
     let started = Instant::now();
     let mut extra = String::new();
+    let mut n = args.frames.unwrap_or(DEFAULT_FRAMES);
     let frames = match plan {
-        Plan::Piecewise(m) => interpolate(m, &kf, args.frames, args.timing)?,
-        Plan::Spring(mut cfg) => {
-            if let Some(c) = args.key_weight {
-                cfg.key_weight = c;
+        Plan::Piecewise(m) => {
+            if let Some(flag) = args.spring.given().first() {
+                bail!(
+                    "{flag} is a Spring control: it applies to spring, slerpsvupti, squadsvupti and justdoit, not {}",
+                    args.method.name()
+                );
             }
-            if let Some(c) = args.velocity_weight {
-                cfg.velocity_penalty = c;
-            }
+            interpolate(m, &kf, n, args.timing)?
+        }
+        Plan::Spring(preset) => {
+            let (cfg, total) = configure(
+                preset,
+                keys.spring.as_ref(),
+                &args.spring,
+                args.frames,
+                DEFAULT_FRAMES,
+            )
+            .with_context(|| keys.source.clone())?;
+            n = total;
+            let _ = writeln!(extra, "spring options    {}", options(&cfg, n));
             let total: usize = cfg.levels.iter().map(|l| l.iterations).sum();
             let bar = ProgressBar::new(total as u64);
             bar.set_style(
@@ -103,7 +130,7 @@ pub fn compute(args: &InterpArgs) -> Result<Run> {
             let mut done_before = 0usize;
             let mut level_seen = 0usize;
             let mut level_iters = 0usize;
-            let r = spring(&kf, args.frames, args.timing, &cfg, &mut |p| {
+            let r = spring(&kf, n, args.timing, &cfg, &mut |p| {
                 if p.level != level_seen {
                     done_before += level_iters;
                     level_seen = p.level;
@@ -208,6 +235,9 @@ pub fn run(args: InterpArgs) -> Result<()> {
         }
     }
     args.pictures.check(&["svg", "png"])?;
+    if let Some(dir) = &args.frames_dir {
+        check_frames_dir(dir)?;
+    }
     let run = compute(&args)?;
     if let Some(p) = &args.pictures.plot {
         let keys = chasles_viz::graph::key_indices(&run.frames);
@@ -241,6 +271,10 @@ pub fn run(args: InterpArgs) -> Result<()> {
         write_atomic(p, &chasles_viz::gif(&frames, 4)?)?;
         eprintln!("wrote {} ({} frames)", p.display(), frames.len());
     }
+    if let Some(dir) = &args.frames_dir {
+        write_frames(dir, &turned)?;
+        eprintln!("wrote {} ({} frames)", dir.display(), turned.len());
+    }
     if let Some(p) = &args.pictures.render {
         write_atomic(p, &chasles_viz::letter::strip(&turned, 8, 180).png())?;
         eprintln!("wrote {}", p.display());
@@ -260,5 +294,57 @@ pub fn run(args: InterpArgs) -> Result<()> {
             eprintln!("{}", run.summary);
         }
     }
+    Ok(())
+}
+
+/// Refuses, before any work, a `--frames-dir` that is a file or a folder with something in
+/// it (frames are never mixed with other files, nor written over).
+fn check_frames_dir(dir: &Path) -> Result<()> {
+    match std::fs::read_dir(dir) {
+        Ok(mut entries) => {
+            if entries.next().is_some() {
+                bail!("--frames-dir {} is not empty", dir.display());
+            }
+            Ok(())
+        }
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(()),
+        Err(e) => Err(e).with_context(|| format!("--frames-dir {}", dir.display())),
+    }
+}
+
+/// Every frame as `frame-NNNN.png` (the R turned by it, 240 pixels, its number in the
+/// corner), written into a new folder beside `dir` and moved into place whole, so that a
+/// failure leaves nothing behind. Shows progress on a terminal.
+fn write_frames(dir: &Path, turned: &[Quat<f64>]) -> Result<()> {
+    let parent = match dir.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    };
+    let tmp = tempfile::Builder::new()
+        .prefix(".frames-")
+        .tempdir_in(parent)
+        .with_context(|| format!("cannot create a folder in {}", parent.display()))?;
+    let digits = turned.len().saturating_sub(1).to_string().len().max(4);
+    let bar = ProgressBar::new(turned.len() as u64);
+    bar.set_style(
+        ProgressStyle::with_template("frames [{bar:30}] {pos}/{len}")
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    for (i, q) in turned.iter().enumerate() {
+        let png = chasles_viz::letter::draw(*q, &i.to_string(), 240).png();
+        let path = tmp.path().join(format!("frame-{i:0digits$}.png"));
+        std::fs::write(&path, png).with_context(|| format!("cannot write {}", path.display()))?;
+        bar.inc(1);
+    }
+    bar.finish_and_clear();
+    // An empty folder given is replaced (checked empty before the run).
+    if dir.is_dir() {
+        std::fs::remove_dir(dir).with_context(|| format!("cannot replace {}", dir.display()))?;
+    }
+    let kept = tmp.keep();
+    std::fs::rename(&kept, dir).map_err(|e| {
+        let _ = std::fs::remove_dir_all(&kept);
+        anyhow::anyhow!("cannot move the frames to {}: {e}", dir.display())
+    })?;
     Ok(())
 }

@@ -11,6 +11,15 @@
 //! [[keys]]
 //! euler = [0.1, 0.2, 0.3]  # radians
 //! order = "ZYX"            # optional per key
+//! [spring]                 # optional: Spring's controls, as `chasles interp`'s options
+//! levels = [22, 110, 550]  # frames per step; the last is the total
+//! iterations = [200, 150, 100]
+//! step = "fixed:0.02"      # or normalized:E, adaptive:E, accelerated:E
+//! penalty = 1.0            # c of eq. 6.28
+//! width = "one"            # one (eq. 6.43), chord (eq. 6.24) or angle
+//! key_weight = 1.3         # c_k
+//! velocity_weight = 0.0    # c_w (eq. 6.41)
+//! start = "slerp"          # or squad
 //! ```
 //!
 //! JSON takes the same shape, `{"order": "xyz", "keys": [{"angle": 1, "axis": [1, 3, 0]}, …]}`,
@@ -20,6 +29,7 @@
 //! field, an unknown Euler order, a zero axis alike).
 
 use crate::json::{from_json, Order};
+use crate::spring_args::SpringSpec;
 use anyhow::{anyhow, bail, Context, Result};
 use chasles::interp::examples;
 use chasles::{EulerOrder, Quat, Vec3};
@@ -38,6 +48,9 @@ struct Doc {
     order: Option<Order>,
     /// The keys, in order.
     keys: Vec<Spec>,
+    /// Spring's controls ([`SpringSpec`]).
+    #[serde(default)]
+    spring: Option<SpringSpec>,
 }
 
 /// A JSON key file: a [`Doc`], or just its array of keys. (Not an untagged enum, which
@@ -55,7 +68,11 @@ impl<'de> Deserialize<'de> for JsonDoc {
             }
             fn visit_seq<A: SeqAccess<'de>>(self, seq: A) -> Result<JsonDoc, A::Error> {
                 let keys = Vec::deserialize(SeqAccessDeserializer::new(seq))?;
-                Ok(JsonDoc(Doc { order: None, keys }))
+                Ok(JsonDoc(Doc {
+                    order: None,
+                    keys,
+                    spring: None,
+                }))
             }
             fn visit_map<A: MapAccess<'de>>(self, map: A) -> Result<JsonDoc, A::Error> {
                 Doc::deserialize(MapAccessDeserializer::new(map)).map(JsonDoc)
@@ -90,6 +107,11 @@ pub struct Keys {
     pub quats: Vec<Quat<f64>>,
     /// Times, when every key has one.
     pub times: Option<Vec<f64>>,
+    /// The Euler triples and their order, when every key is given as `euler` in one order
+    /// (LinEuler then interpolates the triples as given, eq. 6.1).
+    pub euler: Option<(EulerOrder, Vec<[f64; 3]>)>,
+    /// The file's `[spring]` table, if any.
+    pub spring: Option<SpringSpec>,
     /// A name for messages: the file or `builtin:NAME`.
     pub source: String,
 }
@@ -107,6 +129,8 @@ pub fn load(spec: &str) -> Result<Keys> {
         return Ok(Keys {
             quats: set.keys,
             times: None,
+            euler: None,
+            spring: None,
             source: spec.to_string(),
         });
     }
@@ -169,6 +193,7 @@ fn parse(doc: Doc, source: &str) -> Result<Keys> {
         bail!("{source}: keys[{i}].time is missing: give a time on every key or on none");
     }
     let mut quats = Vec::with_capacity(doc.keys.len());
+    let mut triples: Vec<(EulerOrder, [f64; 3])> = Vec::new();
     for (i, k) in doc.keys.iter().enumerate() {
         let at = |field: &str| format!("{source}: keys[{i}].{field}");
         for (field, v) in [("angle", k.angle), ("time", k.time)] {
@@ -186,6 +211,7 @@ fn parse(doc: Doc, source: &str) -> Result<Keys> {
                 if e.iter().any(|v| !v.is_finite()) {
                     bail!("{} is not finite", at("euler"));
                 }
+                triples.push((order, e));
                 Quat::from_euler(order, e)
             }
             (Some(_), None, None, None) => bail!("{} is missing (angle needs an axis)", at("axis")),
@@ -195,9 +221,19 @@ fn parse(doc: Doc, source: &str) -> Result<Keys> {
         quats.push(q);
     }
     let times = (with_time > 0).then(|| doc.keys.iter().map(|k| k.time.unwrap_or(0.0)).collect());
+    let euler = match triples.first() {
+        Some(&(order, _))
+            if triples.len() == quats.len() && triples.iter().all(|(o, _)| *o == order) =>
+        {
+            Some((order, triples.iter().map(|(_, e)| *e).collect()))
+        }
+        _ => None,
+    };
     Ok(Keys {
         quats,
         times,
+        euler,
+        spring: doc.spring,
         source: source.to_string(),
     })
 }

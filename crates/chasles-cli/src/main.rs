@@ -30,6 +30,7 @@ mod properties;
 mod report;
 mod repr;
 mod skin;
+mod spring_args;
 mod tour;
 
 use clap::{Parser, Subcommand};
@@ -66,12 +67,17 @@ enum Command {
     /// as CSV to stdout, and a summary (curvature energy, velocity range, time) to the
     /// terminal. Every key frame is one of the rows, its index in `key`. Key files: TOML or
     /// JSON with keys as {angle, axis}, {quat = [w,x,y,z]} or {euler, order}, optional time
-    /// on every key; or builtin:NAME with NAME one of table5.1, semicircle, soft, cusp,
-    /// pendulum, perturbed, global.
+    /// on every key, and an optional [spring] table of the Spring options below (names with
+    /// _ for -); or builtin:NAME with NAME one of table5.1, semicircle, soft, cusp,
+    /// pendulum, perturbed, global. LinEuler interpolates keys given as Euler triples as
+    /// given (eq. 6.1). The summary prints the Spring options a run used: the presets are
+    /// named sets of them.
     ///
     /// Examples:
     ///   chasles interp --method squad --keys builtin:table5.1 --frames 550 --out squad.csv
     ///   chasles interp --method spring --keys keys.toml --frames 200 --out spring.json
+    ///   chasles interp --method slerpsvupti --keys builtin:table5.1 --levels 350 \
+    ///       --iterations 500 --step fixed:0.02 --frames-dir frames/     (Figure 6.15)
     #[command(verbatim_doc_comment)]
     Interp {
         /// The method, by its name in the report and App. C.
@@ -80,9 +86,9 @@ enum Command {
         /// Key file (.toml or .json) or builtin:NAME.
         #[arg(long)]
         keys: String,
-        /// Frames in total, keys included.
-        #[arg(long, default_value_t = 200)]
-        frames: usize,
+        /// Frames in total, keys included (default 200, or the last of --levels).
+        #[arg(long)]
+        frames: Option<usize>,
         /// Frames per interval: uniform (or by key times), or by the interval's angle (§6.2).
         #[arg(long, value_enum, default_value_t = TimingArg::Angle)]
         timing: TimingArg,
@@ -92,12 +98,12 @@ enum Command {
         /// Keep the keys' signs (q vs −q) instead of bringing each into the previous key's hemisphere.
         #[arg(long)]
         keep_signs: bool,
-        /// Spring methods: weight c_k of the curvature at key frames (§6.3.7).
-        #[arg(long, allow_negative_numbers = true)]
-        key_weight: Option<f64>,
-        /// Spring methods: weight c_w of the constant-velocity penalty (eq. 6.41).
-        #[arg(long, allow_negative_numbers = true)]
-        velocity_weight: Option<f64>,
+        #[command(flatten)]
+        spring: spring_args::SpringArgs,
+        /// Also write every frame as a numbered PNG of the turned R (frame-0000.png, …) into
+        /// this new or empty folder, like the report's program's frame dumps (App. C).
+        #[arg(long, value_name = "DIR")]
+        frames_dir: Option<std::path::PathBuf>,
         #[command(flatten)]
         pictures: picture_args::Pictures,
     },
@@ -253,8 +259,8 @@ fn main() {
             timing,
             out,
             keep_signs,
-            key_weight,
-            velocity_weight,
+            spring,
+            frames_dir,
             pictures,
         } => interp::run(interp::InterpArgs {
             method,
@@ -266,8 +272,8 @@ fn main() {
             },
             out,
             keep_signs,
-            key_weight,
-            velocity_weight,
+            spring,
+            frames_dir,
             pictures,
         })
         .map(|_| 0),

@@ -42,7 +42,7 @@ pub fn letter_r(depth: f64) -> (Vec<Vec3<f64>>, Vec<[u32; 3]>) {
 
 /// The R turned by `q`, seen from a fixed viewpoint slightly above and to the right,
 /// `size` pixels square, `label` written in the corner.
-fn draw(q: chasles::Quat<f64>, label: &str, size: usize) -> crate::Image {
+pub fn draw(q: chasles::Quat<f64>, label: &str, size: usize) -> crate::Image {
     use crate::raster::{rotated, Canvas, View};
     let (v, t) = letter_r(1.2);
     let radius = v.iter().map(|p| p.norm()).fold(0.0, f64::max);

@@ -190,6 +190,47 @@ fn lin_euler_leaves_the_great_arc_and_slerp_does_not() {
     assert!(f.iter().all(|x| (x.q.norm() - 1.0).abs() < 1e-12));
 }
 
+/// Eq. 6.1 on the triples given: keys (0, 0, 0) and (0, 0, 4) in order xyz pass the
+/// rotation by 2 rad about z halfway, where angles re-extracted from the key rotations
+/// (principal value 4 − 2π ≈ −2.28) would give −1.14 rad; keys given as rotations, or
+/// LinEuler in another order, still take the extracted angles; bad triples are typed errors.
+#[test]
+fn lin_euler_interpolates_the_given_euler_triples() {
+    let xyz: EulerOrder = "xyz".parse().unwrap();
+    let triples = [[0.0, 0.0, 0.0], [0.0, 0.0, 4.0]];
+    let keys = KeyFrames::from_euler(xyz, &triples, None, Hemisphere::Chain).unwrap();
+    assert_eq!(keys.euler(), Some((xyz, &triples[..])));
+    let f = interpolate(Method::LinEuler(xyz), &keys, 3, Timing::Uniform).unwrap();
+    let want = Quat::from_axis_angle(Vec3::new(0.0, 0.0, 1.0), 2.0).unwrap();
+    assert!(f[1].q.dot(want).abs() > 1.0 - 1e-15, "{:?}", f[1].q);
+    // Frames along the way turn steadily about z: 4 h rad at h.
+    let f = interpolate(Method::LinEuler(xyz), &keys, 9, Timing::Uniform).unwrap();
+    for (k, x) in f.iter().enumerate() {
+        let a = Quat::from_axis_angle(Vec3::new(0.0, 0.0, 1.0), 4.0 * k as f64 / 8.0).unwrap();
+        assert!(x.q.dot(a).abs() > 1.0 - 1e-15, "frame {k}: {:?}", x.q);
+    }
+    // The same rotations as plain keys: the principal angles, −1.14 rad halfway.
+    let plain = KeyFrames::new(keys.quats(), None, Hemisphere::Chain).unwrap();
+    let f = interpolate(Method::LinEuler(xyz), &plain, 3, Timing::Uniform).unwrap();
+    let principal = (4.0 - std::f64::consts::TAU) / 2.0;
+    let want = Quat::from_axis_angle(Vec3::new(0.0, 0.0, 1.0), principal).unwrap();
+    assert!(f[1].q.dot(want).abs() > 1.0 - 1e-12, "{:?}", f[1].q);
+    // LinEuler in another order than the keys': extracted, not the given triples.
+    let zyx: EulerOrder = "zyx".parse().unwrap();
+    let f = interpolate(Method::LinEuler(zyx), &keys, 3, Timing::Uniform).unwrap();
+    assert!(f[1].q.dot(want).abs() > 1.0 - 1e-12, "{:?}", f[1].q);
+    let bad = KeyFrames::<f64>::from_euler(
+        xyz,
+        &[[0.0; 3], [f64::NAN, 0.0, 0.0]],
+        None,
+        Hemisphere::Chain,
+    );
+    assert!(
+        matches!(bad, Err(Error::BadKey { index: 1, .. })),
+        "{bad:?}"
+    );
+}
+
 /// Left and right derivatives d/dh at key `k` (second-order one-sided differences).
 fn one_sided(eval: &dyn Fn(usize, f64) -> Quat<f64>, k: usize) -> (Quat<f64>, Quat<f64>) {
     let d = 1e-4;
@@ -367,6 +408,7 @@ fn curvature_energy_of_a_great_arc_is_zero_and_of_squad_is_not() {
     let arc = qs(&interpolate(Method::Slerp, &keys, 50, Timing::Uniform).unwrap());
     assert!(curvature_energy(&arc, Width::Unit) < 1e-28);
     assert!(curvature_energy(&arc, Width::Centered) < 1e-24);
+    assert!(curvature_energy(&arc, Width::Angle) < 1e-24);
     let set = examples::table_5_1();
     let keys = KeyFrames::new(&set.keys::<f64>(), None, Hemisphere::Chain).unwrap();
     let e_squad = curvature_energy(

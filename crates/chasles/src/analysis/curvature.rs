@@ -5,8 +5,12 @@
 //! * Local curvature `κ̃_i = q''_i − (q''_i · q_i / q_i · q_i) q_i` (eq. 6.25): the part of
 //!   q'' tangent to the sphere (a great arc has none).
 //! * Energy `E = Σ_i l_i ‖κ̃_i‖²` over the interior frames (eq. 6.23), with the parameter
-//!   width `l_i` either 1 (eq. 6.43, what the report's Spring uses) or the centred chord
-//!   average `(‖q_i − q_{i−1}‖ + ‖q_i − q_{i+1}‖)/2` (eq. 6.24).
+//!   width `l_i` either 1 (eq. 6.43, what the report's Spring uses), the centred chord
+//!   average `(‖q_i − q_{i−1}‖ + ‖q_i − q_{i+1}‖)/2` (eq. 6.24), or the same average of
+//!   the angles `θ` between neighbours, `cos θ = q_i · q_{i+1} / (‖q_i‖ ‖q_{i+1}‖)` (the
+//!   note after eq. 6.24), taken as `atan2(‖p‖, cos θ)` with `p` the part of one unit
+//!   frame orthogonal to the other, so that near-equal frames keep their digits; its
+//!   derivative in `b` is `−p / (‖p‖ ‖b‖)` (zero for equal frames).
 //!
 //! [`term_gradient`] gives the gradient of one energy term with respect to its three
 //! frames, the building block of the report's eq. 6.29–6.39. It is organized by term
@@ -26,12 +30,34 @@ pub enum Width {
     Unit,
     /// The centred chord average (eq. 6.24).
     Centered,
+    /// The centred average of the angles between neighbours (the note after eq. 6.24).
+    Angle,
+}
+
+/// The angle between `a` and `b` as 4-vectors, and its gradient with respect to `b`
+/// (zero where the frames are parallel or one is zero).
+fn angle_between<T: Real>(a: Quat<T>, b: Quat<T>) -> (T, Quat<T>) {
+    let (na, nb) = (a.norm(), b.norm());
+    if na == T::ZERO || nb == T::ZERO {
+        return (T::ZERO, Quat::zero());
+    }
+    let (ua, ub) = (a / na, b / nb);
+    let c = ua.dot(ub);
+    let p = ua - ub * c;
+    let s = p.norm();
+    let g = if s > T::ZERO {
+        -p / (s * nb)
+    } else {
+        Quat::zero()
+    };
+    (s.atan2(c), g)
 }
 
 fn width<T: Real>(a: Quat<T>, b: Quat<T>, c: Quat<T>, w: Width) -> T {
     match w {
         Width::Unit => T::ONE,
         Width::Centered => ((b - a).norm() + (b - c).norm()) * T::HALF,
+        Width::Angle => (angle_between(a, b).0 + angle_between(c, b).0) * T::HALF,
     }
 }
 
@@ -71,6 +97,7 @@ pub fn term_gradient<T: Real>(a: Quat<T>, b: Quat<T>, c: Quat<T>, w: Width) -> (
     let l = match w {
         Width::Unit => T::ONE,
         Width::Centered => (n1 + n2) * T::HALF,
+        Width::Angle => width(a, b, c, w),
     };
     if l == T::ZERO || bb == T::ZERO {
         return (T::ZERO, [zero; 3]);
@@ -84,6 +111,17 @@ pub fn term_gradient<T: Real>(a: Quat<T>, b: Quat<T>, c: Quat<T>, w: Width) -> (
     let mut ga = pu / l3;
     let mut gb = (pu * (-T::TWO) + ds_db) / l3;
     let mut gc = pu / l3;
+    if w == Width::Angle {
+        // ∂l = (∂θ(a, b) + ∂θ(c, b)) / 2 in each of a, b, c.
+        let f = -T::from_i32(3) * s / (l3 * l) * T::HALF;
+        let (_, ab_b) = angle_between(a, b);
+        let (_, ab_a) = angle_between(b, a);
+        let (_, cb_b) = angle_between(c, b);
+        let (_, cb_c) = angle_between(b, c);
+        ga += ab_a * f;
+        gb += (ab_b + cb_b) * f;
+        gc += cb_c * f;
+    }
     if w == Width::Centered {
         let f = -T::from_i32(3) * s / (l3 * l);
         let e1 = if n1 > T::ZERO {

@@ -1,13 +1,14 @@
 //! Key frames: the rotations a curve must pass through, with optional times.
 
-use crate::{Error, Quat, Real, Result};
+use crate::{Error, EulerOrder, Quat, Real, Result};
 
 /// Validated key frames: unit quaternions (at least two), optionally with strictly
-/// increasing times.
+/// increasing times, and optionally the Euler-angle triples they were given as.
 #[derive(Debug, Clone, PartialEq)]
 pub struct KeyFrames<T> {
     q: Vec<Quat<T>>,
     times: Option<Vec<T>>,
+    euler: Option<(EulerOrder, Vec<[T; 3]>)>,
 }
 
 /// Which signs the keys keep. q and −q are the same rotation but not the same point of the
@@ -68,7 +69,35 @@ impl<T: Real> KeyFrames<T> {
         Ok(Self {
             q,
             times: times.map(|t| t.to_vec()),
+            euler: None,
         })
+    }
+    /// Keys given as Euler-angle triples in `order` (radians, any size: `(0, 0, 4)` stays
+    /// 4 rad about the last axis, not its principal value): the rotations are made from
+    /// them, and LinEuler in the same order interpolates the triples themselves (eq. 6.1)
+    /// instead of angles extracted from the rotations. Errors: as [`KeyFrames::new`], and
+    /// a non-finite angle (naming its key).
+    pub fn from_euler(
+        order: EulerOrder,
+        angles: &[[T; 3]],
+        times: Option<&[T]>,
+        hemisphere: Hemisphere,
+    ) -> Result<Self> {
+        for (index, a) in angles.iter().enumerate() {
+            crate::error::check_finite("Euler angle", a).map_err(|e| Error::BadKey {
+                index,
+                source: Box::new(e),
+            })?;
+        }
+        let q: Vec<Quat<T>> = angles.iter().map(|a| Quat::from_euler(order, *a)).collect();
+        let mut keys = Self::new(&q, times, hemisphere)?;
+        keys.euler = Some((order, angles.to_vec()));
+        Ok(keys)
+    }
+    /// The Euler-angle triples the keys were given as ([`KeyFrames::from_euler`]), with
+    /// their order.
+    pub fn euler(&self) -> Option<(EulerOrder, &[[T; 3]])> {
+        self.euler.as_ref().map(|(o, a)| (*o, a.as_slice()))
     }
     /// The unit key quaternions (signs as chosen by [`Hemisphere`]).
     pub fn quats(&self) -> &[Quat<T>] {

@@ -20,7 +20,7 @@ pub mod squad;
 pub mod timing;
 
 pub use keys::{Hemisphere, KeyFrames};
-pub use spring::{spring, SpringConfig, SpringResult, Start, StepRule};
+pub use spring::{spring, Level, SpringConfig, SpringResult, Start, StepRule};
 pub use squad::Squad;
 pub use timing::Timing;
 
@@ -73,12 +73,19 @@ pub fn interpolate<T: Real>(
         Method::LinMat => q.iter().map(|k| k.to_rotation_matrix()).collect(),
         _ => Vec::new(),
     };
+    let triples = match method {
+        Method::LinEuler(order) => lin_euler::key_angles(order, keys)?,
+        _ => Vec::new(),
+    };
     grid.iter()
         .map(|s| {
             let (a, b) = (q[s.interval], q[s.interval + 1]);
             let r = match (s.key, method) {
                 (Some(k), _) => q[k],
-                (None, Method::LinEuler(order)) => lin_euler::lin_euler_quat(order, a, b, s.h)?,
+                (None, Method::LinEuler(order)) => Quat::from_euler(
+                    order,
+                    lin_euler::lin_euler(triples[s.interval], triples[s.interval + 1], s.h),
+                ),
                 (None, Method::LinMat) => {
                     let m = lin_mat::lin_mat(&mats[s.interval], &mats[s.interval + 1], s.h);
                     let r = lin_mat::rotation_part(&m)?;
