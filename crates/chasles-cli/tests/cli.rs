@@ -454,13 +454,29 @@ fn tour_prints_computed_numbers_and_writes_the_report() {
     ] {
         assert!(out.contains(section), "missing {section}");
     }
-    // Spring ends below Squad on every chapter-7 set (ratio column < 1).
-    let (header, rows) = terminal_table(&out, "Spring against Squad", "Spring / Squad", 6);
-    let ratio_at = header.iter().position(|h| h == "Spring / Squad").unwrap();
-    for r in rows {
-        let ratio = numbers(&r[ratio_at])[0];
-        assert!(ratio < 1.0, "{r:?}");
+    // Chapter 7's figures with their captions' frames and iterations, and its outcomes.
+    let (header, rows) = terminal_table(&out, "Figures 7.1–7.12", "frames", 12);
+    let at = |h: &str| header.iter().position(|x| x == h).unwrap();
+    let cell = |n: &str, h: &str| rows.iter().find(|r| r[0] == n).unwrap()[at(h)].clone();
+    assert_eq!(cell("7.2", "frames"), "430");
+    assert_eq!(cell("7.12", "frames"), "430");
+    assert!(cell("7.12", "method").contains("c_k 4"));
+    assert_eq!(cell("7.5", "frames"), "200");
+    for s in ["§7.1", "§7.2", "§7.3", "§7.4", "§7.5", "§7.6"] {
+        assert!(
+            out.lines().any(|l| l.contains("[yes]") && l.contains(s)),
+            "{s} does not come out"
+        );
     }
+    // Every figure of Dam et al. ch. 5–7, its paper's caption beside ours, in the contents.
+    for n in ["5-1", "6-1", "6-15", "6-17", "6-20", "7-6", "7-12"] {
+        assert!(report.join(format!("dam-figure-{n}.png")).is_file(), "{n}");
+    }
+    assert!(html.contains(
+        "Dam et al. 1998, Figure 6.16.</b> The paper: <i>The multi-step algorithm, first step."
+    ));
+    assert!(html.contains("<a href=\"#f-dam-figure-7-12-png\">7.12</a>"));
+    assert!(!out.contains("Figure 5.5") && !out.contains("Figure 1, §6"));
     // Every identity row carries two measured errors, within the test-suite tolerances.
     let (header, rows) = terminal_table(&out, "Identities over", "identity", 8);
     assert_eq!(header[..2], ["f64", "f32"]);

@@ -9,6 +9,9 @@ pub enum Error {
     /// A picture could not be encoded.
     #[error("picture: {0}")]
     Picture(#[from] chasles_viz::EncodeError),
+    /// A built-in key set of that name does not exist.
+    #[error("no built-in key set '{0}'")]
+    NoKeySet(String),
     /// A measurement over random samples was asked for none.
     #[error("at least one random sample is needed")]
     NoSamples,

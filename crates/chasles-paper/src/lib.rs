@@ -36,5 +36,5 @@ pub mod table;
 pub use claim::{Claim, Paper, Verdict};
 pub use error::{Error, Result};
 pub use experiments::Figures;
-pub use section::{tally, Experiment, Figure, Item, Section};
+pub use section::{tally, Experiment, Figure, Item, PaperFigure, Section};
 pub use table::{Cell, Number, Style, Table};

@@ -6,14 +6,44 @@ use crate::table::Table;
 use serde::Serialize;
 use std::fmt;
 
+/// The paper's figure a picture reproduces: its number and its caption, word for word.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PaperFigure {
+    /// The paper.
+    pub paper: Paper,
+    /// Its number there, e.g. `6.15` or `1(c)`.
+    pub number: String,
+    /// Its caption there.
+    pub caption: String,
+}
+
+impl PaperFigure {
+    /// Figure `number` of `paper` with its `caption`.
+    pub fn new(paper: Paper, number: &str, caption: &str) -> Self {
+        PaperFigure {
+            paper,
+            number: number.to_string(),
+            caption: caption.to_string(),
+        }
+    }
+    /// "Dam et al. 1998, Figure 6.15".
+    pub fn cite(&self) -> String {
+        format!("{}, Figure {}", self.paper.cite(), self.number)
+    }
+}
+
 /// A picture: the file it is written to (a bare name, its extension the kind), its
-/// caption, and its bytes (not serialized: JSON carries the file name and the caption).
+/// caption, the paper's figure it reproduces (if it does), and its bytes (not serialized:
+/// JSON carries the file name and the captions).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Figure {
     /// File name, e.g. `figure7.svg`.
     pub file: String,
-    /// What it shows.
+    /// What it shows: our caption.
     pub caption: String,
+    /// The paper's figure beside which it stands.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub of: Option<PaperFigure>,
     /// The file's contents.
     #[serde(skip)]
     pub bytes: Vec<u8>,
@@ -74,8 +104,29 @@ impl Section {
         self.items.push(Item::Figure(Figure {
             file: file.to_string(),
             caption: caption.to_string(),
+            of: None,
             bytes,
         }));
+    }
+
+    /// Adds our picture of the paper's figure `of`, with our caption beside the paper's;
+    /// a picture that failed to draw becomes a paragraph naming the figure and the error.
+    pub fn paper_figure<E: fmt::Display>(
+        &mut self,
+        of: PaperFigure,
+        file: &str,
+        bytes: Result<Vec<u8>, E>,
+        caption: &str,
+    ) {
+        match bytes {
+            Ok(bytes) => self.items.push(Item::Figure(Figure {
+                file: file.to_string(),
+                caption: caption.to_string(),
+                of: Some(of),
+                bytes,
+            })),
+            Err(e) => self.text(format!("{}: picture {file} failed: {e}", of.cite())),
+        }
     }
 
     /// Adds a picture that may have failed to draw: on failure, a paragraph saying so

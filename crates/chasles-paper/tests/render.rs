@@ -6,7 +6,8 @@ use chasles::{Quat, Vec3};
 use chasles_paper::experiments::{blending_claims::blending_claims, identities, table_1};
 use chasles_paper::render::{html, json, markdown, terminal};
 use chasles_paper::{
-    tally, Cell, Claim, Experiment, Figures, Item, Number, Paper, Section, Table, Verdict,
+    tally, Cell, Claim, Experiment, Figures, Item, Number, Paper, PaperFigure, Section, Table,
+    Verdict,
 };
 
 /// A section with one of everything, text that needs escaping, and a number to find.
@@ -162,7 +163,7 @@ fn html_renderer_escapes_and_types_the_rows() {
     // Table cells straight from the typed table: a number once, a check with its class.
     assert!(page.contains("<tr><td>a|b</td><td>1.23e-4</td><td class=\"yes differs\">+ 1.2e-15 (paper −) differs</td></tr>"), "{page}");
     assert_eq!(page.matches("1.23e-4").count(), 1);
-    assert!(page.contains("<img src=\"f.svg\" alt=\"a &lt;figure&gt;\">"));
+    assert!(page.contains("<img src=\"f.svg\" alt=\"a &lt;figure&gt;\" loading=\"lazy\">"));
 }
 
 #[test]
@@ -249,4 +250,46 @@ fn experiments_run_in_order_and_draw_only_when_asked() {
         .figures()
         .all(|f| f.bytes.is_empty() && f.file == "table1.svg"));
     assert!(matches!(sections[1].items.last(), Some(Item::Claim(_))));
+}
+
+/// A picture of a paper's figure shows the paper's caption, then ours, in every renderer,
+/// and the page's contents link it by number.
+#[test]
+fn a_paper_figure_carries_the_papers_caption_beside_ours() {
+    let mut s = Section::new("ch. 6");
+    s.paper_figure(
+        PaperFigure::new(Paper::Dam1998, "6.15", "One-step <iteration>."),
+        "dam-figure-6-15.png",
+        Ok::<_, String>(vec![1, 2, 3]),
+        "Spring, 350 frames",
+    );
+    s.paper_figure(
+        PaperFigure::new(Paper::Dam1998, "6.16", "First step."),
+        "dam-figure-6-16.png",
+        Err::<Vec<u8>, _>("no memory"),
+        "never drawn",
+    );
+    let page = html::page(std::slice::from_ref(&s));
+    assert!(
+        page.contains("<figure id=\"f-dam-figure-6-15-png\">"),
+        "{page}"
+    );
+    assert!(page.contains("<b>Dam et al. 1998, Figure 6.15.</b> The paper: <i>One-step &lt;iteration&gt;.</i><br>Ours: Spring, 350 frames"), "{page}");
+    assert!(
+        page.contains("Figures <a href=\"#f-dam-figure-6-15-png\">6.15</a></small>"),
+        "{page}"
+    );
+    assert!(page
+        .contains("Dam et al. 1998, Figure 6.16: picture dam-figure-6-16.png failed: no memory"));
+    let md = markdown::section(&s);
+    assert!(
+        md.contains("**Dam et al. 1998, Figure 6.15.** The paper: *One-step <iteration>.*"),
+        "{md}"
+    );
+    assert!(terminal::section(&s)
+        .contains("picture: dam-figure-6-15.png (Dam et al. 1998, Figure 6.15)"));
+    let v: serde_json::Value = serde_json::from_str(&json::sections(&[s]).unwrap()).unwrap();
+    let f = &v["sections"][0]["items"][0];
+    assert_eq!(f["of"]["number"], "6.15");
+    assert_eq!(f["caption"], "Spring, 350 frames");
 }

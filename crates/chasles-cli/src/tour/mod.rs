@@ -11,8 +11,8 @@ mod skinning;
 
 use crate::report::Report;
 use chasles_paper::experiments::{
-    algebra, blending_claims::blending_claims, identities::identities, interpolation,
-    spring::spring_vs_squad, table_1::table_1,
+    algebra, blending_claims::blending_claims, dam_figures, identities::identities, interpolation,
+    table_1::table_1,
 };
 use chasles_paper::{render, Experiment, Figures};
 use std::io::{IsTerminal, Write};
@@ -50,7 +50,15 @@ pub fn run(args: TourArgs) -> anyhow::Result<()> {
             interpolation::six_methods(Figures::Draw)
         }),
         Experiment::new("Squad's continuity", interpolation::squad_continuity),
-        Experiment::new("Spring on the chapter 7 examples", spring_vs_squad),
+        Experiment::new("Dam et al. Figures 5.1–5.3", || {
+            dam_figures::chapter_5_section(Figures::Draw)
+        }),
+        Experiment::new("Dam et al. Figures 6.1–6.20", || {
+            dam_figures::chapter_6_section(Figures::Draw)
+        }),
+        Experiment::new("Dam et al. Figures 7.1–7.12", || {
+            dam_figures::chapter_7_section(Figures::Draw)
+        }),
         Experiment::new("blending: Table 1", || table_1(50, 2006, Figures::Draw)),
         Experiment::new("blending: two transforms", blending::two_transforms),
         Experiment::new("blending: the claims", || {

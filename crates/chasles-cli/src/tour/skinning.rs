@@ -1,4 +1,4 @@
-//! The tour's skinning (Kavan et al. 2006, §6, Figures 1 and 6): the candy wrapper on a
+//! The tour's skinning (Kavan et al. 2006, §6, Figure 6(a)–(b)): the candy wrapper on a
 //! two-bone cylinder, and linear blending's volume loss on the real characters
 //! (CesiumMan's walk and Fox's run, built in; more from `$CHASLES_DATA`).
 
@@ -10,11 +10,12 @@ use chasles_skin::{gltf_load, Method, Pose, Rig};
 
 /// The twist and the bend of the two-bone cylinder, every method.
 pub fn candy_wrapper() -> Section {
-    let mut s = Section::new("Kavan et al. §6, Figures 1 and 6: skinning a two-bone cylinder");
+    let mut s =
+        Section::new("Kavan et al. §6, Figure 6(a)–(b): the candy wrapper on a two-bone cylinder");
     let rig = cylinder::twisted_cylinder();
     s.attempt(
         Kavan2006,
-        "Figure 1, §6",
+        "§6, Figure 6(a)–(b)",
         "linear blend skinning collapses a joint twisted by 180° to a point (the candy wrapper); dual-quaternion skinning keeps its shape",
         |s| -> anyhow::Result<_> {
             let mut t = chasles_paper::Table::new(

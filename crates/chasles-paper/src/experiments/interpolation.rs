@@ -1,8 +1,10 @@
 //! Dam et al. 1998, chapters 5–6 on Table 5.1's six keys: LinEuler, LinMat, Lerp, Slerp,
 //! Squad and Spring through 550 frames shared by interval angle (§6.2), compared by
 //! curvature energy (eq. 6.23) and by the angular speed inside each interval (§5.2,
-//! eq. 5.1), with the velocity graphs (Figures 5.4–5.6), sphere plots (§5.3) and the
-//! direct visualisation (§5.1); and Proposition 30: Squad is C¹ at the keys.
+//! eq. 5.1, the chord estimate the report plots), with the velocity graphs (§5.2), sphere
+//! plots (§5.3) and the direct visualisation (§5.1); and Proposition 30: Squad is C¹ at
+//! the keys. The figures themselves, with their captions' parameters, are in
+//! [`super::dam_figures`].
 
 use super::Figures;
 use crate::claim::Paper::Dam1998;
@@ -10,7 +12,7 @@ use crate::error::Result;
 use crate::section::Section;
 use crate::table::{Cell, Number, Table};
 use chasles::analysis::curvature::{curvature_energy, Width};
-use chasles::analysis::velocity::velocity_angle;
+use chasles::analysis::velocity::velocity_chord;
 use chasles::interp::slerp::slerp;
 use chasles::interp::{
     examples, interpolate, spring, Frame, Hemisphere, KeyFrames, Method, SpringConfig, Squad,
@@ -107,7 +109,7 @@ pub fn six_methods(figures: Figures) -> Section {
         let mut out = Vec::new();
         for (name, m) in methods {
             let frames = frames_of(m, &keys, 550)?;
-            let v = velocity_angle(&frames.iter().map(|f| f.q).collect::<Vec<_>>());
+            let v = velocity_chord(&frames.iter().map(|f| f.q).collect::<Vec<_>>());
             let ratio = speed_ratio_within_intervals(&frames, &v);
             t.row(vec![
                 Cell::text(name),
@@ -135,7 +137,7 @@ pub fn six_methods(figures: Figures) -> Section {
     };
     s.attempt(
         Dam1998,
-        "§5.2, Figure 5.5",
+        "§5.2, Figure 5.1",
         "Slerp moves at constant angular velocity between keys",
         |_| {
             let r = ratio("slerp")?;
@@ -147,7 +149,7 @@ pub fn six_methods(figures: Figures) -> Section {
     );
     s.attempt(
         Dam1998,
-        "§5.2, Figures 5.4 and 5.6",
+        "§5.2, Figures 5.3 and 6.2",
         "LinEuler and LinMat do not move at constant velocity",
         |_| {
             let (e, m) = (ratio("lineuler")?, ratio("linmat")?);
@@ -175,12 +177,12 @@ fn draw(s: &mut Section, rows: &[Run]) {
     } in rows
     {
         let keys_at = chasles_viz::graph::key_indices(frames);
-        let title = format!("{name}: angular velocity (Dam et al. eq. 5.1), Table 5.1 keys");
+        let title = format!("{name}: velocity by eq. 5.1 (chord), Table 5.1 keys");
         s.figure(
             &format!("velocity-{name}.svg"),
             chasles_viz::graph::velocity_svg(v, &keys_at, &title).into_bytes(),
             &format!(
-                "§5.2: angular velocity of {name} against the frame index; * marks the key frames"
+                "§5.2: velocity of {name} by eq. 5.1 (the chord estimate) against the frame index, first and last frame left out; * marks the key frames"
             ),
         );
         if matches!(*name, "lineuler" | "lerp" | "slerp" | "squad") {

@@ -6,16 +6,17 @@
 //!   lock), Definitions 14–16 (exp, log, powers); Kavan et al. eq. (1)–(2).
 //! * [`interpolation`]: Dam et al. ch. 5–6 (six methods through Table 5.1's keys) and
 //!   Proposition 30 (Squad is C¹).
-//! * [`spring`]: Dam et al. ch. 7, Spring against Squad.
+//! * [`dam_figures`]: Dam et al. Figures 5.1–5.3, 6.1–6.20 and 7.1–7.12, each with its
+//!   caption's parameters, and chapter 7's outcomes by number.
 //! * [`table_1`]: Kavan et al. Table 1 measured, with FLOP counts.
 //! * [`blending_claims`]: Kavan et al. §4, §5, Lemmas 2–3, Appendix B / Figure 7.
 //! * [`identities`]: both papers' identities on random inputs, f64 and f32.
 
 pub mod algebra;
 pub mod blending_claims;
+pub mod dam_figures;
 pub mod identities;
 pub mod interpolation;
-pub mod spring;
 pub mod table_1;
 
 /// Whether an experiment draws its pictures (the tour does; `chasles properties` does

@@ -47,6 +47,42 @@ fn table(t: &Table, h: &mut String) {
     h.push_str("</table>\n");
 }
 
+/// The id of a figure's element: its file name with anything but letters, digits and
+/// `-` as `-`.
+fn anchor(file: &str) -> String {
+    let id: String = file
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' {
+                c
+            } else {
+                '-'
+            }
+        })
+        .collect();
+    format!("f-{id}")
+}
+
+/// A picture with its caption; one that reproduces a paper's figure shows the paper's
+/// caption first, then ours.
+fn figure(f: &crate::section::Figure, h: &mut String) {
+    let caption = match &f.of {
+        Some(o) => format!(
+            "<b>{}.</b> The paper: <i>{}</i><br>Ours: {}",
+            esc(&o.cite()),
+            esc(&o.caption),
+            esc(&f.caption)
+        ),
+        None => esc(&f.caption),
+    };
+    h.push_str(&format!(
+        "<figure id=\"{}\"><img src=\"{}\" alt=\"{}\" loading=\"lazy\"><figcaption>{caption}</figcaption></figure>\n",
+        anchor(&f.file),
+        esc(&f.file),
+        esc(&f.caption),
+    ));
+}
+
 /// The whole page.
 pub fn page(sections: &[Section]) -> String {
     let (ok, n) = tally(sections);
@@ -55,8 +91,21 @@ pub fn page(sections: &[Section]) -> String {
         "<p><b>{ok} of {n} claims agree</b> with the papers.</p>\n<ul>\n"
     ));
     for (i, s) in sections.iter().enumerate() {
+        // The paper's figures the section reproduces, listed under its title.
+        let figures: Vec<String> = s
+            .figures()
+            .filter_map(|f| {
+                f.of.as_ref()
+                    .map(|o| format!("<a href=\"#{}\">{}</a>", anchor(&f.file), esc(&o.number)))
+            })
+            .collect();
+        let figures = if figures.is_empty() {
+            String::new()
+        } else {
+            format!("<br><small>Figures {}</small>", figures.join(", "))
+        };
         h.push_str(&format!(
-            "<li><a href=\"#s{i}\">{}</a></li>\n",
+            "<li><a href=\"#s{i}\">{}</a>{figures}</li>\n",
             esc(&s.title)
         ));
     }
@@ -83,12 +132,7 @@ pub fn page(sections: &[Section]) -> String {
                         c.verdict.word()
                     ));
                 }
-                Item::Figure(f) => h.push_str(&format!(
-                    "<figure><img src=\"{}\" alt=\"{}\"><figcaption>{}</figcaption></figure>\n",
-                    esc(&f.file),
-                    esc(&f.caption),
-                    esc(&f.caption)
-                )),
+                Item::Figure(f) => figure(f, &mut h),
                 Item::Table(t) => table(t, &mut h),
                 Item::Text { text } => h.push_str(&format!("<p>{}</p>\n", esc(text))),
             }

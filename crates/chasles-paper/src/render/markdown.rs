@@ -53,7 +53,12 @@ pub fn section(s: &Section) -> String {
                 c.words,
                 c.measured()
             )),
-            Item::Figure(f) => out.push_str(&format!("![{}]({})\n\n", f.caption, f.file)),
+            Item::Figure(f) => {
+                if let Some(o) = &f.of {
+                    out.push_str(&format!("**{}.** The paper: *{}*\n\n", o.cite(), o.caption));
+                }
+                out.push_str(&format!("![{}]({})\n\n", f.caption, f.file));
+            }
         }
     }
     if in_list {

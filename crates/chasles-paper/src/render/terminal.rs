@@ -63,7 +63,10 @@ pub fn section(s: &Section) -> String {
                 c.words,
                 c.measured()
             )),
-            Item::Figure(f) => out.push_str(&format!("  picture: {}\n", f.file)),
+            Item::Figure(f) => match &f.of {
+                Some(o) => out.push_str(&format!("  picture: {} ({})\n", f.file, o.cite())),
+                None => out.push_str(&format!("  picture: {}\n", f.file)),
+            },
         }
     }
     out

@@ -90,8 +90,8 @@ pub fn all() -> Vec<KeySet> {
         KeySet {
             name: "cusp",
             section: "§7.3",
-            description: "A hairpin: the middle key is the tip of a sharp turn whose neighbours lie close together, so Squad's velocity nearly vanishes there and its curve comes to a point.",
-            keys: tangent(&[(-0.6, 0.35), (-0.1, 0.08), (0.5, 0.0), (-0.1, -0.08), (-0.6, -0.35)]),
+            description: "An arrowhead: the middle key (0.5, 0) is the tip of a sharp turn whose neighbours (0, +-0.03) lie close together, so Squad's velocity there (half the difference of the neighbours' logarithms) nearly vanishes and its curve comes to a point; the outer keys (-0.2, +-0.7) are far apart across the turn, and Spring, which sees all keys, carries their sideways motion through the tip and rounds it with a clearly nonzero speed. (With the outer keys close too, as in a plain hairpin, the minimum of eq. 6.23 itself slows down at the tip and both curves are pointed.)",
+            keys: tangent(&[(-0.2, 0.7), (0.0, 0.03), (0.5, 0.0), (0.0, -0.03), (-0.2, -0.7)]),
         },
         KeySet {
             name: "pendulum",
