@@ -12,7 +12,7 @@ mod skinning;
 use crate::report::Report;
 use chasles_paper::experiments::{
     algebra, blending_claims::blending_claims, dam_figures, identities::identities, interpolation,
-    table_1::table_1,
+    squad_and_spring, table_1::table_1,
 };
 use chasles_paper::{render, Experiment, Figures};
 use std::io::{IsTerminal, Write};
@@ -57,7 +57,7 @@ pub fn run(args: TourArgs) -> anyhow::Result<()> {
             dam_figures::chapter_6_section(Figures::Draw)
         }),
         Experiment::new("Dam et al. Figures 7.1–7.12", || {
-            dam_figures::chapter_7_section(Figures::Draw)
+            squad_and_spring::chapter_7_section(Figures::Draw)
         }),
         Experiment::new("blending: Table 1", || table_1(50, 2006, Figures::Draw)),
         Experiment::new("blending: two transforms", blending::two_transforms),
