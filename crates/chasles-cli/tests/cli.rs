@@ -1019,11 +1019,12 @@ fn json_output_of_convert_reads_back_as_input() {
 fn properties_table_and_claims() {
     let out = stdout(&chasles(&["properties", "--samples", "40", "--claims"]));
     assert!(
-        out.contains("All 36 cells the paper lists agree with it."),
+        out.contains("All 36 property cells the paper lists agree with it."),
         "{out}"
     );
     for needle in [
-        "| FLOPS (ours) |",
+        "| FLOPS |",
+        "2 of 6 FLOPS cells agree",
         "Lemma 3",
         "Lemma 2",
         "Figure 7",

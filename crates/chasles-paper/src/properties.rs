@@ -73,8 +73,38 @@ pub struct FlopRow {
     pub measured: Vec<(usize, Counts, Option<usize>)>,
     /// `(a, b)` with total = a + b n, when the counts are exactly linear in n.
     pub formula: Option<(i64, i64)>,
-    /// The paper's entry.
+    /// The paper's entry, as printed.
     pub paper: &'static str,
+    /// The paper's entry as a count: `Some((a, b))` for `a + b n`, `None` for "N/A"
+    /// (iterative); absent where the paper has no column for the method.
+    pub paper_count: Option<Option<(i64, i64)>>,
+}
+
+impl FlopRow {
+    /// Whether our count is the paper's: the same `a + b n`, or both iterative ("N/A"
+    /// against a count that depends on the iterations); `None` where the paper is silent.
+    pub fn agrees(&self) -> Option<bool> {
+        let iterative = self.formula.is_none() && self.measured.iter().any(|m| m.2.is_some());
+        self.paper_count.map(|p| match p {
+            Some(ab) => self.formula == Some(ab),
+            None => iterative,
+        })
+    }
+    /// Ours as the paper writes it: `23n`, `160+104n`, `240`, or the counts per n for an
+    /// iterative method.
+    pub fn ours(&self) -> String {
+        match self.formula {
+            Some((0, b)) => format!("{b}n"),
+            Some((a, 0)) => format!("{a}"),
+            Some((a, b)) => format!("{a}+{b}n"),
+            None => self
+                .measured
+                .iter()
+                .map(|(n, c, it)| format!("n={n}: {} ({} it.)", c.total(), it.unwrap_or(0)))
+                .collect::<Vec<_>>()
+                .join("; "),
+        }
+    }
 }
 
 /// One method's row (a column of the paper's table).
@@ -116,6 +146,21 @@ pub struct Table1 {
 }
 
 impl Table1 {
+    /// Methods whose FLOP count differs from the paper's.
+    pub fn flop_disagreements(&self) -> Vec<Method> {
+        self.rows
+            .iter()
+            .filter(|r| r.flops.agrees() == Some(false))
+            .map(|r| r.method)
+            .collect()
+    }
+    /// FLOP cells the paper gives.
+    pub fn flop_cells(&self) -> usize {
+        self.rows
+            .iter()
+            .filter(|r| r.flops.paper_count.is_some())
+            .count()
+    }
     /// Cells that disagree with the paper: (method, property).
     pub fn disagreements(&self) -> Vec<(Method, &'static str)> {
         let mut out = Vec::new();
@@ -156,6 +201,21 @@ pub fn paper_column(m: Method) -> Option<([bool; 6], &'static str)> {
         Method::Dib => Some(([true, true, true, true, true, true], "N/A")),
         Method::LogIter | Method::Qlb => None,
     }
+}
+
+/// A FLOPS entry of Table 1 as a count `a + b n` (`23n`, `160+104n`, `240`); `None` for
+/// "N/A" or anything else.
+pub fn paper_flops(entry: &str) -> Option<(i64, i64)> {
+    let term = |t: &str| -> Option<(i64, i64)> {
+        match t.strip_suffix('n') {
+            Some(b) => Some((0, b.parse().ok()?)),
+            None => Some((t.parse().ok()?, 0)),
+        }
+    };
+    entry.split('+').try_fold((0, 0), |(a, b), t| {
+        let (x, y) = term(t.trim())?;
+        Some((a + x, b + y))
+    })
 }
 
 fn mats(x: &[DualQuat<f64>]) -> Vec<Mat4<f64>> {
@@ -341,5 +401,6 @@ fn count_flops(method: Method, seed: u64) -> Result<FlopRow> {
         measured,
         formula,
         paper: paper_column(method).map_or("—", |c| c.1),
+        paper_count: paper_column(method).map(|c| paper_flops(c.1)),
     })
 }

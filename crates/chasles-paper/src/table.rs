@@ -83,6 +83,15 @@ pub enum Cell {
         /// The paper's mark, where the paper gives one.
         paper: Option<bool>,
     },
+    /// Our value beside the paper's, and whether they agree (a FLOP count of Table 1).
+    Compared {
+        /// Ours, as it prints.
+        ours: String,
+        /// The paper's, as it prints there.
+        paper: String,
+        /// Whether they agree.
+        agrees: bool,
+    },
 }
 
 impl Cell {
@@ -96,6 +105,7 @@ impl Cell {
     pub fn agrees(&self) -> bool {
         match self {
             Cell::Check { holds, paper, .. } => paper.is_none_or(|p| p == *holds),
+            Cell::Compared { agrees, .. } => *agrees,
             _ => true,
         }
     }
@@ -108,6 +118,13 @@ impl fmt::Display for Cell {
         match self {
             Cell::Text { text } => f.write_str(text),
             Cell::Number(n) => n.fmt(f),
+            Cell::Compared { ours, paper, .. } => {
+                write!(f, "{ours} (paper {paper})")?;
+                if !self.agrees() {
+                    f.write_str(" differs")?;
+                }
+                Ok(())
+            }
             Cell::Check {
                 holds,
                 worst,

@@ -24,6 +24,11 @@ fn cell(c: &Cell) -> String {
             if c.agrees() { "" } else { " differs" },
             esc(&c.to_string())
         ),
+        Cell::Compared { agrees, .. } => format!(
+            "<td class=\"{}\">{}</td>",
+            if *agrees { "yes" } else { "no differs" },
+            esc(&c.to_string())
+        ),
         _ => format!("<td>{}</td>", esc(&c.to_string())),
     }
 }
