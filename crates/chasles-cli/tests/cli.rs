@@ -462,14 +462,25 @@ fn tour_prints_computed_numbers_and_writes_the_report() {
     assert_eq!(cell("7.12", "frames"), "430");
     assert!(cell("7.12", "method").contains("c_k 4"));
     assert_eq!(cell("7.5", "frames"), "200");
-    for s in ["§7.1", "§7.2", "§7.3", "§7.4", "§7.5", "§7.6"] {
+    for s in [
+        "§4.1, Figure 4.1",
+        "§4.1, Figure 4.3",
+        "§7.1",
+        "§7.2",
+        "§7.3",
+        "§7.4",
+        "§7.5",
+        "§7.6",
+    ] {
         assert!(
             out.lines().any(|l| l.contains("[yes]") && l.contains(s)),
             "{s} does not come out"
         );
     }
     // Every figure of Dam et al. ch. 5–7, its paper's caption beside ours, in the contents.
-    for n in ["5-1", "6-1", "6-15", "6-17", "6-20", "7-6", "7-12"] {
+    for n in [
+        "4-1", "4-3", "5-1", "6-1", "6-15", "6-17", "6-20", "7-6", "7-12",
+    ] {
         assert!(report.join(format!("dam-figure-{n}.png")).is_file(), "{n}");
     }
     assert!(html.contains(

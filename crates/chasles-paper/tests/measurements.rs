@@ -53,8 +53,14 @@ fn table_1_measured_agrees_with_the_paper() {
     // Cell by cell against the paper: Dec and DIB are iterative ("N/A") and agree; the four
     // counts the paper gives differ from ours, each marked in the row.
     assert!(md.contains("| FLOPS |"), "{md}");
-    assert!(md.contains("26n (paper 23n) differs") && md.contains("(paper 65+49n) differs"), "{md}");
-    assert!(md.contains("(paper N/A) |") || md.contains("(paper N/A)"), "{md}");
+    assert!(
+        md.contains("26n (paper 23n) differs") && md.contains("(paper 65+49n) differs"),
+        "{md}"
+    );
+    assert!(
+        md.contains("(paper N/A) |") || md.contains("(paper N/A)"),
+        "{md}"
+    );
     assert_eq!(row(Method::Dib).flops.agrees(), Some(true));
     assert_eq!(row(Method::Dec).flops.agrees(), Some(true));
     assert_eq!(row(Method::Qlb).flops.agrees(), None);

@@ -49,6 +49,23 @@ impl Image {
         }
     }
 
+    /// Images placed top to bottom on a white ground, left-aligned.
+    pub fn stacked(images: &[Image]) -> Image {
+        let width = images.iter().map(|i| i.width).max().unwrap_or(0);
+        let height = images.iter().map(|i| i.height).sum();
+        let mut out = Image::filled(width, height, [255, 255, 255]);
+        let mut y0 = 0;
+        for im in images {
+            for y in 0..im.height {
+                let src = &im.rgb[y * im.width * 3..(y + 1) * im.width * 3];
+                let k = (y0 + y) * width * 3;
+                out.rgb[k..k + im.width * 3].copy_from_slice(src);
+            }
+            y0 += im.height;
+        }
+        out
+    }
+
     /// Images placed left to right on a white ground, top-aligned.
     pub fn side_by_side(images: &[Image]) -> Image {
         let width = images.iter().map(|i| i.width).sum();

@@ -1,12 +1,14 @@
 //! The core algebra by number: Dam et al. 1998, App. A and B.1 (the report's Euler
 //! convention `R = Rz(γ) Ry(β) Rx(α)`), App. B.4 against Shepperd's method near 180°,
-//! App. B.2 (gimbal lock), Definitions 14–16 (exp, log and powers near the identity and
+//! §4.1 and Figure 4.1 (the order of two rotations matters), §4.1 and Figures 4.2–4.3
+//! (gimbal lock loses a degree of freedom), App. B.2 (extraction at gimbal lock),
+//! Definitions 14–16 (exp, log and powers near the identity and
 //! near 2π); Kavan et al. 2006, eq. (1)–(2) (a rigid motion as a unit dual quaternion, its
 //! screw, its powers).
 
 use super::arr;
 use crate::claim::Paper::{Dam1998, Kavan2006};
-use crate::section::Section;
+use crate::section::{PaperFigure, Section};
 use crate::table::{Cell, Number, Table};
 use chasles::{DualQuat, EulerOrder, Mat3, Quat, Vec3};
 use std::f64::consts::{FRAC_PI_2, PI};
@@ -129,6 +131,123 @@ pub fn gimbal_lock() -> Section {
     s
 }
 
+/// §4.1, Figure 4.1: the object rotated by π/2 about x and then π/4 about y, and in the
+/// other order (fixed axes: `Ry(π/4) Rx(π/2)` against `Rx(π/2) Ry(π/4)`).
+pub fn figure_4_1() -> Section {
+    let mut s = Section::new("Dam et al. §4.1, Figure 4.1: the order of two rotations matters");
+    let x = Quat::from_axis_angle(Vec3::new(1.0, 0.0, 0.0), FRAC_PI_2);
+    let y = Quat::from_axis_angle(Vec3::new(0.0, 1.0, 0.0), PI / 4.0);
+    s.attempt(
+        Dam1998,
+        "§4.1, Figure 4.1",
+        "By rotating the object in figure 4.1.i the angle π/2 about x and then π/4 about y the result is 4.1.ii. If the convention y, x, z is used instead [...] yielding 4.1.iii.",
+        |s| -> chasles::Result<_> {
+            let (x, y) = (x?, y?);
+            let (xy, yx) = (y * x, x * y);
+            let apart = xy.angle_to(yx)?;
+            let size = 260;
+            let picture = chasles_viz::Image::side_by_side(&[
+                chasles_viz::letter::draw(Quat::identity(), "i", size),
+                chasles_viz::letter::draw(xy, "ii: x then y", size),
+                chasles_viz::letter::draw(yx, "iii: y then x", size),
+            ]);
+            s.paper_figure(
+                PaperFigure::new(Dam1998, "4.1", "In the coordinate system the x -axis points to the right, the y -axis points up and the z -axis point to the left. Figures ii) and iii) show the result of applying different rotation conventions to the object in figure i)."),
+                "dam-figure-4-1.png",
+                Ok::<_, String>(picture.png()),
+                "The extruded R (i) turned by π/2 about x and then π/4 about y (ii), and by π/4 about y and then π/2 about x (iii), about fixed axes; seen from slightly above and to the right, y up.",
+            );
+            Ok((
+                format!("the two results differ by a rotation of {apart:.4} rad ({:.1}°)", apart.to_degrees()),
+                apart > 0.1,
+            ))
+        },
+    );
+    s
+}
+
+/// The angular velocity of the rotation made by the report's Euler angles (`R = Rz Ry Rx`)
+/// per unit rate of each angle, at `angles`: the Jacobian's three columns, by central
+/// differences of the quaternions (`2 vec(q(θ + h) q(θ)*) / h`).
+fn euler_jacobian(angles: [f64; 3]) -> [Vec3<f64>; 3] {
+    let h = 1e-6;
+    std::array::from_fn(|k| {
+        let mut a = angles;
+        let mut b = angles;
+        a[k] += h;
+        b[k] -= h;
+        let d =
+            Quat::from_euler(EulerOrder::DAM, a) * Quat::from_euler(EulerOrder::DAM, b).conjugate();
+        d.vector() * (1.0 / h)
+    })
+}
+
+/// §4.1, Figures 4.2–4.3: at β = π/2 the x and the z rotation act about the same axis —
+/// the determinant of the Euler angles' Jacobian falls to 0 (one degree of freedom lost),
+/// and turning α or γ gives the same motion.
+pub fn gimbal_lock_figure() -> Section {
+    let mut s =
+        Section::new("Dam et al. §4.1, Figures 4.2–4.3: gimbal lock loses a degree of freedom");
+    s.attempt(
+        Dam1998,
+        "§4.1, Figure 4.3",
+        "In this situation the x and the z -rotation act about the same axis. This phenomenon is called gimbal lock.",
+        |s| -> Result<_, String> {
+            let det = |beta: f64| {
+                let [a, b, c] = euler_jacobian([0.4, beta, -0.2]);
+                a.dot(b.cross(c))
+            };
+            let mut t = Table::new(
+                "the determinant of the Jacobian of (α, β, γ) ↦ Rz(γ) Ry(β) Rx(α) (angular velocity per unit angle rate; |det| = |cos β|)",
+                &["β", "det", "|α column × γ column|"],
+            );
+            for (name, beta) in [("0", 0.0), ("π/4", PI / 4.0), ("π/2 − 0.01", FRAC_PI_2 - 0.01), ("π/2", FRAC_PI_2)] {
+                let [a, _, c] = euler_jacobian([0.4, beta, -0.2]);
+                t.row(vec![
+                    Cell::text(name),
+                    Cell::Number(Number::sci(det(beta), 2)),
+                    Cell::Number(Number::sci(a.cross(c).norm(), 2)),
+                ]);
+            }
+            s.table(t);
+            // α swept and γ swept at β = π/2: the same motion (α up is γ down).
+            let n = 7;
+            let sweep = |k: usize| -> Vec<Quat<f64>> {
+                (0..n)
+                    .map(|i| {
+                        let v = -0.9 + 1.8 * i as f64 / (n - 1) as f64;
+                        let mut e = [0.0, FRAC_PI_2, 0.0];
+                        e[k] = if k == 0 { v } else { -v };
+                        Quat::from_euler(EulerOrder::DAM, e)
+                    })
+                    .collect()
+            };
+            let (by_alpha, by_gamma) = (sweep(0), sweep(2));
+            let same = by_alpha
+                .iter()
+                .zip(&by_gamma)
+                .map(|(a, g)| a.angle_to(*g).map_err(|e| e.to_string()))
+                .try_fold(0.0f64, |m, d| d.map(|d| m.max(d)))?;
+            let picture = chasles_viz::Image::stacked(&[
+                chasles_viz::letter::strip(&by_alpha, n, 150),
+                chasles_viz::letter::strip(&by_gamma, n, 150),
+            ]);
+            s.paper_figure(
+                PaperFigure::new(Dam1998, "4.3", "In the coordinate system the x -axis points up, the y -axis points to the left and the z -axis points to the right. In this situation the x and the z -rotation act about the same axis. This phenomenon is called gimbal lock."),
+                "dam-figure-4-3.png",
+                Ok::<_, String>(picture.png()),
+                &format!("At β = π/2: top, α swept from −0.9 to 0.9 rad (γ = 0); bottom, γ swept from 0.9 to −0.9 rad (α = 0). The two rows are the same motion (largest difference {same:.1e} rad): only α − γ is felt, one degree of freedom is gone."),
+            );
+            let (free, locked) = (det(0.3), det(FRAC_PI_2));
+            Ok((
+                format!("Jacobian determinant {free:.3} at β = 0.3 (= cos 0.3), {locked:.1e} at β = π/2; α and γ sweeps at the lock differ by {same:.1e} rad"),
+                (free - 0.3f64.cos()).abs() < 1e-6 && locked.abs() < 1e-9 && same < 1e-9,
+            ))
+        },
+    );
+    s
+}
+
 /// Definitions 14–16: exp(log q) = q and (q^½)² = q next to the identity and to 2π.
 pub fn exp_log() -> Section {
     let mut s = Section::new(
@@ -223,4 +342,24 @@ pub fn dual_quaternion() -> Section {
         },
     );
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The Jacobian of the report's Euler angles has determinant cos β: zero at the lock.
+    #[test]
+    fn the_euler_jacobian_loses_a_rank_at_the_lock() {
+        for beta in [-1.2, -0.3, 0.0, 0.7, 1.4, FRAC_PI_2] {
+            let [a, b, c] = euler_jacobian([0.4, beta, -0.2]);
+            let det = a.dot(b.cross(c));
+            assert!((det - beta.cos()).abs() < 1e-8, "β = {beta}: {det}");
+        }
+        // Both sections' claims hold.
+        for s in [figure_4_1(), gimbal_lock_figure()] {
+            assert!(s.claims().all(|c| c.verdict.agrees()), "{}", s.title);
+            assert_eq!(s.figures().count(), 1);
+        }
+    }
 }
