@@ -7,6 +7,7 @@
 //! measurement, whether they agree, and the pictures; see [`crate::report`]).
 
 mod blending;
+mod figure_5;
 mod skinning;
 
 use crate::report::Report;
@@ -68,6 +69,7 @@ pub fn run(args: TourArgs) -> anyhow::Result<()> {
         }),
         Experiment::new("skinning: the candy wrapper", skinning::candy_wrapper),
         Experiment::new("skinning: the characters", skinning::characters),
+        Experiment::new("skinning: Figure 5's timings", figure_5::figure_5),
         Experiment::new("identities on random inputs", move || {
             identities(samples, seed)
         }),
