@@ -13,7 +13,7 @@ mod skinning;
 use crate::report::Report;
 use chasles_paper::experiments::{
     algebra, blending_claims::blending_claims, dam_figures, identities::identities, interpolation,
-    squad_and_spring, table_1::table_1,
+    kavan_figures, squad_and_spring, table_1::table_1,
 };
 use chasles_paper::{render, Experiment, Figures};
 use std::io::{IsTerminal, Write};
@@ -49,6 +49,8 @@ pub fn run(args: TourArgs) -> anyhow::Result<()> {
         Experiment::new("gimbal lock", algebra::gimbal_lock),
         Experiment::new("exp, log and powers", algebra::exp_log),
         Experiment::new("dual quaternions", algebra::dual_quaternion),
+        Experiment::new("Kavan et al. Figure 2", kavan_figures::figure_2),
+        Experiment::new("Kavan et al. Figure 3", kavan_figures::figure_3),
         Experiment::new("interpolation", || {
             interpolation::six_methods(Figures::Draw)
         }),
