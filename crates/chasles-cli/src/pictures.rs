@@ -31,12 +31,22 @@ fn view_of(rig: &Rig) -> (Vec3<f64>, Vec3<f64>, (usize, usize)) {
     }
 }
 
-/// Colour of triangle `i`: skin tone, or for the cylinder alternating bands around it so
-/// that a twist shows as a helix.
+/// Colour of triangle `i`: skin tone; for the cylinder alternating bands around it so
+/// that a twist shows as a helix; for the cloth a checkerboard of 3 × 3 grid cells, so that
+/// a kink shows as a broken line.
 fn colour_of(rig: &Rig) -> impl Fn(usize) -> [u8; 3] + '_ {
     let cyl = rig.name == cylinder::NAME;
+    let cloth = rig.name == chasles_skin::cloth::NAME;
     move |i: usize| {
-        if cyl {
+        if cloth {
+            let v = rig.mesh.triangles[i][0] as usize;
+            let (x, y) = (v % chasles_skin::cloth::NX, v / chasles_skin::cloth::NX);
+            if (x / 3 + y / 3).is_multiple_of(2) {
+                [70, 130, 200]
+            } else {
+                [235, 235, 225]
+            }
+        } else if cyl {
             let first = rig.mesh.triangles[i][0] as usize % cylinder::SEGMENTS;
             if (first / 6).is_multiple_of(2) {
                 [70, 130, 200]
@@ -47,6 +57,39 @@ fn colour_of(rig: &Rig) -> impl Fn(usize) -> [u8; 3] + '_ {
             [210, 165, 125]
         }
     }
+}
+
+/// `pose` of `rig` skinned by each of `methods`, side by side, labelled, seen from the
+/// front (+z) and fitted to the vertices `focus` (rest-pose indices) as the first method
+/// places them: a close-up.
+pub fn methods_facing(
+    rig: &Rig,
+    pose: &Pose,
+    methods: &[Method],
+    focus: &[usize],
+    size: (usize, usize),
+) -> Result<Image> {
+    let mut panels = Vec::new();
+    for m in methods {
+        let s = skin(rig, pose, *m)?;
+        panels.push(Panel {
+            label: m.name(),
+            positions: s.positions.iter().map(|p| p.cast::<f64>()).collect(),
+        });
+    }
+    let around: Vec<Vec3<f64>> = panels
+        .first()
+        .map(|p| focus.iter().map(|v| p.positions[*v]).collect())
+        .unwrap_or_default();
+    Ok(chasles_viz::panels::side_by_side_fitted(
+        &panels,
+        &rig.mesh.triangles,
+        &colour_of(rig),
+        &around,
+        Vec3::new(0.0, 0.0, 1.0),
+        Vec3::new(0.0, 1.0, 0.0),
+        size,
+    ))
 }
 
 /// `pose` of `rig` skinned by each of `methods`, side by side, labelled.

@@ -22,6 +22,7 @@
 #![warn(missing_docs)]
 
 pub mod animation;
+pub mod cloth;
 pub mod cylinder;
 pub mod error;
 pub mod fast;

@@ -70,6 +70,8 @@ pub fn run(args: TourArgs) -> anyhow::Result<()> {
             blending_claims(100, 1, Figures::Draw)
         }),
         Experiment::new("skinning: the candy wrapper", skinning::candy_wrapper),
+        Experiment::new("skinning: Figure 6(c)–(d)", skinning::long_way),
+        Experiment::new("skinning: Figure 1(c)", skinning::figure_1c),
         Experiment::new("skinning: the characters", skinning::characters),
         Experiment::new("skinning: Figure 5's timings", figure_5::figure_5),
         Experiment::new("identities on random inputs", move || {
