@@ -65,6 +65,7 @@ pub fn run(args: TourArgs) -> anyhow::Result<()> {
             squad_and_spring::chapter_7_section(Figures::Draw)
         }),
         Experiment::new("blending: Table 1", || table_1(50, 2006, Figures::Draw)),
+        Experiment::new("blending: Figure 4", kavan_figures::figure_4),
         Experiment::new("blending: two transforms", blending::two_transforms),
         Experiment::new("blending: the claims", || {
             blending_claims(100, 1, Figures::Draw)
