@@ -488,6 +488,26 @@ fn tour_prints_computed_numbers_and_writes_the_report() {
     ));
     assert!(html.contains("<a href=\"#f-dam-figure-7-12-png\">7.12</a>"));
     assert!(!out.contains("Figure 5.5") && !out.contains("Figure 1, §6"));
+    // Every figure the issue lists, paper by paper in the papers' order.
+    let listed = |paper: &str| -> Vec<String> {
+        let line = html
+            .lines()
+            .find(|l| l.contains(&format!("{paper}, figures:</b>")))
+            .unwrap_or_else(|| panic!("no figure list for {paper}"));
+        line.split("\">")
+            .skip(1)
+            .map(|p| p.split('<').next().unwrap().to_string())
+            .collect()
+    };
+    let dam: Vec<String> = "4.1 4.3 5.1 5.2 5.3 6.1 6.2 6.3 6.6 6.7 6.8 6.11 6.15 6.16 6.17 6.18 6.19 6.20 7.1 7.2 7.3 7.4 7.5 7.6 7.7 7.8 7.9 7.10 7.11 7.12"
+        .split(' ')
+        .map(String::from)
+        .collect();
+    assert_eq!(listed("Dam et al. 1998"), dam);
+    assert_eq!(
+        listed("Kavan et al. 2006"),
+        ["1(c)", "2", "3", "4", "5", "6(a)–(b)", "6(c)–(d)", "7"]
+    );
     // Every identity row carries two measured errors, within the test-suite tolerances.
     let (header, rows) = terminal_table(&out, "Identities over", "identity", 8);
     assert_eq!(header[..2], ["f64", "f32"]);

@@ -202,9 +202,10 @@ fn figure_7(s: &mut Section, figures: Figures) {
                         points: pts(&|t| Ok(claims::omega_closed_form(t)))?,
                     },
                 ];
-                s.figure(
+                s.paper_figure(
+                    crate::section::PaperFigure::new(Kavan2006, "7", "Graph of ‖ω_t‖ for t ∈ [0, 1]"),
                     "figure7.svg",
-                    lines_svg(&ser, "Figure 7: ‖ω_t‖ of log-matrix blending", "t", "‖ω_t‖").into_bytes(),
+                    Ok::<_, String>(lines_svg(&ser, "Figure 7: ‖ω_t‖ of log-matrix blending", "t", "‖ω_t‖").into_bytes()),
                     "Figure 7: the angular speed of log-matrix blending, measured by finite differences, against Appendix B's closed form",
                 );
             }

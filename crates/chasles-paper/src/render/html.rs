@@ -88,6 +88,47 @@ fn figure(f: &crate::section::Figure, h: &mut String) {
     ));
 }
 
+/// The sort key of a figure number: its numeric parts, then the rest (`6.15` after `6.2`,
+/// `1(c)` after `1`).
+fn figure_order(number: &str) -> (Vec<u32>, String) {
+    let head: String = number
+        .chars()
+        .take_while(|c| c.is_ascii_digit() || *c == '.')
+        .collect();
+    let parts = head.split('.').filter_map(|p| p.parse().ok()).collect();
+    (parts, number[head.len()..].to_string())
+}
+
+/// Every reproduced figure, paper by paper in the papers' order, linked.
+fn figures_by_paper(sections: &[Section]) -> String {
+    let mut h = String::new();
+    for paper in [crate::Paper::Dam1998, crate::Paper::Kavan2006] {
+        let mut figs: Vec<(&str, &str)> = sections
+            .iter()
+            .flat_map(|s| s.figures())
+            .filter_map(|f| {
+                f.of.as_ref()
+                    .filter(|o| o.paper == paper)
+                    .map(|o| (o.number.as_str(), f.file.as_str()))
+            })
+            .collect();
+        if figs.is_empty() {
+            continue;
+        }
+        figs.sort_by_key(|f| figure_order(f.0));
+        let links: Vec<String> = figs
+            .iter()
+            .map(|(n, file)| format!("<a href=\"#{}\">{}</a>", anchor(file), esc(n)))
+            .collect();
+        h.push_str(&format!(
+            "<p><b>{}, figures:</b> {}</p>\n",
+            esc(paper.cite()),
+            links.join(", ")
+        ));
+    }
+    h
+}
+
 /// The whole page.
 pub fn page(sections: &[Section]) -> String {
     let (ok, n) = tally(sections);
@@ -115,6 +156,7 @@ pub fn page(sections: &[Section]) -> String {
         ));
     }
     h.push_str("</ul>\n");
+    h.push_str(&figures_by_paper(sections));
     for (i, s) in sections.iter().enumerate() {
         h.push_str(&format!("<h2 id=\"s{i}\">{}</h2>\n", esc(&s.title)));
         let mut in_claims = false;
