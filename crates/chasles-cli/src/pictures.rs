@@ -59,6 +59,20 @@ fn colour_of(rig: &Rig) -> impl Fn(usize) -> [u8; 3] + '_ {
     }
 }
 
+/// `pose` of `rig` skinned by each of `methods`: one labelled panel each.
+fn panels_of(rig: &Rig, pose: &Pose, methods: &[Method]) -> Result<Vec<Panel<'static>>> {
+    methods
+        .iter()
+        .map(|m| {
+            let s = skin(rig, pose, *m)?;
+            Ok(Panel {
+                label: m.name(),
+                positions: s.positions.iter().map(|p| p.cast::<f64>()).collect(),
+            })
+        })
+        .collect()
+}
+
 /// `pose` of `rig` skinned by each of `methods`, side by side, labelled, seen from the
 /// front (+z) and fitted to the vertices `focus` (rest-pose indices) as the first method
 /// places them: a close-up.
@@ -69,14 +83,7 @@ pub fn methods_facing(
     focus: &[usize],
     size: (usize, usize),
 ) -> Result<Image> {
-    let mut panels = Vec::new();
-    for m in methods {
-        let s = skin(rig, pose, *m)?;
-        panels.push(Panel {
-            label: m.name(),
-            positions: s.positions.iter().map(|p| p.cast::<f64>()).collect(),
-        });
-    }
+    let panels = panels_of(rig, pose, methods)?;
     let around: Vec<Vec3<f64>> = panels
         .first()
         .map(|p| focus.iter().map(|v| p.positions[*v]).collect())
@@ -94,14 +101,7 @@ pub fn methods_facing(
 
 /// `pose` of `rig` skinned by each of `methods`, side by side, labelled.
 pub fn methods_side_by_side(rig: &Rig, pose: &Pose, methods: &[Method]) -> Result<Image> {
-    let mut panels = Vec::new();
-    for m in methods {
-        let s = skin(rig, pose, *m)?;
-        panels.push(Panel {
-            label: m.name(),
-            positions: s.positions.iter().map(|p| p.cast::<f64>()).collect(),
-        });
-    }
+    let panels = panels_of(rig, pose, methods)?;
     let (from, up, (w, h)) = view_of(rig);
     Ok(side_by_side(
         &panels,
@@ -134,16 +134,11 @@ pub fn methods_closeup(rig: &Rig, pose: &Pose, methods: &[Method]) -> Result<Ima
     let near: Vec<usize> = (0..rest.len())
         .filter(|v| (rest[*v] - rest[worst]).norm() < size * 0.2)
         .collect();
-    let mut panels = Vec::new();
-    let mut focus = Vec::new();
-    for m in methods {
-        let s = skin(rig, pose, *m)?;
-        focus.extend(near.iter().map(|v| s.positions[*v].cast::<f64>()));
-        panels.push(Panel {
-            label: m.name(),
-            positions: s.positions.iter().map(|p| p.cast::<f64>()).collect(),
-        });
-    }
+    let panels = panels_of(rig, pose, methods)?;
+    let focus: Vec<Vec3<f64>> = panels
+        .iter()
+        .flat_map(|p| near.iter().map(|v| p.positions[*v]))
+        .collect();
     let (from, up, (w, h)) = view_of(rig);
     Ok(chasles_viz::panels::side_by_side_fitted(
         &panels,

@@ -41,6 +41,8 @@ fn stage(what: &str) {
 /// Runs the tour, printing to stdout.
 pub fn run(args: TourArgs) -> anyhow::Result<()> {
     let (samples, seed) = (args.samples, args.seed);
+    // Dam et al. first, then Kavan et al., each in its own order (chapters, sections,
+    // figures); the identities of both last.
     let tour = [
         Experiment::new("the Euler convention", algebra::euler_convention),
         Experiment::new("App. B.4 near 180°", algebra::b4_near_half_turn),
@@ -48,33 +50,33 @@ pub fn run(args: TourArgs) -> anyhow::Result<()> {
         Experiment::new("gimbal lock, Figures 4.2–4.3", algebra::gimbal_lock_figure),
         Experiment::new("gimbal lock", algebra::gimbal_lock),
         Experiment::new("exp, log and powers", algebra::exp_log),
-        Experiment::new("dual quaternions", algebra::dual_quaternion),
-        Experiment::new("Kavan et al. Figure 2", kavan_figures::figure_2),
-        Experiment::new("Kavan et al. Figure 3", kavan_figures::figure_3),
+        Experiment::new("Dam et al. Figures 5.1–5.3", || {
+            dam_figures::chapter_5_section(Figures::Draw)
+        }),
         Experiment::new("interpolation", || {
             interpolation::six_methods(Figures::Draw)
         }),
         Experiment::new("Squad's continuity", interpolation::squad_continuity),
-        Experiment::new("Dam et al. Figures 5.1–5.3", || {
-            dam_figures::chapter_5_section(Figures::Draw)
-        }),
         Experiment::new("Dam et al. Figures 6.1–6.20", || {
             dam_figures::chapter_6_section(Figures::Draw)
         }),
         Experiment::new("Dam et al. Figures 7.1–7.12", || {
             squad_and_spring::chapter_7_section(Figures::Draw)
         }),
-        Experiment::new("blending: Table 1", || table_1(50, 2006, Figures::Draw)),
+        Experiment::new("skinning: Figure 1(c)", skinning::figure_1c),
+        Experiment::new("dual quaternions", algebra::dual_quaternion),
+        Experiment::new("Kavan et al. Figure 2", kavan_figures::figure_2),
+        Experiment::new("Kavan et al. Figure 3", kavan_figures::figure_3),
         Experiment::new("blending: Figure 4", kavan_figures::figure_4),
         Experiment::new("blending: two transforms", blending::two_transforms),
         Experiment::new("blending: the claims", || {
             blending_claims(100, 1, Figures::Draw)
         }),
+        Experiment::new("blending: Table 1", || table_1(50, 2006, Figures::Draw)),
+        Experiment::new("skinning: Figure 5's timings", figure_5::figure_5),
         Experiment::new("skinning: the candy wrapper", skinning::candy_wrapper),
         Experiment::new("skinning: Figure 6(c)–(d)", skinning::long_way),
-        Experiment::new("skinning: Figure 1(c)", skinning::figure_1c),
         Experiment::new("skinning: the characters", skinning::characters),
-        Experiment::new("skinning: Figure 5's timings", figure_5::figure_5),
         Experiment::new("identities on random inputs", move || {
             identities(samples, seed)
         }),
