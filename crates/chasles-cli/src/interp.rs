@@ -114,10 +114,12 @@ pub fn compute(args: &InterpArgs) -> Result<Run> {
                 &args.spring,
                 args.frames,
                 DEFAULT_FRAMES,
+                kf.len(),
             )
             .with_context(|| keys.source.clone())?;
             n = total;
-            let _ = writeln!(extra, "spring options    {}", options(&cfg, n));
+            let _ = writeln!(extra, "spring options    {}", options(&cfg, n, kf.len()));
+            // At most MAX_ITERATIONS a step (checked): the sums cannot overflow.
             let total: usize = cfg.levels.iter().map(|l| l.iterations).sum();
             let bar = ProgressBar::new(total as u64);
             bar.set_style(
@@ -297,9 +299,26 @@ pub fn run(args: InterpArgs) -> Result<()> {
     Ok(())
 }
 
-/// Refuses, before any work, a `--frames-dir` that is a file or a folder with something in
-/// it (frames are never mixed with other files, nor written over).
+/// The folder `dir` is made in.
+fn parent_of(dir: &Path) -> &Path {
+    match dir.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    }
+}
+
+/// Refuses, before any work, a `--frames-dir` whose parent is not a folder, or that is a
+/// file or a folder with something in it (frames are never mixed with other files, nor
+/// written over).
 fn check_frames_dir(dir: &Path) -> Result<()> {
+    let parent = parent_of(dir);
+    if !parent.is_dir() {
+        bail!(
+            "--frames-dir {}: {} is not a folder",
+            dir.display(),
+            parent.display()
+        );
+    }
     match std::fs::read_dir(dir) {
         Ok(mut entries) => {
             if entries.next().is_some() {
@@ -313,38 +332,36 @@ fn check_frames_dir(dir: &Path) -> Result<()> {
 }
 
 /// Every frame as `frame-NNNN.png` (the R turned by it, 240 pixels, its number in the
-/// corner), written into a new folder beside `dir` and moved into place whole, so that a
-/// failure leaves nothing behind. Shows progress on a terminal.
+/// corner), written into a new hidden folder beside `dir` (made as any folder is, so the
+/// umask decides its mode) and renamed onto `dir` whole — over `dir` when it is an empty
+/// folder — so that a failure leaves neither frames nor the hidden folder behind. Shows
+/// progress on a terminal.
 fn write_frames(dir: &Path, turned: &[Quat<f64>]) -> Result<()> {
-    let parent = match dir.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p,
-        _ => Path::new("."),
-    };
-    let tmp = tempfile::Builder::new()
-        .prefix(".frames-")
-        .tempdir_in(parent)
-        .with_context(|| format!("cannot create a folder in {}", parent.display()))?;
-    let digits = turned.len().saturating_sub(1).to_string().len().max(4);
-    let bar = ProgressBar::new(turned.len() as u64);
-    bar.set_style(
-        ProgressStyle::with_template("frames [{bar:30}] {pos}/{len}")
-            .unwrap_or_else(|_| ProgressStyle::default_bar()),
-    );
-    for (i, q) in turned.iter().enumerate() {
-        let png = chasles_viz::letter::draw(*q, &i.to_string(), 240).png();
-        let path = tmp.path().join(format!("frame-{i:0digits$}.png"));
-        std::fs::write(&path, png).with_context(|| format!("cannot write {}", path.display()))?;
-        bar.inc(1);
+    let parent = parent_of(dir);
+    let tmp = (0..1000)
+        .map(|k| parent.join(format!(".frames-{}-{k}", std::process::id())))
+        .find(|p| std::fs::create_dir(p).is_ok())
+        .ok_or_else(|| anyhow::anyhow!("cannot create a folder in {}", parent.display()))?;
+    let written = (|| -> Result<()> {
+        let digits = turned.len().saturating_sub(1).to_string().len().max(4);
+        let bar = ProgressBar::new(turned.len() as u64);
+        bar.set_style(
+            ProgressStyle::with_template("frames [{bar:30}] {pos}/{len}")
+                .unwrap_or_else(|_| ProgressStyle::default_bar()),
+        );
+        for (i, q) in turned.iter().enumerate() {
+            let png = chasles_viz::letter::draw(*q, &i.to_string(), 240).png();
+            let path = tmp.join(format!("frame-{i:0digits$}.png"));
+            std::fs::write(&path, png)
+                .with_context(|| format!("cannot write {}", path.display()))?;
+            bar.inc(1);
+        }
+        bar.finish_and_clear();
+        std::fs::rename(&tmp, dir)
+            .with_context(|| format!("cannot move the frames to {}", dir.display()))
+    })();
+    if written.is_err() {
+        let _ = std::fs::remove_dir_all(&tmp);
     }
-    bar.finish_and_clear();
-    // An empty folder given is replaced (checked empty before the run).
-    if dir.is_dir() {
-        std::fs::remove_dir(dir).with_context(|| format!("cannot replace {}", dir.display()))?;
-    }
-    let kept = tmp.keep();
-    std::fs::rename(&kept, dir).map_err(|e| {
-        let _ = std::fs::remove_dir_all(&kept);
-        anyhow::anyhow!("cannot move the frames to {}: {e}", dir.display())
-    })?;
-    Ok(())
+    written
 }

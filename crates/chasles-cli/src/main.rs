@@ -77,7 +77,7 @@ enum Command {
     ///   chasles interp --method squad --keys builtin:table5.1 --frames 550 --out squad.csv
     ///   chasles interp --method spring --keys keys.toml --frames 200 --out spring.json
     ///   chasles interp --method slerpsvupti --keys builtin:table5.1 --levels 350 \
-    ///       --iterations 500 --step fixed:0.02 --frames-dir frames/     (Figure 6.15)
+    ///       --iterations 500 --frames-dir frames/     (Figure 6.15, as the tour makes it)
     #[command(verbatim_doc_comment)]
     Interp {
         /// The method, by its name in the report and App. C.

@@ -150,35 +150,45 @@ impl SpringArgs {
     }
 }
 
+/// The most iterations one step may ask for: far past any convergence (the report's
+/// largest run is 900 in all), and small enough that the counts never overflow.
+pub const MAX_ITERATIONS: usize = 10_000_000;
+
 /// `preset` with the key file's `[spring]` table and then the command line's options
-/// applied, and the total frame count: `frames` if given, else the last of the levels,
-/// else `default_frames`. Errors name the option: levels of 0 frames, or more than the
-/// total, a total that disagrees with --frames, iterations not one per level; the values'
-/// ranges are checked by the library's Spring.
+/// applied, for `keys` keys, and the total frame count: `frames` if given, else the last of
+/// the levels, else `default_frames`. Errors name the option (`--levels`, or the key file's
+/// `spring.levels`): a step of fewer frames than Spring gives a coarse step (`4(keys − 1)
+/// + 1`) or more than the total, a total that disagrees with --frames, iterations not one
+/// per step or over [`MAX_ITERATIONS`]; the values' ranges are checked by the library's
+/// Spring.
 pub fn configure(
     mut cfg: SpringConfig,
     file: Option<&SpringSpec>,
     cli: &SpringArgs,
     frames: Option<usize>,
     default_frames: usize,
+    keys: usize,
 ) -> Result<(SpringConfig, usize)> {
     let file = file.cloned().unwrap_or_default();
     let levels = cli.levels.clone().or(file.levels);
     let iterations = cli.iterations.clone().or(file.iterations);
     let total = match (&levels, frames) {
         (Some(l), Some(f)) if l.last() != Some(&f) => bail!(
-            "--levels ends at {} frames but --frames is {f}: the last step is the total",
+            "--levels (or spring.levels) ends at {} frames but --frames is {f}: the last step is the total",
             l.last().map_or(0, |n| *n)
         ),
-        (Some(l), _) => *l
-            .last()
-            .ok_or_else(|| anyhow::anyhow!("--levels needs at least one frame count"))?,
+        (Some(l), _) => *l.last().ok_or_else(|| {
+            anyhow::anyhow!("--levels (or spring.levels) needs at least one frame count")
+        })?,
         (None, Some(f)) => f,
         (None, None) => default_frames,
     };
     if let Some(l) = &levels {
-        if let Some(bad) = l.iter().find(|n| **n == 0 || **n > total) {
-            bail!("--levels: every step needs 1 to {total} frames (the last step's), got {bad}");
+        let floor = (4 * keys.saturating_sub(1) + 1).min(total);
+        if let Some(bad) = l[..l.len() - 1].iter().find(|n| **n < floor || **n > total) {
+            bail!(
+                "--levels (or spring.levels): every step before the last needs {floor} to {total} frames for {keys} keys (about four per interval), got {bad}"
+            );
         }
         let its: Vec<usize> = match &iterations {
             Some(i) => i.clone(),
@@ -193,7 +203,7 @@ pub fn configure(
         };
         if its.len() != l.len() {
             bail!(
-                "--iterations gives {} counts for {} steps of --levels",
+                "--iterations (or spring.iterations) gives {} counts for {} steps of --levels",
                 its.len(),
                 l.len()
             );
@@ -209,7 +219,7 @@ pub fn configure(
     } else if let Some(its) = iterations {
         if its.len() != cfg.levels.len() {
             bail!(
-                "--iterations gives {} counts but there are {} steps (set them with --levels)",
+                "--iterations (or spring.iterations) gives {} counts but there are {} steps (set them with --levels)",
                 its.len(),
                 cfg.levels.len()
             );
@@ -217,6 +227,14 @@ pub fn configure(
         for (l, n) in cfg.levels.iter_mut().zip(its) {
             l.iterations = n;
         }
+    }
+    if let Some(n) = cfg
+        .levels
+        .iter()
+        .map(|l| l.iterations)
+        .find(|n| *n > MAX_ITERATIONS)
+    {
+        bail!("--iterations (or spring.iterations): at most {MAX_ITERATIONS} a step, got {n}");
     }
     if let Some(s) = cli.step.or(file.step) {
         cfg.step = s;
@@ -246,14 +264,15 @@ pub fn configure(
     Ok((cfg, total))
 }
 
-/// `cfg` for `frames` frames written as the options that give it, e.g. `--start slerp
-/// --levels 22,110,550 --iterations 200,150,100 --step accelerated:0.05 --penalty 1 --width
-/// one --key-weight 1.3 --velocity-weight 0` (the levels as the frames of each step).
-pub fn options(cfg: &SpringConfig, frames: usize) -> String {
+/// `cfg` for `frames` frames through `keys` keys written as the options that give it, e.g.
+/// `--start slerp --levels 22,110,550 --iterations 200,150,100 --step accelerated:0.05
+/// --penalty 1 --width one --key-weight 1.3 --velocity-weight 0` (the levels as the frames
+/// each step really has, [`SpringConfig::level_frames`]).
+pub fn options(cfg: &SpringConfig, frames: usize, keys: usize) -> String {
     let levels: Vec<String> = cfg
-        .levels
+        .level_frames(frames, keys)
         .iter()
-        .map(|l| ((l.fraction * frames as f64).round() as usize).to_string())
+        .map(usize::to_string)
         .collect();
     let iterations: Vec<String> = cfg
         .levels
@@ -307,11 +326,11 @@ mod tests {
             SpringConfig::squadsvupti(),
             SpringConfig::justdoit(),
         ] {
-            let text = options(&preset, 550);
+            let text = options(&preset, 550, 6);
             let given = args(&text.split(' ').collect::<Vec<_>>());
             assert_eq!(given.given().len(), 8, "{text}");
             let (cfg, total) =
-                configure(SpringConfig::squadsvupti(), None, &given, None, 200).unwrap();
+                configure(SpringConfig::squadsvupti(), None, &given, None, 200, 6).unwrap();
             assert_eq!(total, 550);
             assert_eq!(cfg.start, preset.start, "{text}");
             assert_eq!(cfg.step, preset.step);
@@ -325,8 +344,14 @@ mod tests {
                 assert!((a.fraction - b.fraction).abs() < 1e-12, "{text}");
             }
         }
+        // The steps as Spring runs them: at 200 frames for six keys the first has 21, not 8;
+        // and what is printed reads back.
+        let text = options(&SpringConfig::justdoit(), 200, 6);
+        assert!(text.contains("--levels 21,40,200"), "{text}");
+        let given = args(&text.split(' ').collect::<Vec<_>>());
+        assert!(configure(SpringConfig::justdoit(), None, &given, None, 200, 6).is_ok());
         assert_eq!(
-            options(&SpringConfig::justdoit(), 550),
+            options(&SpringConfig::justdoit(), 550, 6),
             "--start slerp --levels 22,110,550 --iterations 200,150,100 --step adaptive:0.02 --penalty 1 --width one --key-weight 1 --velocity-weight 0"
         );
     }
@@ -338,7 +363,8 @@ mod tests {
         )
         .unwrap();
         let cli = args(&["--key-weight", "4", "--step", "normalized:0.5"]);
-        let (cfg, total) = configure(SpringConfig::spring(), Some(&file), &cli, None, 200).unwrap();
+        let (cfg, total) =
+            configure(SpringConfig::spring(), Some(&file), &cli, None, 200, 3).unwrap();
         assert_eq!(total, 100);
         assert_eq!(cfg.levels.len(), 2);
         assert_eq!((cfg.levels[0].fraction, cfg.levels[0].iterations), (0.2, 5));
@@ -347,20 +373,29 @@ mod tests {
         assert_eq!(cfg.width, Width::Angle);
         assert_eq!(cfg.start, Start::Squad);
         // Nothing given: the preset, at --frames or the default.
-        let (cfg, total) =
-            configure(SpringConfig::justdoit(), None, &args(&[]), Some(300), 200).unwrap();
+        let (cfg, total) = configure(
+            SpringConfig::justdoit(),
+            None,
+            &args(&[]),
+            Some(300),
+            200,
+            6,
+        )
+        .unwrap();
         assert_eq!((cfg, total), (SpringConfig::justdoit(), 300));
     }
 
     #[test]
     fn bad_controls_name_the_option() {
         let err = |a: &[&str], frames| {
-            configure(SpringConfig::justdoit(), None, &args(a), frames, 200)
+            configure(SpringConfig::justdoit(), None, &args(a), frames, 200, 6)
                 .unwrap_err()
                 .to_string()
         };
         assert!(err(&["--levels", "22,110,550"], Some(200)).contains("--frames is 200"));
-        assert!(err(&["--levels", "22,0,550"], None).contains("1 to 550"));
+        assert!(err(&["--levels", "22,0,550"], None).contains("21 to 550"));
+        assert!(err(&["--levels", "5,550"], None).contains("got 5"));
+        assert!(err(&["--iterations", "1,20000000,1"], None).contains("at most 10000000"));
         assert!(err(&["--levels", "600,550"], None).contains("got 600"));
         assert!(err(&["--levels", "22,550"], None).contains("give --iterations"));
         assert!(

@@ -8,13 +8,14 @@
 //! (h the joints' spacing), so every weight falls to 0 before its joint leaves a vertex's
 //! set: the weights are continuous across the mesh, and so is every blend of them — except
 //! SBS's, whose rotation centre is solved once per *cluster* (the vertices with one joint
-//! set) and jumps from cluster to cluster (Figure 1(c)). [`pose`] folds the cloth: each
-//! joint turns about the y axis through it by an angle growing along x, and about the x axis
-//! by one growing along y.
+//! set) and jumps from cluster to cluster (Figure 1(c)). [`pose`] crumples the cloth in its
+//! plane: every joint turns about the normal through itself, by `+angle` and `−angle` in a
+//! checkerboard over the joint grid (numbered row by row, seven to a row, so that even and
+//! odd indices alternate along rows and columns both).
 //!
-//! [`seams`] measures the jumps: for every mesh edge, how much its length changed
-//! (`|posed / rest − 1|`), the largest over edges whose two ends lie in different SBS
-//! clusters (the seams) and over the others.
+//! [`seams`] measures the jumps: the largest second difference of the posed positions along
+//! the grid lines, over the triples of neighbours that cross an SBS cluster border (the
+//! seams) and over the others.
 
 use crate::error::Result;
 use crate::pose::Pose;

@@ -203,12 +203,23 @@ fn lin_euler_interpolates_the_given_euler_triples() {
     let f = interpolate(Method::LinEuler(xyz), &keys, 3, Timing::Uniform).unwrap();
     let want = Quat::from_axis_angle(Vec3::new(0.0, 0.0, 1.0), 2.0).unwrap();
     assert!(f[1].q.dot(want).abs() > 1.0 - 1e-15, "{:?}", f[1].q);
-    // Frames along the way turn steadily about z: 4 h rad at h.
+    // Frames along the way turn steadily about z, 4 h rad at h, the quaternions continuous
+    // through the last key too (its stored, hemisphere-chained sign is the other one): the
+    // velocity of eq. 5.1 has no jump.
     let f = interpolate(Method::LinEuler(xyz), &keys, 9, Timing::Uniform).unwrap();
     for (k, x) in f.iter().enumerate() {
         let a = Quat::from_axis_angle(Vec3::new(0.0, 0.0, 1.0), 4.0 * k as f64 / 8.0).unwrap();
-        assert!(x.q.dot(a).abs() > 1.0 - 1e-15, "frame {k}: {:?}", x.q);
+        assert!(x.q.dot(a) > 1.0 - 1e-15, "frame {k}: {:?}", x.q);
     }
+    assert!(
+        keys.quats()[1].dot(f[8].q) < -1.0 + 1e-15,
+        "the key's chained sign"
+    );
+    let v = velocity_chord(&qs(&f));
+    let (lo, hi) = v
+        .iter()
+        .fold((f64::MAX, 0.0f64), |(a, b), x| (a.min(*x), b.max(*x)));
+    assert!(hi / lo < 1.0 + 1e-12, "{v:?}");
     // The same rotations as plain keys: the principal angles, −1.14 rad halfway.
     let plain = KeyFrames::new(keys.quats(), None, Hemisphere::Chain).unwrap();
     let f = interpolate(Method::LinEuler(xyz), &plain, 3, Timing::Uniform).unwrap();

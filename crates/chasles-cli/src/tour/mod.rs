@@ -47,7 +47,7 @@ pub fn run(args: TourArgs) -> anyhow::Result<()> {
         Experiment::new("the Euler convention", algebra::euler_convention),
         Experiment::new("App. B.4 near 180°", algebra::b4_near_half_turn),
         Experiment::new("Figure 4.1", algebra::figure_4_1),
-        Experiment::new("gimbal lock, Figures 4.2–4.3", algebra::gimbal_lock_figure),
+        Experiment::new("gimbal lock, Figure 4.3", algebra::gimbal_lock_figure),
         Experiment::new("gimbal lock", algebra::gimbal_lock),
         Experiment::new("exp, log and powers", algebra::exp_log),
         Experiment::new("Dam et al. Figures 5.1–5.3", || {

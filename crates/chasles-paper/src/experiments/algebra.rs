@@ -1,7 +1,7 @@
 //! The core algebra by number: Dam et al. 1998, App. A and B.1 (the report's Euler
 //! convention `R = Rz(γ) Ry(β) Rx(α)`), App. B.4 against Shepperd's method near 180°,
-//! §4.1 and Figure 4.1 (the order of two rotations matters), §4.1 and Figures 4.2–4.3
-//! (gimbal lock loses a degree of freedom), App. B.2 (extraction at gimbal lock),
+//! §4.1 and Figure 4.1 (the order of two rotations matters), §4.1 and Figure 4.3 (gimbal
+//! lock loses a degree of freedom; Figure 4.2's gimbal rings are not drawn), App. B.2 (extraction at gimbal lock),
 //! Definitions 14–16 (exp, log and powers near the identity and
 //! near 2π); Kavan et al. 2006, eq. (1)–(2) (a rigid motion as a unit dual quaternion, its
 //! screw, its powers).
@@ -168,7 +168,8 @@ pub fn figure_4_1() -> Section {
 
 /// The angular velocity of the rotation made by the report's Euler angles (`R = Rz Ry Rx`)
 /// per unit rate of each angle, at `angles`: the Jacobian's three columns, by central
-/// differences of the quaternions (`2 vec(q(θ + h) q(θ)*) / h`).
+/// differences of the quaternions (`vec(q(θ + h) q(θ − h)*) / h`, the angle `2h ω`'s
+/// half-angle sine over h).
 fn euler_jacobian(angles: [f64; 3]) -> [Vec3<f64>; 3] {
     let h = 1e-6;
     std::array::from_fn(|k| {
@@ -182,12 +183,11 @@ fn euler_jacobian(angles: [f64; 3]) -> [Vec3<f64>; 3] {
     })
 }
 
-/// §4.1, Figures 4.2–4.3: at β = π/2 the x and the z rotation act about the same axis —
+/// §4.1, Figure 4.3: at β = π/2 the x and the z rotation act about the same axis —
 /// the determinant of the Euler angles' Jacobian falls to 0 (one degree of freedom lost),
 /// and turning α or γ gives the same motion.
 pub fn gimbal_lock_figure() -> Section {
-    let mut s =
-        Section::new("Dam et al. §4.1, Figures 4.2–4.3: gimbal lock loses a degree of freedom");
+    let mut s = Section::new("Dam et al. §4.1, Figure 4.3: gimbal lock loses a degree of freedom");
     s.attempt(
         Dam1998,
         "§4.1, Figure 4.3",

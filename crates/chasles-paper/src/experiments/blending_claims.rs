@@ -271,7 +271,7 @@ fn dib_updates(s: &mut Section, samples: usize, seed: u64, figures: Figures) {
     s.attempt(
         Kavan2006,
         "§4",
-        "In practice, the DIB algorithm converges very quickly, typically in 1 to 4 steps (inputs spread up to 180°)",
+        "In practice, the DIB algorithm converges very quickly, typically in 1 to 4 steps",
         |_| -> Result<_> {
             let mut parts = Vec::new();
             let mut all = true;
@@ -283,7 +283,10 @@ fn dib_updates(s: &mut Section, samples: usize, seed: u64, figures: Figures) {
                 parts.push(format!("within {d}°: {within4} of {total}"));
             }
             Ok((
-                format!("blends done in at most 4 updates, {}", parts.join(", ")),
+                format!(
+                    "on inputs spread up to 180°, blends done in at most 4 updates: {}",
+                    parts.join(", ")
+                ),
                 all,
             ))
         },

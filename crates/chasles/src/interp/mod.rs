@@ -81,6 +81,10 @@ pub fn interpolate<T: Real>(
         .map(|s| {
             let (a, b) = (q[s.interval], q[s.interval + 1]);
             let r = match (s.key, method) {
+                // LinEuler's keys as its angle triples make them: the path from_euler(v(h))
+                // is then continuous through every key (the stored key may be its antipode,
+                // when the triples turn the long way, e.g. (0, 0, 0) → (0, 0, 4)).
+                (Some(k), Method::LinEuler(order)) => Quat::from_euler(order, triples[k]),
                 (Some(k), _) => q[k],
                 (None, Method::LinEuler(order)) => Quat::from_euler(
                     order,

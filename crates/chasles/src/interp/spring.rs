@@ -175,6 +175,25 @@ impl SpringConfig {
             },
         ]
     }
+    /// The frames of each level for `frames` frames through `keys` keys: the last level
+    /// all of them, the others their fraction of them, rounded, but never fewer than
+    /// `4(keys − 1) + 1` (about four frames per interval, the report's 22 for its six keys:
+    /// fewer leave the coarse levels nothing to smooth) nor more than `frames`.
+    pub fn level_frames(&self, frames: usize, keys: usize) -> Vec<usize> {
+        let floor = (4 * keys.saturating_sub(1) + 1).min(frames);
+        let last = self.levels.len().saturating_sub(1);
+        self.levels
+            .iter()
+            .enumerate()
+            .map(|(i, l)| {
+                if i == last {
+                    frames
+                } else {
+                    ((l.fraction * frames as f64).round() as usize).clamp(floor, frames)
+                }
+            })
+            .collect()
+    }
     fn validate(&self) -> Result<()> {
         let bad = |what, rule, value| Err(Error::BadParameter { what, rule, value });
         if self.levels.is_empty() {
@@ -433,16 +452,9 @@ fn spring_f64(
     }
     let mut history = Vec::new();
     let mut current: Vec<Frame<T>> = Vec::new();
+    let sizes = cfg.level_frames(frames, k);
     let levels = cfg.levels.len();
-    for (li, level) in cfg.levels.iter().enumerate() {
-        // A level has at least about four frames per interval (the report's 22 for its six
-        // keys), or the coarse levels have nothing to smooth.
-        let floor = (4 * (k - 1) + 1).min(frames);
-        let n = if li + 1 == levels {
-            frames
-        } else {
-            ((level.fraction * frames as f64).round() as usize).clamp(floor, frames)
-        };
+    for (li, (level, &n)) in cfg.levels.iter().zip(&sizes).enumerate() {
         current = if li == 0 {
             let m = match cfg.start {
                 Start::Slerp => Method::Slerp,
