@@ -157,10 +157,10 @@ pub const MAX_ITERATIONS: usize = 10_000_000;
 /// `preset` with the key file's `[spring]` table and then the command line's options
 /// applied, for `keys` keys, and the total frame count: `frames` if given, else the last of
 /// the levels, else `default_frames`. Errors name the option (`--levels`, or the key file's
-/// `spring.levels`): a step of fewer frames than Spring gives a coarse step (`4(keys − 1)
-/// + 1`) or more than the total, a total that disagrees with --frames, iterations not one
-/// per step or over [`MAX_ITERATIONS`]; the values' ranges are checked by the library's
-/// Spring.
+/// `spring.levels`): a step of fewer frames than Spring gives a coarse step
+/// (`4(keys − 1) + 1`) or more than the total, a total that disagrees with --frames,
+/// iterations not one per step or over [`MAX_ITERATIONS`]; the values' ranges are checked
+/// by the library's Spring.
 pub fn configure(
     mut cfg: SpringConfig,
     file: Option<&SpringSpec>,
