@@ -10,7 +10,8 @@
 //! 5.1 — the chord estimate the report plots — with the first and last frame left out and
 //! the keys starred).
 //!
-//! What the captions leave open is fixed here and said in each caption: the two keys of
+//! What the captions leave open is fixed here and said in each caption: chapter 5's
+//! figures share 550 frames equally among the intervals; the two keys of
 //! Figures 6.1–6.6 are Table 5.1's first two; the "sharp curve" of 6.18–6.19 is chapter 7's
 //! cusp set; "700 iterations distributed over three steps" are split in the report's
 //! 200 : 150 : 100 proportion (311, 233, 156; 900 as 400, 300, 200) over its 22/550 and
@@ -126,13 +127,15 @@ use Curve::{Piecewise as P, Spring as S};
 use Keys::{FirstTwo, Set};
 use Timing::{Angle, Uniform};
 
-/// Figures 5.1–5.3: Slerp, Squad and LinEuler through Table 5.1 (550 frames by angle).
+/// Figures 5.1–5.3: Slerp, Squad and LinEuler through Table 5.1, 550 frames shared equally
+/// among the intervals (chapter 5 comes before §6.2's sharing by angle, and Figure 5.1's
+/// "piecewise continuous" velocity, constant between keys, is what equal shares give).
 pub fn chapter_5() -> Vec<Spec> {
     let t = Set("table5.1");
     vec![
-        spec("5.1", "The interpolation curve stays on the surface of the sphere, but it is not differentiable in any key frames; the curve \u{201c}breaks\u{201d} when it passes through the key frames. The angular velocity graph is piecewise continuous and shows that the angular velocity is constant between keys. This method of interpolation is called Slerp and is described in section 6.1.5.", t, P(Method::Slerp), 550, Angle),
-        spec("5.2", "The interpolation curve is now differentiable through all key frames. Compare, for example, the key frame in the middle of the figure with the corresponding key frame in figure 5.1. The angular velocity graph is continuous and assumes local minima at the key frames. This interpolation curve is called Squad, and it is described in section 6.2.1.", t, P(Method::Squad), 550, Angle),
-        spec("5.3", "This interpolation curve dips below the surface of the three-dimensional unit sphere. This means that the interpolated points are not unit quaternions, and thus the points do not lie on the surface of the sphere. The angular velocity graph is piecewise linear. This interpolation curve is called LinEuler, and is described in section 6.1.1", t, P(Method::LinEuler(EulerOrder::DAM)), 550, Angle),
+        spec("5.1", "The interpolation curve stays on the surface of the sphere, but it is not differentiable in any key frames; the curve \u{201c}breaks\u{201d} when it passes through the key frames. The angular velocity graph is piecewise continuous and shows that the angular velocity is constant between keys. This method of interpolation is called Slerp and is described in section 6.1.5.", t, P(Method::Slerp), 550, Uniform),
+        spec("5.2", "The interpolation curve is now differentiable through all key frames. Compare, for example, the key frame in the middle of the figure with the corresponding key frame in figure 5.1. The angular velocity graph is continuous and assumes local minima at the key frames. This interpolation curve is called Squad, and it is described in section 6.2.1.", t, P(Method::Squad), 550, Uniform),
+        spec("5.3", "This interpolation curve dips below the surface of the three-dimensional unit sphere. This means that the interpolated points are not unit quaternions, and thus the points do not lie on the surface of the sphere. The angular velocity graph is piecewise linear. This interpolation curve is called LinEuler, and is described in section 6.1.1", t, P(Method::LinEuler(EulerOrder::DAM)), 550, Uniform),
     ]
 }
 
@@ -350,24 +353,26 @@ pub fn section(title: &str, specs: &[Spec], figures: Figures) -> (Section, Vec<R
     (s, runs)
 }
 
-/// Figures 5.1–5.3 as a section.
+/// Figures 5.1–5.3 as a section, with their captions checked.
 pub fn chapter_5_section(figures: Figures) -> Section {
-    section(
+    let (mut s, runs) = section(
         "Dam et al. ch. 5: Figures 5.1–5.3, the curve on the sphere and its velocity (Table 5.1's keys)",
         &chapter_5(),
         figures,
-    )
-    .0
+    );
+    super::captions::chapter_5_claims(&mut s, &runs);
+    s
 }
 
-/// Figures 6.1–6.20 as a section.
+/// Figures 6.1–6.20 as a section, with their captions checked.
 pub fn chapter_6_section(figures: Figures) -> Section {
-    section(
+    let (mut s, runs) = section(
         "Dam et al. ch. 6: Figures 6.1–6.20, each method with its caption's frames, steps and weights",
         &chapter_6(),
         figures,
-    )
-    .0
+    );
+    super::captions::chapter_6_claims(&mut s, &runs);
+    s
 }
 
 #[cfg(test)]

@@ -7,7 +7,8 @@
 //! * [`interpolation`]: Dam et al. ch. 5–6 (six methods through Table 5.1's keys) and
 //!   Proposition 30 (Squad is C¹).
 //! * [`dam_figures`]: Dam et al. Figures 5.1–5.3, 6.1–6.20 and 7.1–7.12, each with its
-//!   caption's parameters; [`squad_and_spring`]: chapter 7's outcomes by number.
+//!   caption's parameters; [`captions`]: chapters 5 and 6's captions checked;
+//!   [`squad_and_spring`]: chapter 7's outcomes by number.
 //! * [`kavan_figures`]: Kavan et al. Figures 2 and 3 (a screw motion; q^t against (−q)^t).
 //! * [`table_1`]: Kavan et al. Table 1 measured, with FLOP counts.
 //! * [`blending_claims`]: Kavan et al. §4, §5, Lemmas 2–3, Appendix B / Figure 7.
@@ -15,6 +16,7 @@
 
 pub mod algebra;
 pub mod blending_claims;
+pub mod captions;
 pub mod dam_figures;
 pub mod identities;
 pub mod interpolation;

@@ -31,7 +31,7 @@ use chasles::Quat;
 /// so figures of different frame counts compare; it is large where a curve comes to a
 /// point. (Eq. 6.25's κ̃ keeps the part along t — the angular acceleration — and so
 /// measures a slowing down as curvature too.)
-fn geodesic(r: &Run) -> Vec<f64> {
+pub(crate) fn geodesic(r: &Run) -> Vec<f64> {
     r.frames
         .windows(3)
         .map(|w| {
@@ -51,12 +51,12 @@ fn geodesic(r: &Run) -> Vec<f64> {
 }
 
 /// The index of key `k` among the frames.
-fn key_frame(r: &Run, k: usize) -> Option<usize> {
+pub(crate) fn key_frame(r: &Run, k: usize) -> Option<usize> {
     r.frames.iter().position(|f| f.key == Some(k))
 }
 
 /// The largest geodesic curvature within five frames of key `k` (an inner key).
-fn curvature_near_key(r: &Run, k: usize) -> f64 {
+pub(crate) fn curvature_near_key(r: &Run, k: usize) -> f64 {
     let g = geodesic(r);
     key_frame(r, k).map_or(f64::NAN, |i| {
         let (lo, hi) = (i.saturating_sub(6), (i + 5).min(g.len()));
@@ -65,7 +65,7 @@ fn curvature_near_key(r: &Run, k: usize) -> f64 {
 }
 
 /// The velocity at key `k` over the mean velocity of the inner frames.
-fn speed_at_key(r: &Run, k: usize) -> f64 {
+pub(crate) fn speed_at_key(r: &Run, k: usize) -> f64 {
     let v = inner(&r.velocity);
     let mean = v.iter().sum::<f64>() / v.len() as f64;
     key_frame(r, k).map_or(f64::NAN, |i| r.velocity[i] / mean)
