@@ -20,12 +20,11 @@ use chasles::interp::{
 };
 use chasles::{EulerOrder, Quat};
 
-/// One method's run: its name, frames, angular velocity and worst speed ratio.
+/// One method's run: its name, frames and velocity.
 struct Run {
     name: &'static str,
     frames: Vec<Frame<f64>>,
     velocity: Vec<f64>,
-    ratio: f64,
 }
 
 /// The largest max/min ratio of the speed `v` inside one interval between keys (frames
@@ -81,7 +80,7 @@ fn table_5_1_keys() -> chasles::Result<KeyFrames<f64>> {
     )
 }
 
-/// The six methods through Table 5.1's keys: energies, speed ratios, the claims of §5.2
+/// The six methods through Table 5.1's keys: energies, speed ratios
 /// and, with [`Figures::Draw`], every method's velocity graph, four sphere plots and the
 /// turning R of Squad.
 pub fn six_methods(figures: Figures) -> Section {
@@ -120,45 +119,16 @@ pub fn six_methods(figures: Figures) -> Section {
                 name,
                 frames,
                 velocity: v,
-                ratio,
             });
         }
         s.table(t);
         Ok(out)
     })();
-    let ratio = |n: &str| -> std::result::Result<f64, String> {
-        match &measured {
-            Ok(rows) => Ok(rows
-                .iter()
-                .find(|r| r.name == n)
-                .map_or(f64::NAN, |r| r.ratio)),
-            Err(e) => Err(e.to_string()),
-        }
-    };
-    s.attempt(
-        Dam1998,
-        "§5.2, Figure 5.1",
-        "Slerp moves at constant angular velocity between keys",
-        |_| {
-            let r = ratio("slerp")?;
-            Ok::<_, String>((
-                format!("Slerp speed max/min inside the intervals: {r:.6}"),
-                (r - 1.0).abs() < 1e-3,
-            ))
-        },
-    );
-    s.attempt(
-        Dam1998,
-        "§5.2, Figures 5.3 and 6.2",
-        "LinEuler and LinMat do not move at constant velocity",
-        |_| {
-            let (e, m) = (ratio("lineuler")?, ratio("linmat")?);
-            Ok::<_, String>((
-                format!("speed max/min within an interval, worst interval: LinEuler {e:.3}, LinMat {m:.3}"),
-                e > 1.05 && m > 1.05,
-            ))
-        },
-    );
+    // The claims these numbers bear on are the figures' own (Figures 5.1, 5.3, 6.1–6.6:
+    // `captions`); here the six methods stand side by side on one set of frames.
+    if let Err(e) = &measured {
+        s.text(format!("the six methods could not be run: {e}"));
+    }
     if figures == Figures::Draw {
         if let Ok(rows) = &measured {
             draw(&mut s, rows);
