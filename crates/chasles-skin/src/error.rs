@@ -167,8 +167,10 @@ pub enum SkinError {
         reason: String,
     },
     /// A buffer too short for the data an accessor claims.
-    #[error("accessor {accessor} ({what}) reads past the end of its buffer: needs {needed} bytes, the buffer view has {available}")]
+    #[error("{file}: accessor {accessor} ({what}) reads past the end of its buffer: needs {needed} bytes, the buffer view has {available}")]
     Truncated {
+        /// The file.
+        file: String,
         /// The accessor index.
         accessor: usize,
         /// What it holds.

@@ -107,6 +107,7 @@ fn check_accessor(a: &gltf::Accessor, buffers: &[Vec<u8>], what: &str, name: &st
     };
     if needed > view.length() {
         return Err(SkinError::Truncated {
+            file: name.to_string(),
             accessor: a.index(),
             what: what.into(),
             needed,
@@ -116,6 +117,7 @@ fn check_accessor(a: &gltf::Accessor, buffers: &[Vec<u8>], what: &str, name: &st
     let buf = &buffers[view.buffer().index()];
     if view.offset() + view.length() > buf.len() {
         return Err(SkinError::Truncated {
+            file: name.to_string(),
             accessor: a.index(),
             what: format!("{what}, buffer view {}", view.index()),
             needed: view.offset() + view.length(),
@@ -162,10 +164,14 @@ pub fn load_slice(bytes: &[u8], name: &str) -> Result<Rig> {
 }
 
 fn parse(bytes: &[u8], base: Option<&Path>, name: &str) -> Result<Rig> {
-    let g = gltf::Gltf::from_slice(bytes).map_err(|e| SkinError::Gltf {
+    // Our checks first: the crate's own validation indexes arrays it has not checked
+    // (an attribute's accessor, say) and can panic.
+    let g = gltf::Gltf::from_slice_without_validation(bytes).map_err(|e| SkinError::Gltf {
         path: name.to_string(),
         reason: e.to_string(),
     })?;
+    crate::gltf_check::check(g.document.as_json(), name)?;
+    crate::gltf_check::crate_validation(g.document.as_json(), name)?;
     let buffers = load_buffers(&g.document, g.blob.clone(), base, name)?;
     from_document(&g.document, &buffers, name)
 }
@@ -342,6 +348,27 @@ fn from_document(doc: &gltf::Document, buffers: &[Vec<u8>], name: &str) -> Resul
                 ),
                 _ => continue, // morph target weights
             };
+            // A rotation key of zero length (or not finite) is no rotation: an error naming
+            // it, not the identity it would silently become.
+            // (CUBICSPLINE stores in-tangent, value, out-tangent per key: only the values.)
+            if path == ChannelPath::Rotation {
+                let cubic = s.interpolation() == gltf::animation::Interpolation::CubicSpline;
+                let is_value = |i: usize| !cubic || i % 3 == 1;
+                if let Some(k) = values.iter().enumerate().position(|(i, v)| {
+                    let n2: f32 = v.iter().map(|x| x * x).sum();
+                    is_value(i) && !n2.is_normal()
+                }) {
+                    return Err(gltf_content(
+                        name,
+                        format!("animation {}, channel {}", a.index(), c.index()),
+                        format!(
+                            "rotation key {} is {:?}, which is not a rotation (zero or not finite)",
+                            if cubic { k / 3 } else { k },
+                            values[k]
+                        ),
+                    ));
+                }
+            }
             let interpolation = match s.interpolation() {
                 gltf::animation::Interpolation::Linear => Interpolation::Linear,
                 gltf::animation::Interpolation::Step => Interpolation::Step,

@@ -26,6 +26,7 @@ pub mod cloth;
 pub mod cylinder;
 pub mod error;
 pub mod fast;
+mod gltf_check;
 pub mod gltf_load;
 #[cfg(feature = "gpu")]
 pub mod gpu;
