@@ -22,7 +22,7 @@ use crate::json::{from_json, FieldError};
 use crate::output::write_atomic;
 use crate::picture_args::Pictures;
 use crate::repr::MotionObject;
-use anyhow::{anyhow, Context, Result};
+use anyhow::{anyhow, bail, Context, Result};
 use chasles::blend::{blend_dual_quats, Method, Options};
 use chasles::{DualQuat, Vec3};
 use serde::de::value::{MapAccessDeserializer, SeqAccessDeserializer};
@@ -30,7 +30,6 @@ use serde::de::{Deserializer, MapAccess, SeqAccess, Visitor};
 use serde::Deserialize;
 use serde_json::{json, Value};
 use std::fmt;
-use std::io::Read;
 
 /// One case as written: `transforms` and `weights`, or sclerp's `from`, `to` and `t`, with
 /// the options. Every field is optional here so that [`case`] can say which form is meant
@@ -110,10 +109,10 @@ fn case(c: CaseFile, i: usize, method: Method) -> Result<Case, FieldError> {
         opt.precision = p;
     }
     if let Some(n) = c.max_iterations {
-        if !(n >= 0.0 && n.fract() == 0.0 && n <= 1e6) {
+        if !(n >= 0.0 && n.fract() == 0.0 && n <= 1e4) {
             return Err(FieldError::new(
                 "max_iterations",
-                format!("must be a whole number up to 1e6, got {n}"),
+                format!("must be a whole number up to 10000 (DIB converges in a few; a cap, not a goal), got {n}"),
             ));
         }
         opt.max_iterations = n as usize;
@@ -208,6 +207,9 @@ fn blend_all(method: Method, input: &str) -> Result<(Value, Option<Case>)> {
         if let Some(it) = b.iterations {
             o["iterations"] = json!(it);
         }
+        if let Some(at) = crate::repr::first_non_finite(&o, "") {
+            bail!("case {i}: the blend's {at} is not a finite number: the input is beyond the range of f64");
+        }
         out.push(o);
     }
     Ok((Value::Array(out), first))
@@ -218,14 +220,13 @@ fn blend_all(method: Method, input: &str) -> Result<(Value, Option<Case>)> {
 /// [`crate::blend_pictures`]).
 pub fn run(m: Method, input: &str, pictures: &Pictures) -> Result<()> {
     pictures.check(&["svg"])?;
+    use chasles_skin::bounded::{read_capped, read_text, MAX_TEXT_BYTES};
     let text = if input == "-" {
-        let mut s = String::new();
-        std::io::stdin()
-            .read_to_string(&mut s)
-            .context("reading stdin")?;
-        s
+        let bytes = read_capped(std::io::stdin().lock(), MAX_TEXT_BYTES, "stdin")?;
+        String::from_utf8(bytes).context("stdin is not UTF-8 text")?
     } else {
-        std::fs::read_to_string(input).with_context(|| format!("cannot read {input}"))?
+        read_text(std::path::Path::new(input), MAX_TEXT_BYTES)
+            .with_context(|| format!("cannot read {input}"))?
     };
     let (out, first) = blend_all(m, &text)?;
     println!("{}", serde_json::to_string_pretty(&out)?);

@@ -4,7 +4,10 @@
 
 use crate::repr::{motion_from_json_line, motion_from_numbers, parse_numbers, render, Fmt, Repr};
 use anyhow::{anyhow, bail, Context, Result};
-use std::io::{BufRead, Write};
+use std::io::{BufRead, Read, Write};
+
+/// The longest line `--jsonl` reads: 1 MiB (a motion is about a hundred bytes).
+pub const MAX_LINE: usize = 1 << 20;
 
 /// Options of `chasles convert`.
 pub struct ConvertArgs {
@@ -59,13 +62,28 @@ pub fn run_jsonl(
     fmt: Fmt,
 ) -> Result<i32> {
     let mut code = 0;
-    for (i, line) in input.lines().enumerate() {
-        let n = i + 1;
-        let line = line.with_context(|| format!("reading line {n}"))?;
+    let mut input = input;
+    let mut bytes = Vec::new();
+    for n in 1.. {
+        // One line at a time, at most MAX_LINE bytes: an endless line (`< /dev/zero`)
+        // is an error, not a read without end.
+        bytes.clear();
+        let got = (&mut input)
+            .take(MAX_LINE as u64 + 1)
+            .read_until(b'\n', &mut bytes)
+            .with_context(|| format!("reading line {n}"))?;
+        if got == 0 {
+            break;
+        }
+        if bytes.len() > MAX_LINE {
+            bail!("line {n} is longer than {MAX_LINE} bytes: not one JSON value per line");
+        }
+        let line =
+            std::str::from_utf8(&bytes).with_context(|| format!("line {n} is not UTF-8 text"))?;
         if line.trim().is_empty() {
             continue;
         }
-        let result = motion_from_json_line(&line, from)
+        let result = motion_from_json_line(line, from)
             .map_err(anyhow::Error::from)
             .and_then(|m| render(&m, to, fmt));
         match result {

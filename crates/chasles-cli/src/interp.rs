@@ -27,6 +27,8 @@ pub struct InterpArgs {
     pub keys: String,
     /// Frames in total (default 200, or the last of `--levels`).
     pub frames: Option<usize>,
+    /// The ceiling on frames (`--max-frames`).
+    pub max_frames: usize,
     /// Frame distribution.
     pub timing: Timing,
     /// Output file (.csv or .json); stdout CSV when absent.
@@ -77,6 +79,12 @@ pub struct Run {
 
 /// Computes the curve and its summary.
 pub fn compute(args: &InterpArgs) -> Result<Run> {
+    if let Some(n) = args.frames.filter(|n| *n > args.max_frames) {
+        bail!(
+            "--frames {n} is more than --max-frames {} (raise it to make longer curves)",
+            args.max_frames
+        );
+    }
     let keys = keyfile::load(&args.keys)?;
     let hemisphere = if args.keep_signs {
         Hemisphere::AsGiven
@@ -117,6 +125,12 @@ pub fn compute(args: &InterpArgs) -> Result<Run> {
                 kf.len(),
             )
             .with_context(|| keys.source.clone())?;
+            if total > args.max_frames {
+                bail!(
+                    "--levels asks for {total} frames, more than --max-frames {}",
+                    args.max_frames
+                );
+            }
             n = total;
             let _ = writeln!(extra, "spring options    {}", options(&cfg, n, kf.len()));
             // At most MAX_ITERATIONS a step (checked): the sums cannot overflow.

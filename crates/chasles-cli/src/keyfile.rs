@@ -135,8 +135,8 @@ pub fn load(spec: &str) -> Result<Keys> {
         });
     }
     let path = Path::new(spec);
-    let text =
-        std::fs::read_to_string(path).with_context(|| format!("cannot read key file {spec}"))?;
+    let text = chasles_skin::bounded::read_text(path, chasles_skin::bounded::MAX_TEXT_BYTES)
+        .with_context(|| format!("cannot read key file {spec}"))?;
     let ext = path
         .extension()
         .and_then(|e| e.to_str())

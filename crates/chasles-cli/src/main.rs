@@ -89,6 +89,10 @@ enum Command {
         /// Frames in total, keys included (default 200, or the last of --levels).
         #[arg(long)]
         frames: Option<usize>,
+        /// The most frames a run may make (a ceiling against runaway sizes; raise it for
+        /// longer curves: each frame takes about 64 bytes).
+        #[arg(long, default_value_t = 1_000_000)]
+        max_frames: usize,
         /// Frames per interval: uniform (or by key times), or by the interval's angle (§6.2).
         #[arg(long, value_enum, default_value_t = TimingArg::Angle)]
         timing: TimingArg,
@@ -176,9 +180,9 @@ enum Command {
         /// Read one JSON value per line from stdin, write one JSON result per line.
         #[arg(long)]
         jsonl: bool,
-        /// Print numbers with this many decimals (default: shortest exact form).
-        #[arg(long)]
-        precision: Option<usize>,
+        /// Print numbers with this many decimals, 0 to 17 (default: shortest exact form).
+        #[arg(long, value_parser = clap::value_parser!(u8).range(0..=17))]
+        precision: Option<u8>,
         /// The numbers (negative ones are fine, or put them after `--`).
         #[arg(allow_negative_numbers = true, num_args = 0..)]
         values: Vec<String>,
@@ -227,7 +231,41 @@ fn main() {
             std::process::exit(2);
         }
     };
-    let result = match cli.command {
+    // A panic is a bug of ours: one line naming it and the command, and its own exit code
+    // (70, EX_SOFTWARE), never a backtrace in the user's face nor exit 101.
+    std::panic::set_hook(Box::new(|info| {
+        let args: Vec<String> = std::env::args().skip(1).collect();
+        let at = info
+            .location()
+            .map_or(String::new(), |l| format!(" at {}:{}", l.file(), l.line()));
+        let what = info
+            .payload()
+            .downcast_ref::<&str>()
+            .map(|s| s.to_string())
+            .or_else(|| info.payload().downcast_ref::<String>().cloned())
+            .unwrap_or_default();
+        eprintln!(
+            "internal error{at}: {what} (chasles {}; please report it with this input)",
+            args.join(" ")
+        );
+    }));
+    let result =
+        std::panic::catch_unwind(|| run(cli)).unwrap_or_else(|_| std::process::exit(INTERNAL));
+    match result {
+        Ok(code) => std::process::exit(code),
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            std::process::exit(2);
+        }
+    }
+}
+
+/// The exit code of an internal error (a panic): 70, EX_SOFTWARE of sysexits.h.
+const INTERNAL: i32 = 70;
+
+/// Runs the command; returns the exit code.
+fn run(cli: Cli) -> anyhow::Result<i32> {
+    match cli.command {
         Command::Tour { samples, seed, out } => {
             tour::run(tour::TourArgs { samples, seed, out }).map(|_| 0)
         }
@@ -256,6 +294,7 @@ fn main() {
             method,
             keys,
             frames,
+            max_frames,
             timing,
             out,
             keep_signs,
@@ -266,6 +305,7 @@ fn main() {
             method,
             keys,
             frames,
+            max_frames,
             timing: match timing {
                 TimingArg::Uniform => chasles::interp::Timing::Uniform,
                 TimingArg::Angle => chasles::interp::Timing::Angle,
@@ -288,14 +328,7 @@ fn main() {
             to,
             values,
             jsonl,
-            precision,
+            precision: precision.map(usize::from),
         }),
-    };
-    match result {
-        Ok(code) => std::process::exit(code),
-        Err(e) => {
-            eprintln!("error: {e:#}");
-            std::process::exit(2);
-        }
     }
 }

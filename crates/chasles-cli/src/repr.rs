@@ -587,5 +587,37 @@ pub fn render(m: &Motion, to: Repr, f: Fmt) -> Result<Output> {
             (text, json)
         }
     };
+    if let Some(at) = first_non_finite(&json, "") {
+        bail!("the result's {at} is not a finite number: the input is beyond the range of f64");
+    }
     Ok(Output { text, json, notes })
+}
+
+/// The path of the first number of `v` that is not finite — which `serde_json` holds as
+/// `null` — leaving out `pitch`, whose `null` means a pure translation.
+pub(crate) fn first_non_finite(v: &serde_json::Value, at: &str) -> Option<String> {
+    use serde_json::Value;
+    match v {
+        Value::Null => Some(at.to_string()),
+        Value::Number(n) => n
+            .as_f64()
+            .filter(|x| !x.is_finite())
+            .map(|_| at.to_string()),
+        Value::Array(a) => a
+            .iter()
+            .enumerate()
+            .find_map(|(i, x)| first_non_finite(x, &format!("{at}[{i}]"))),
+        Value::Object(o) => o
+            .iter()
+            .filter(|(k, _)| k.as_str() != "pitch")
+            .find_map(|(k, x)| {
+                let p = if at.is_empty() {
+                    k.clone()
+                } else {
+                    format!("{at}.{k}")
+                };
+                first_non_finite(x, &p)
+            }),
+        _ => None,
+    }
 }

@@ -405,7 +405,7 @@ fn chosen_pose(rig: &Rig, a: &SkinArgs) -> Result<(Pose, String)> {
     Ok(match (&a.anim, a.time) {
         _ if a.pose.is_some() => {
             let p = a.pose.as_ref().unwrap_or_else(|| unreachable!());
-            let text = std::fs::read_to_string(p)
+            let text = chasles_skin::bounded::read_text(p, chasles_skin::bounded::MAX_TEXT_BYTES)
                 .with_context(|| format!("cannot read {}", p.display()))?;
             (
                 json_rig::parse_pose(&text, rig, &p.display().to_string())?,

@@ -105,6 +105,7 @@ impl Real for Flop {
     const HALF: Self = Flop(0.5);
     const PI: Self = Flop(core::f64::consts::PI);
     const EPSILON: Self = Flop(f64::EPSILON);
+    const MIN_POSITIVE: Self = Flop(f64::MIN_POSITIVE);
     fn from_f64(v: f64) -> Self {
         Flop(v)
     }

@@ -14,6 +14,22 @@ pub enum SkinError {
         #[source]
         source: std::io::Error,
     },
+    /// A path that is not a regular file (a device, a folder, a pipe).
+    #[error("{path}: not a regular file")]
+    NotAFile {
+        /// The path.
+        path: String,
+    },
+    /// A file or stream past the size this kind of input may have.
+    #[error("{path}: {size} bytes or more, past the limit of {limit} bytes for this input")]
+    TooLarge {
+        /// The file or stream.
+        path: String,
+        /// Its size (or the bytes read when it passed the limit).
+        size: u64,
+        /// The limit.
+        limit: u64,
+    },
     /// A glTF file that does not parse.
     #[error("{path}: not a valid glTF file: {reason}")]
     Gltf {

@@ -62,8 +62,21 @@ fn load_buffers(
                                 )
                             })?
                     } else if let Some(base) = base {
+                        // At most the declared length (plus one, to see a longer file).
                         let p = base.join(uri);
-                        std::fs::read(&p).map_err(|e| io(&p, e))?
+                        let cap = (b.length() as u64).min(crate::bounded::MAX_MODEL_BYTES);
+                        match crate::bounded::read_file(&p, cap) {
+                            Err(SkinError::TooLarge { .. }) if b.length() as u64 <= cap => {
+                                // Longer than declared: glTF allows it; read the declared part.
+                                let f = std::fs::File::open(&p).map_err(|e| io(&p, e))?;
+                                crate::bounded::read_capped(
+                                    std::io::Read::take(f, b.length() as u64),
+                                    cap,
+                                    &p.display().to_string(),
+                                )?
+                            }
+                            r => r?,
+                        }
                     } else {
                         return Err(gltf_content(
                             name,
@@ -141,7 +154,7 @@ fn trs(node: &gltf::Node) -> Trs {
 /// Loads a rig from a `.gltf` or `.glb` file; external buffers are read next to it.
 pub fn load(path: &Path) -> Result<Rig> {
     let name = path.display().to_string();
-    let bytes = std::fs::read(path).map_err(|e| io(path, e))?;
+    let bytes = crate::bounded::read_file(path, crate::bounded::MAX_MODEL_BYTES)?;
     let base = path.parent().unwrap_or(Path::new("."));
     let mut rig = parse(&bytes, Some(base), &name)?;
     rig.name = file_name(path);

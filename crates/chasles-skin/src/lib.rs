@@ -22,6 +22,7 @@
 #![warn(missing_docs)]
 
 pub mod animation;
+pub mod bounded;
 pub mod cloth;
 pub mod cylinder;
 pub mod error;
@@ -51,10 +52,7 @@ pub fn load(path: &std::path::Path) -> Result<Rig> {
     {
         Some("gltf") | Some("glb") => gltf_load::load(path),
         Some("json") => {
-            let text = std::fs::read_to_string(path).map_err(|source| SkinError::Io {
-                path: path.display().to_string(),
-                source,
-            })?;
+            let text = bounded::read_text(path, bounded::MAX_MODEL_BYTES)?;
             let mut rig = json_rig::parse_rig(&text, &path.display().to_string())?;
             rig.name = gltf_load::file_name(path);
             Ok(rig)

@@ -110,6 +110,12 @@ pub enum Error {
         #[source]
         source: Box<Error>,
     },
+    /// More frames than memory can hold (the allocation was refused, not attempted blind).
+    #[error("cannot hold {frames} frames in memory")]
+    TooManyFrames {
+        /// The frames asked for.
+        frames: usize,
+    },
     /// A parameter outside its allowed range.
     #[error("{what} must be {rule}, got {value}")]
     BadParameter {

@@ -88,10 +88,11 @@ impl<T: Real> Quat<T> {
     pub fn norm_squared(self) -> T {
         self.dot(self)
     }
-    /// `‖q‖` (Definition 9).
+    /// `‖q‖` (Definition 9), without overflow or underflow for components near the ends
+    /// of T's range.
     #[inline]
     pub fn norm(self) -> T {
-        self.norm_squared().sqrt()
+        crate::real::robust_norm(&[self.w, self.x, self.y, self.z])
     }
     /// Whether all four components are finite.
     #[inline]

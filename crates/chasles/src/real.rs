@@ -41,6 +41,8 @@ pub trait Real:
     const PI: Self;
     /// Machine epsilon: the gap between 1 and the next larger number.
     const EPSILON: Self;
+    /// The smallest positive normal number.
+    const MIN_POSITIVE: Self;
 
     /// Converts from `f64` (rounding to the nearest representable value).
     fn from_f64(v: f64) -> Self;
@@ -116,6 +118,7 @@ macro_rules! impl_real {
             const HALF: Self = 0.5;
             const PI: Self = core::$t::consts::PI;
             const EPSILON: Self = $t::EPSILON;
+            const MIN_POSITIVE: Self = $t::MIN_POSITIVE;
 
             #[inline]
             fn from_f64(v: f64) -> Self {
@@ -219,4 +222,44 @@ pub fn atan2_over<T: Real>(n: T, w: T) -> T {
 #[inline]
 pub fn default_tolerance<T: Real>() -> T {
     T::EPSILON.sqrt()
+}
+
+/// `√(Σ xᵢ²)` without overflow or underflow: the plain sum of squares where it is a
+/// normal, finite number (almost always: one test), else the components scaled by the
+/// largest first (`m √(Σ (xᵢ/m)²)`), so that a vector of 1e200s or of 1e-200s keeps its
+/// length. NaN in, NaN out; an infinite component gives infinity.
+#[inline]
+pub(crate) fn robust_norm<T: Real>(x: &[T]) -> T {
+    let n2 = x.iter().fold(T::ZERO, |a, v| a + *v * *v);
+    if n2.is_finite() && n2 >= T::MIN_POSITIVE {
+        return n2.sqrt();
+    }
+    #[allow(clippy::eq_op)] // `x != x` is the NaN test for a generic type
+    if n2 != n2 {
+        return n2;
+    }
+    let m = x.iter().fold(T::ZERO, |a, v| a.max(v.abs()));
+    if m == T::ZERO || !m.is_finite() {
+        return m;
+    }
+    m * x
+        .iter()
+        .fold(T::ZERO, |a, v| a + (*v / m) * (*v / m))
+        .sqrt()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::robust_norm;
+
+    #[test]
+    fn the_norm_neither_overflows_nor_underflows() {
+        assert_eq!(robust_norm(&[3.0f64, 4.0]), 5.0);
+        assert!((robust_norm(&[3e200f64, 4e200]) / 5e200 - 1.0).abs() < 1e-15);
+        assert!((robust_norm(&[3e-200f64, 4e-200]) / 5e-200 - 1.0).abs() < 1e-15);
+        assert!((robust_norm(&[3e30f32, 4e30]) / 5e30 - 1.0).abs() < 1e-6);
+        assert_eq!(robust_norm(&[0.0f64, 0.0]), 0.0);
+        assert_eq!(robust_norm(&[f64::INFINITY, 1.0]), f64::INFINITY);
+        assert!(robust_norm(&[f64::NAN, 1e300]).is_nan());
+    }
 }

@@ -72,10 +72,10 @@ impl<T: Real> Vec3<T> {
     pub fn norm_squared(self) -> T {
         self.dot(self)
     }
-    /// Length.
+    /// Length, without overflow or underflow for components near the ends of T's range.
     #[inline]
     pub fn norm(self) -> T {
-        self.norm_squared().sqrt()
+        crate::real::robust_norm(&[self.x, self.y, self.z])
     }
     /// The unit vector in the same direction; a typed error for zero or non-finite input.
     pub fn normalize(self) -> Result<Self> {

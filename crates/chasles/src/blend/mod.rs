@@ -93,10 +93,12 @@ pub const STALL_FACTOR: f64 = 100.0;
 
 /// Whether an iteration should go on: the update `norm` is still above `precision`, and
 /// not stuck near it (no smaller than the `last` while within [`STALL_FACTOR`] × the
-/// precision).
+/// precision, or within 16 ε, where rounding sets every update: a precision asked for
+/// below what T resolves, 5e-324 say, stops there instead of running all its iterations).
 pub(crate) fn keep_going<T: Real>(norm: T, last: T, precision: T) -> bool {
     let converged = norm < precision;
-    let stuck = norm >= last && norm < precision * T::from_f64(STALL_FACTOR);
+    let zone = (precision * T::from_f64(STALL_FACTOR)).max(T::EPSILON * T::from_f64(16.0));
+    let stuck = norm >= last && norm < zone;
     !converged && !stuck && norm.is_finite()
 }
 

@@ -24,7 +24,7 @@ pub use spring::{spring, Level, SpringConfig, SpringResult, Start, StepRule};
 pub use squad::Squad;
 pub use timing::Timing;
 
-use crate::{EulerOrder, Mat3, Quat, Real, Result};
+use crate::{Error, EulerOrder, Mat3, Quat, Real, Result};
 
 /// One frame of an interpolated curve.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -63,6 +63,13 @@ pub fn interpolate<T: Real>(
     timing: Timing,
 ) -> Result<Vec<Frame<T>>> {
     let counts = timing::distribute(keys, frames, timing)?;
+    // The output and the grid reserved first: an absurd count is an error, not an abort.
+    let mut out: Vec<Frame<T>> = Vec::new();
+    let mut probe: Vec<timing::Sample<T>> = Vec::new();
+    if out.try_reserve_exact(frames).is_err() || probe.try_reserve_exact(frames).is_err() {
+        return Err(Error::TooManyFrames { frames });
+    }
+    drop(probe);
     let grid = timing::samples::<T>(&counts);
     let q = keys.quats();
     let squad = match method {
@@ -77,8 +84,8 @@ pub fn interpolate<T: Real>(
         Method::LinEuler(order) => lin_euler::key_angles(order, keys)?,
         _ => Vec::new(),
     };
-    grid.iter()
-        .map(|s| {
+    for s in &grid {
+        out.push({
             let (a, b) = (q[s.interval], q[s.interval + 1]);
             let r = match (s.key, method) {
                 // LinEuler's keys as its angle triples make them: the path from_euler(v(h))
@@ -105,11 +112,12 @@ pub fn interpolate<T: Real>(
                 (None, Method::Slerp) => slerp::slerp(a, b, s.h),
                 (None, Method::Squad) => squad.as_ref().map_or(a, |sq| sq.eval(s.interval, s.h)),
             };
-            Ok(Frame {
+            Frame {
                 q: r,
                 t: keys.parameter(s.interval, s.h),
                 key: s.key,
-            })
-        })
-        .collect()
+            }
+        });
+    }
+    Ok(out)
 }

@@ -1,0 +1,241 @@
+//! The attacks of issue 17 that crashed, hung or printed NaN, each now a bounded run or a
+//! one-line typed error (exit 2, never 101 or an abort): absurd sizes, device files posing
+//! as inputs, endless lines, values past f64's range, iteration caps, malformed glTF.
+
+use std::io::Write;
+use std::path::Path;
+use std::process::{Command, Output, Stdio};
+
+fn chasles(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_chasles"))
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+fn with_stdin(args: &[&str], input: &[u8]) -> Output {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_chasles"))
+        .args(args)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    // The child may stop reading early (that is the point): a broken pipe is fine.
+    let _ = child.stdin.take().unwrap().write_all(input);
+    child.wait_with_output().unwrap()
+}
+
+/// Exit 2 with one line of error saying `words`.
+fn refused(o: &Output, words: &str) {
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains(words), "{err}");
+    assert_eq!(err.trim().lines().count(), 1, "{err}");
+}
+
+fn stdout(o: &Output) -> String {
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    String::from_utf8(o.stdout.clone()).unwrap()
+}
+
+#[test]
+fn absurd_sizes_are_refused_before_any_allocation() {
+    refused(
+        &chasles(&[
+            "convert",
+            "--precision",
+            "65536",
+            "--from",
+            "quat",
+            "--to",
+            "matrix",
+            "--",
+            "1",
+            "0",
+            "0",
+            "0",
+        ]),
+        "65536 is not in 0..=17",
+    );
+    let interp = |extra: &[&str]| {
+        let mut a = vec!["interp", "--method", "slerp", "--keys", "builtin:table5.1"];
+        a.extend_from_slice(extra);
+        chasles(&a)
+    };
+    refused(
+        &interp(&["--frames", "18446744073709551615"]),
+        "more than --max-frames 1000000",
+    );
+    refused(
+        &interp(&["--frames", "1000000000"]),
+        "more than --max-frames",
+    );
+    // Raised past what memory can hold: the library refuses the allocation itself.
+    refused(
+        &interp(&[
+            "--frames",
+            "18446744073709551615",
+            "--max-frames",
+            "18446744073709551615",
+        ]),
+        "cannot hold 18446744073709551615 frames in memory",
+    );
+    refused(
+        &chasles(&[
+            "interp",
+            "--method",
+            "justdoit",
+            "--keys",
+            "builtin:table5.1",
+            "--levels",
+            "22,110,550",
+            "--iterations",
+            "200,150,99999999999",
+        ]),
+        "at most 10000000",
+    );
+}
+
+#[test]
+fn device_files_and_endless_input_are_refused() {
+    if Path::new("/dev/zero").exists() {
+        refused(
+            &chasles(&["interp", "--method", "slerp", "--keys", "/dev/zero"]),
+            "not a regular file",
+        );
+        refused(
+            &chasles(&["blend", "--method", "dlb", "--input", "/dev/zero"]),
+            "not a regular file",
+        );
+        // A model named like one but a device: refused before reading.
+        let dir = tempfile::tempdir().unwrap();
+        let link = dir.path().join("zero.glb");
+        std::os::unix::fs::symlink("/dev/zero", &link).unwrap();
+        refused(
+            &chasles(&[
+                "skin",
+                "--rig",
+                link.to_str().unwrap(),
+                "--out",
+                dir.path().join("o.obj").to_str().unwrap(),
+            ]),
+            "not a regular file",
+        );
+    }
+    // One endless line on stdin: an error at the cap, not a read without end.
+    let zeros = vec![b'0'; (1 << 20) + 10];
+    refused(
+        &with_stdin(&["convert", "--jsonl", "--to", "quat"], &zeros),
+        "line 1 is longer than 1048576 bytes",
+    );
+    // Past the blend input's cap on stdin.
+    let big = vec![b' '; (64 << 20) + 1];
+    refused(
+        &with_stdin(&["blend", "--method", "dlb", "--input", "-"], &big),
+        "past the limit of 67108864 bytes",
+    );
+}
+
+#[test]
+fn values_past_the_range_of_f64_never_print_nan_or_inf() {
+    // A rotation vector of 1e155: a unit quaternion (its norm no longer overflows).
+    let out = stdout(&chasles(&[
+        "convert", "--from", "rotvec", "--to", "quat", "--", "1e155", "0", "0",
+    ]));
+    let q: Vec<f64> = out
+        .trim()
+        .trim_matches(|c| c == '[' || c == ']')
+        .split(',')
+        .map(|x| x.trim().parse().unwrap())
+        .collect();
+    let n: f64 = q.iter().map(|x| x * x).sum::<f64>().sqrt();
+    assert!((n - 1.0).abs() < 1e-12, "{out}");
+    // A dual part of 1e200 is a translation of 2e200; of 1e308, past f64: an error.
+    let out = stdout(&chasles(&[
+        "convert", "--from", "dq", "--to", "screw", "--", "1", "0", "0", "0", "0", "1e200", "0",
+        "0",
+    ]));
+    assert!(out.contains("translation 2000000000"), "{out}");
+    refused(
+        &chasles(&[
+            "convert", "--from", "dq", "--to", "rt", "--", "1", "0", "0", "0", "0", "1e308", "0",
+            "0",
+        ]),
+        "the result's translation[0] is not a finite number",
+    );
+    // Translations of 1e308: log-matrix blending overflows on them (the others stay in
+    // range): an error naming the field, not `null` in the output.
+    let case = r#"{"transforms": [{"rotation": [1,0,0,0], "translation": [1e308,1e308,1e308]}, {"rotation": [0,0,0.6,0.8], "translation": [1e308,-1e308,1e308]}], "weights": [0.5, 0.5]}"#;
+    let o = with_stdin(
+        &["blend", "--method", "log", "--input", "-"],
+        case.as_bytes(),
+    );
+    refused(
+        &o,
+        "case 0: the blend's translation[0] is not a finite number",
+    );
+}
+
+#[test]
+fn iterations_are_capped_and_stop_where_rounding_does() {
+    let case = |extra: &str| {
+        format!(
+            r#"{{"transforms": [{{"rotation": [1,0,0,0]}}, {{"rotation": [0.6,0.8,0,0], "translation": [1,2,3]}}, {{"rotation": [0,0,1,0]}}], "weights": [0.3, 0.3, 0.4]{extra}}}"#
+        )
+    };
+    refused(
+        &with_stdin(
+            &["blend", "--method", "dib", "--input", "-"],
+            case(r#", "max_iterations": 1000000"#).as_bytes(),
+        ),
+        "max_iterations: must be a whole number up to 10000",
+    );
+    // A precision below what f64 resolves stops where the updates stop shrinking.
+    let out = stdout(&with_stdin(
+        &["blend", "--method", "dib", "--input", "-"],
+        case(r#", "precision": 5e-324, "max_iterations": 10000"#).as_bytes(),
+    ));
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let it = v[0]["iterations"].as_u64().unwrap();
+    assert!(it < 100, "{it} iterations");
+}
+
+#[test]
+fn a_malformed_gltf_is_one_line_and_exit_2() {
+    let mut doc: serde_json::Value =
+        serde_json::from_slice(chasles_models::SIMPLE_SKIN.bytes).unwrap();
+    doc["accessors"][2]["componentType"] = serde_json::json!(5126);
+    let dir = tempfile::tempdir().unwrap();
+    let f = dir.path().join("joints-float.gltf");
+    std::fs::write(&f, serde_json::to_vec(&doc).unwrap()).unwrap();
+    let out = dir.path().join("o.obj");
+    refused(
+        &chasles(&[
+            "skin",
+            "--rig",
+            f.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ]),
+        "JOINTS_0: accessor 2 holds VEC4 FLOAT",
+    );
+    assert!(!out.exists());
+    // An external buffer that is a device.
+    if Path::new("/dev/zero").exists() {
+        let mut doc: serde_json::Value =
+            serde_json::from_slice(chasles_models::SIMPLE_SKIN.bytes).unwrap();
+        doc["buffers"][0]["uri"] = serde_json::json!("/dev/zero");
+        std::fs::write(&f, serde_json::to_vec(&doc).unwrap()).unwrap();
+        refused(
+            &chasles(&[
+                "skin",
+                "--rig",
+                f.to_str().unwrap(),
+                "--out",
+                out.to_str().unwrap(),
+            ]),
+            "not a regular file",
+        );
+    }
+}
