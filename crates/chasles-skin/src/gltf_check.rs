@@ -8,7 +8,8 @@
 //! §3.8 skins, §3.11 animations, §3.5 the node hierarchy), each failure a typed error
 //! naming the accessor, attribute, node or channel:
 //!
-//! * accessors: a known componentType and type; the element inside its view's stride;
+//! * accessors: a known componentType and type; the element inside its view's stride; a
+//!   count of at least 1 and no sparse storage where this crate reads them;
 //!   `byteOffset + stride · (count − 1) + element` computed with checked arithmetic;
 //! * buffer views: an existing buffer, a byteStride of 4 to 252 bytes in steps of 4;
 //! * mesh primitives: existing accessors; POSITION and NORMAL `VEC3` of FLOAT; JOINTS_n
@@ -85,6 +86,34 @@ fn element_size(t: Type, c: ComponentType) -> usize {
         Type::Mat3 => 3 * column(3),
         Type::Mat4 => 4 * column(4),
     }
+}
+
+/// A GLB's 12-byte header: its declared length at least the header itself and at most the
+/// bytes there are (the `gltf` crate's reader would subtract the header from a shorter one
+/// without a check). Text (a `.gltf`) passes untouched.
+pub(crate) fn check_glb_header(bytes: &[u8], name: &str) -> Result<()> {
+    if !bytes.starts_with(b"glTF") {
+        return Ok(());
+    }
+    let Some(length) = bytes.get(8..12) else {
+        return Err(gltf_content(
+            name,
+            "GLB header",
+            format!("is {} bytes of 12", bytes.len()),
+        ));
+    };
+    let length = u32::from_le_bytes([length[0], length[1], length[2], length[3]]) as usize;
+    if length < 12 || length > bytes.len() {
+        return Err(gltf_content(
+            name,
+            "GLB header",
+            format!(
+                "declares {length} bytes; the file has {} (and the header alone is 12)",
+                bytes.len()
+            ),
+        ));
+    }
+    Ok(())
 }
 
 /// Checks the whole document; `name` names the file in errors.
@@ -197,6 +226,21 @@ pub(crate) fn check(root: &Root, name: &str) -> Result<()> {
                 format!("{}: accessor {index} has an unknown type", e.what),
             ));
         };
+        // The spec's minimum (and the crate's readers subtract 1 from it unchecked).
+        if a.count.0 == 0 {
+            return Err(gltf_content(
+                name,
+                at(),
+                format!("{}: accessor {index} has count 0 (glTF asks for at least 1)", e.what),
+            ));
+        }
+        if a.sparse.is_some() {
+            return Err(gltf_content(
+                name,
+                at(),
+                format!("{}: accessor {index} is sparse, which is not supported here", e.what),
+            ));
+        }
         let component_ok = e
             .components
             .iter()

@@ -178,7 +178,9 @@ pub fn load_slice(bytes: &[u8], name: &str) -> Result<Rig> {
 
 fn parse(bytes: &[u8], base: Option<&Path>, name: &str) -> Result<Rig> {
     // Our checks first: the crate's own validation indexes arrays it has not checked
-    // (an attribute's accessor, say) and can panic.
+    // (an attribute's accessor, say) and can panic, and its GLB reader subtracts the
+    // 12-byte header from the declared length unchecked.
+    crate::gltf_check::check_glb_header(bytes, name)?;
     let g = gltf::Gltf::from_slice_without_validation(bytes).map_err(|e| SkinError::Gltf {
         path: name.to_string(),
         reason: e.to_string(),

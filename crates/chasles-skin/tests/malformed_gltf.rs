@@ -211,3 +211,22 @@ fn a_zero_rotation_key_is_an_error_naming_it() {
         "{msg}"
     );
 }
+
+#[test]
+fn counts_of_zero_and_sparse_accessors_are_refused_where_read() {
+    fails(
+        |d| d["accessors"][1]["count"] = json!(0),
+        "POSITION: accessor 1",
+        "count 0",
+    );
+    fails(
+        |d| d["accessors"][5]["count"] = json!(0),
+        "sampler input: accessor 5",
+        "count 0",
+    );
+    fails(
+        |d| d["accessors"][1]["sparse"] = json!({"count": 1, "indices": {"bufferView": 0, "componentType": 5123}, "values": {"bufferView": 1}}),
+        "POSITION: accessor 1",
+        "sparse",
+    );
+}
