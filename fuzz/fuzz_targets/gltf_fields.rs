@@ -73,6 +73,14 @@ fn paths(v: &Value, at: &mut Vec<Value>, out: &mut Vec<Vec<Value>>) {
     }
 }
 
+fn get<'a>(v: &'a Value, path: &[Value]) -> Option<&'a Value> {
+    path.iter().try_fold(v, |v, k| match k {
+        Value::String(s) => v.get(s.as_str()),
+        Value::Number(n) => v.get(n.as_u64()? as usize),
+        _ => None,
+    })
+}
+
 fn get_mut<'a>(v: &'a mut Value, path: &[Value]) -> Option<&'a mut Value> {
     path.iter().try_fold(v, |v, k| match k {
         Value::String(s) => v.get_mut(s.as_str()),
@@ -120,28 +128,47 @@ fn value_of(r: &Replacement, doc: &Value, all: &[Vec<Value>]) -> Option<Value> {
         Replacement::Drop => return None,
         Replacement::CopyOf(i) => {
             let p = &all[*i as usize % all.len()];
-            let mut d = doc.clone();
-            get_mut(&mut d, p)?.clone()
+            get(doc, p)?.clone()
         }
     })
 }
 
+/// A model split once: its JSON, binary chunk and the paths into its JSON.
+struct Parsed {
+    file: &'static str,
+    doc: Value,
+    bin: Option<Vec<u8>>,
+    all: Vec<Vec<Value>>,
+}
+
+fn parsed() -> &'static [Parsed] {
+    static MODELS: std::sync::OnceLock<Vec<Parsed>> = std::sync::OnceLock::new();
+    MODELS.get_or_init(|| {
+        chasles_models::ALL
+            .iter()
+            .filter_map(|m| {
+                let (doc, bin) = split(m.bytes)?;
+                let mut all = Vec::new();
+                paths(&doc, &mut Vec::new(), &mut all);
+                // Leave the base64 buffers alone: editing their text finds nothing new.
+                all.retain(|p| p.first() != Some(&json!("buffers")) || p.len() < 3);
+                Some(Parsed { file: m.file, doc, bin, all })
+            })
+            .collect()
+    })
+}
+
 fn edit(u: &mut Unstructured) -> arbitrary::Result<()> {
-    let models = chasles_models::ALL;
-    let model = models[u.choose_index(models.len())?];
-    let Some((mut doc, bin)) = split(model.bytes) else { return Ok(()) };
-    let mut all = Vec::new();
-    paths(&doc, &mut Vec::new(), &mut all);
-    // Leave the base64 buffers alone: editing megabytes of text finds nothing new.
-    all.retain(|p| p.first() != Some(&json!("buffers")) || p.len() < 3);
+    let models = parsed();
+    let model = &models[u.choose_index(models.len())?];
+    let (mut doc, bin, all) = (model.doc.clone(), model.bin.clone(), &model.all);
     for _ in 0..u.int_in_range(1..=4)? {
         let p = all[u.choose_index(all.len())?].clone();
         if p.is_empty() {
             continue;
         }
         let r = Replacement::arbitrary(u)?;
-        let snapshot = doc.clone();
-        let new = value_of(&r, &snapshot, &all);
+        let new = value_of(&r, &model.doc, all);
         let (last, parent) = p.split_last().expect("not empty");
         let Some(parent) = get_mut(&mut doc, parent) else { continue };
         match (parent, last, new) {
@@ -171,7 +198,8 @@ fn edit(u: &mut Unstructured) -> arbitrary::Result<()> {
         None => text,
     };
     if let Ok(rig) = chasles_skin::gltf_load::load_slice(&bytes, model.file) {
-        if rig.mesh.positions.len() <= 20_000 {
+        // Skinning every large model each time would cost the fuzzer most of its runs.
+        if rig.mesh.positions.len() <= 2_000 {
             let pose = if rig.animations.is_empty() {
                 Ok(chasles_skin::Pose::rest(&rig))
             } else {
