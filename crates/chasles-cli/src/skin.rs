@@ -38,6 +38,10 @@ pub struct SkinArgs {
     /// Frames per second for --all-frames.
     #[arg(long, default_value_t = 30.0)]
     pub fps: f32,
+    /// The most frames --all-frames writes or --gif draws (a ceiling against a clip that
+    /// lasts a week; raise it for long clips).
+    #[arg(long, default_value_t = 10_000)]
+    pub max_frames: usize,
     /// Print the candy-wrapper table (twist and bend of a two-bone cylinder, every method).
     #[arg(long)]
     pub artifacts: bool,
@@ -313,6 +317,7 @@ pub fn run(a: SkinArgs) -> Result<()> {
             bail!("--gif needs --fps in (0, 50], got {}", a.fps);
         }
         let c = clip(&rig, &a.anim)?;
+        frame_count(&rig, c, a.fps, a.max_frames.min(MAX_GIF_FRAMES), "--gif")?;
         let frames = pictures::clip_frames(&rig, c, a.fps)?;
         write_atomic(
             p,
@@ -347,7 +352,8 @@ pub fn run(a: SkinArgs) -> Result<()> {
         }
         let c = clip(&rig, &a.anim)?;
         let duration = rig.animations[c].duration();
-        let frames = (duration * a.fps).floor() as usize + 1;
+        let frames = frame_count(&rig, c, a.fps, a.max_frames, "--all-frames")?;
+        let created = !out.exists();
         std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
         let engine = crate::device::Engine::new(a.device, &rig, m)?;
         let bar = ProgressBar::new(frames as u64);
@@ -355,15 +361,34 @@ pub fn run(a: SkinArgs) -> Result<()> {
             ProgressStyle::with_template("skinning [{bar:30}] {pos}/{len} frames")
                 .unwrap_or_else(|_| ProgressStyle::default_bar()),
         );
-        for f in 0..frames {
-            let t = f as f32 / a.fps;
-            let s = engine.skin(&rig, &Pose::animated(&rig, c, t)?, m)?;
-            let file = out.join(format!("frame_{f:05}.obj"));
-            let comment = format!("{} skinned with {} at t = {t} s", rig.name, m.name());
-            write_atomic(&file, &encode(&rig, &s, &file, &comment)?)?;
-            bar.inc(1);
-        }
+        // All or nothing: a frame that fails takes the frames of this run with it (and the
+        // folder, when this run made it).
+        let mut written = Vec::with_capacity(frames);
+        let run = (|| -> Result<()> {
+            for f in 0..frames {
+                let t = f as f32 / a.fps;
+                let s = engine.skin(&rig, &Pose::animated(&rig, c, t)?, m)?;
+                let file = out.join(format!("frame_{f:05}.obj"));
+                let comment = format!("{} skinned with {} at t = {t} s", rig.name, m.name());
+                write_atomic(&file, &encode(&rig, &s, &file, &comment)?)?;
+                written.push(file);
+                bar.inc(1);
+            }
+            Ok(())
+        })();
         bar.finish_and_clear();
+        if let Err(e) = run {
+            for f in &written {
+                let _ = std::fs::remove_file(f);
+            }
+            if created {
+                let _ = std::fs::remove_dir(out);
+            }
+            return Err(e.context(format!(
+                "frame {} of {frames}; the frames written are removed",
+                written.len()
+            )));
+        }
         println!(
             "wrote {frames} frames of {:.3} s at {} fps to {}",
             duration,
@@ -395,6 +420,24 @@ pub fn run(a: SkinArgs) -> Result<()> {
         out.display()
     );
     Ok(())
+}
+
+/// The most frames a GIF draws, whatever --max-frames says: each frame is a picture held
+/// in memory until the file is written.
+const MAX_GIF_FRAMES: usize = 2_000;
+
+/// The frames of clip `c` at `fps` (`duration · fps` + 1), checked against `max` (the
+/// ceiling of `flag`) before anything is made: a clip whose last key is at 1e7 s is an
+/// error, not a week of writing.
+fn frame_count(rig: &Rig, c: usize, fps: f32, max: usize, flag: &str) -> Result<usize> {
+    let duration = rig.animations[c].duration();
+    let n = (f64::from(duration) * f64::from(fps)).floor() + 1.0;
+    if !n.is_finite() || n > max as f64 {
+        bail!(
+            "{flag}: clip {c} lasts {duration} s, {n} frames at {fps} fps: more than --max-frames {max}"
+        );
+    }
+    Ok(n as usize)
 }
 
 /// The pose asked for: `--pose FILE`, `--anim/--time`, or the rest pose; and words for it.

@@ -430,6 +430,12 @@ fn tour_prints_computed_numbers_and_writes_the_report() {
     ]);
     let out = stdout(&o);
     assert!(out.contains("report: "), "no report line");
+    // The report was built aside and put in place whole: nothing else is left beside it.
+    let beside: Vec<_> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
+    assert_eq!(beside, ["report"], "{beside:?}");
     assert!(check_report(&report) >= 15, "too few pictures");
     // The characters are built in: a fresh clone shows them with nothing beside it.
     for (file, picture) in [("CesiumMan.glb", "cesiumman.png"), ("Fox.glb", "fox.png")] {

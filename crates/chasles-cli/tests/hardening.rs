@@ -239,3 +239,79 @@ fn a_malformed_gltf_is_one_line_and_exit_2() {
         );
     }
 }
+
+/// SimpleSkin with its clip's last key moved to `t` seconds (the sampler input, accessor 5,
+/// edited in its embedded buffer).
+fn simple_skin_lasting(t: f32) -> Vec<u8> {
+    use base64::Engine;
+    let mut d: serde_json::Value =
+        serde_json::from_slice(chasles_models::SIMPLE_SKIN.bytes).unwrap();
+    let acc = d["accessors"][5].clone();
+    let view = d["bufferViews"][acc["bufferView"].as_u64().unwrap() as usize].clone();
+    let b = view["buffer"].as_u64().unwrap() as usize;
+    let uri = d["buffers"][b]["uri"].as_str().unwrap().to_string();
+    let (head, payload) = uri.split_once(";base64,").unwrap();
+    let mut bytes = base64::engine::general_purpose::STANDARD
+        .decode(payload)
+        .unwrap();
+    let count = acc["count"].as_u64().unwrap() as usize;
+    let at = (view["byteOffset"].as_u64().unwrap_or(0) + acc["byteOffset"].as_u64().unwrap_or(0))
+        as usize
+        + 4 * (count - 1);
+    bytes[at..at + 4].copy_from_slice(&t.to_le_bytes());
+    d["accessors"][5]["max"] = serde_json::json!([t]);
+    d["buffers"][b]["uri"] = serde_json::json!(format!(
+        "{head};base64,{}",
+        base64::engine::general_purpose::STANDARD.encode(&bytes)
+    ));
+    serde_json::to_vec(&d).unwrap()
+}
+
+#[test]
+fn a_clip_of_a_week_is_refused_before_any_frame_is_written() {
+    let dir = tempfile::tempdir().unwrap();
+    let rig = dir.path().join("long.gltf");
+    std::fs::write(&rig, simple_skin_lasting(1e7)).unwrap();
+    let frames = dir.path().join("frames");
+    refused(
+        &chasles(&[
+            "skin",
+            "--rig",
+            rig.to_str().unwrap(),
+            "--all-frames",
+            "--fps",
+            "24",
+            "--out",
+            frames.to_str().unwrap(),
+        ]),
+        "more than --max-frames 10000",
+    );
+    assert!(!frames.exists());
+    refused(
+        &chasles(&[
+            "skin",
+            "--rig",
+            rig.to_str().unwrap(),
+            "--gif",
+            dir.path().join("a.gif").to_str().unwrap(),
+        ]),
+        "more than --max-frames 2000",
+    );
+    assert!(!dir.path().join("a.gif").exists());
+    // A short clip with the ceiling raised runs.
+    std::fs::write(&rig, simple_skin_lasting(100.0)).unwrap();
+    let o = chasles(&[
+        "skin",
+        "--rig",
+        rig.to_str().unwrap(),
+        "--all-frames",
+        "--fps",
+        "0.2",
+        "--max-frames",
+        "21",
+        "--out",
+        frames.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(std::fs::read_dir(&frames).unwrap().count(), 21);
+}

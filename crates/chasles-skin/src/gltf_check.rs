@@ -231,14 +231,20 @@ pub(crate) fn check(root: &Root, name: &str) -> Result<()> {
             return Err(gltf_content(
                 name,
                 at(),
-                format!("{}: accessor {index} has count 0 (glTF asks for at least 1)", e.what),
+                format!(
+                    "{}: accessor {index} has count 0 (glTF asks for at least 1)",
+                    e.what
+                ),
             ));
         }
         if a.sparse.is_some() {
             return Err(gltf_content(
                 name,
                 at(),
-                format!("{}: accessor {index} is sparse, which is not supported here", e.what),
+                format!(
+                    "{}: accessor {index} is sparse, which is not supported here",
+                    e.what
+                ),
             ));
         }
         let component_ok = e
