@@ -51,8 +51,8 @@ struct Cli {
 enum Command {
     /// Walk through the papers on built-in data, printing computed numbers.
     Tour {
-        /// Random inputs per identity in the closing sweep.
-        #[arg(long, default_value_t = 10_000)]
+        /// Random inputs per identity in the closing sweep (1 to 10⁷).
+        #[arg(long, default_value_t = 10_000, value_parser = samples_in_range)]
         samples: usize,
         /// Seed of the random inputs.
         #[arg(long, default_value_t = 1998)]
@@ -134,8 +134,8 @@ enum Command {
     },
     /// Measure Kavan et al.'s Table 1 on random inputs, with exact FLOP counts (and --claims).
     Properties {
-        /// Random cases per property.
-        #[arg(long, default_value_t = 200)]
+        /// Random cases per property (1 to 10⁷).
+        #[arg(long, default_value_t = 200, value_parser = samples_in_range)]
         samples: usize,
         /// Seed of the random cases.
         #[arg(long, default_value_t = 2006)]
@@ -257,6 +257,18 @@ fn main() {
             eprintln!("error: {e:#}");
             std::process::exit(2);
         }
+    }
+}
+
+/// A count of random samples: 1 to 10⁷ (a ceiling: 10⁷ identities take minutes already).
+fn samples_in_range(s: &str) -> Result<usize, String> {
+    let n: usize = s
+        .parse()
+        .map_err(|_| format!("'{s}' is not a whole number"))?;
+    if (1..=10_000_000).contains(&n) {
+        Ok(n)
+    } else {
+        Err(format!("{n} is not in 1..=10000000"))
     }
 }
 

@@ -95,6 +95,14 @@ fn absurd_sizes_are_refused_before_any_allocation() {
         ]),
         "at most 10000000",
     );
+    refused(
+        &chasles(&["tour", "--samples", "99999999999"]),
+        "not in 1..=10000000",
+    );
+    refused(
+        &chasles(&["properties", "--samples", "0"]),
+        "not in 1..=10000000",
+    );
 }
 
 #[test]
