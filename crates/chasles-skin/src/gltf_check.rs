@@ -11,7 +11,8 @@
 //! * accessors: a known componentType and type; the element inside its view's stride; a
 //!   count of at least 1 and no sparse storage where this crate reads them;
 //!   `byteOffset + stride · (count − 1) + element` computed with checked arithmetic;
-//! * buffer views: an existing buffer, a byteStride of 4 to 252 bytes in steps of 4;
+//! * buffer views: an existing buffer, inside its declared length (checked arithmetic), a
+//!   byteStride of 4 to 252 bytes in steps of 4;
 //! * mesh primitives: existing accessors; POSITION and NORMAL `VEC3` of FLOAT; JOINTS_n
 //!   `VEC4` of UNSIGNED_BYTE or UNSIGNED_SHORT; WEIGHTS_n `VEC4` of FLOAT or of normalized
 //!   UNSIGNED_BYTE or UNSIGNED_SHORT; indices `SCALAR` of UNSIGNED_BYTE, UNSIGNED_SHORT or
@@ -126,6 +127,23 @@ pub(crate) fn check(root: &Root, name: &str) -> Result<()> {
                 item(),
                 format!(
                     "refers to buffer {}, which does not exist",
+                    v.buffer.value()
+                ),
+            ));
+        }
+        let declared = root.buffers[v.buffer.value()].byte_length.0;
+        let end = v
+            .byte_offset
+            .map_or(0, |o| o.0)
+            .checked_add(v.byte_length.0);
+        if end.is_none_or(|e| e > declared) {
+            return Err(gltf_content(
+                name,
+                item(),
+                format!(
+                    "runs from byte {} for {} bytes, past the end of buffer {} ({declared} bytes)",
+                    v.byte_offset.map_or(0, |o| o.0),
+                    v.byte_length.0,
                     v.buffer.value()
                 ),
             ));

@@ -111,13 +111,19 @@ fn check_accessor(a: &gltf::Accessor, buffers: &[Vec<u8>], what: &str, name: &st
             "has no buffer view (sparse-only accessors are not supported)",
         ));
     };
+    // Checked arithmetic throughout: the sizes are the file's numbers (gltf_check has
+    // already refused those that overflow; this stays safe on its own).
     let elem = a.size();
     let stride = view.stride().unwrap_or(elem);
     let needed = if a.count() == 0 {
-        0
+        Some(0)
     } else {
-        a.offset() + stride * (a.count() - 1) + elem
-    };
+        (a.count() - 1)
+            .checked_mul(stride)
+            .and_then(|x| x.checked_add(a.offset()))
+            .and_then(|x| x.checked_add(elem))
+    }
+    .unwrap_or(usize::MAX);
     if needed > view.length() {
         return Err(SkinError::Truncated {
             file: name.to_string(),
@@ -127,14 +133,18 @@ fn check_accessor(a: &gltf::Accessor, buffers: &[Vec<u8>], what: &str, name: &st
             available: view.length(),
         });
     }
-    let buf = &buffers[view.buffer().index()];
-    if view.offset() + view.length() > buf.len() {
+    let available = buffers.get(view.buffer().index()).map_or(0, Vec::len);
+    let end = view
+        .offset()
+        .checked_add(view.length())
+        .unwrap_or(usize::MAX);
+    if end > available {
         return Err(SkinError::Truncated {
             file: name.to_string(),
             accessor: a.index(),
             what: format!("{what}, buffer view {}", view.index()),
-            needed: view.offset() + view.length(),
-            available: buf.len(),
+            needed: end,
+            available,
         });
     }
     Ok(())

@@ -230,3 +230,17 @@ fn counts_of_zero_and_sparse_accessors_are_refused_where_read() {
         "sparse",
     );
 }
+
+#[test]
+fn buffer_views_stay_inside_their_buffer() {
+    fails(
+        |d| d["bufferViews"][1]["byteOffset"] = json!(u64::MAX - 10),
+        "bufferView 1",
+        "past the end of buffer 0",
+    );
+    fails(
+        |d| d["bufferViews"][1]["byteLength"] = json!(100_000),
+        "bufferView 1",
+        "past the end of buffer 0 (168 bytes)",
+    );
+}
