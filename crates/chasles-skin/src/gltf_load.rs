@@ -134,10 +134,7 @@ fn check_accessor(a: &gltf::Accessor, buffers: &[Vec<u8>], what: &str, name: &st
         });
     }
     let available = buffers.get(view.buffer().index()).map_or(0, Vec::len);
-    let end = view
-        .offset()
-        .checked_add(view.length())
-        .unwrap_or(usize::MAX);
+    let end = view.offset().saturating_add(view.length());
     if end > available {
         return Err(SkinError::Truncated {
             file: name.to_string(),
