@@ -356,6 +356,7 @@ fn write_frames(dir: &Path, turned: &[Quat<f64>]) -> Result<()> {
         .map(|k| parent.join(format!(".frames-{}-{k}", std::process::id())))
         .find(|p| std::fs::create_dir(p).is_ok())
         .ok_or_else(|| anyhow::anyhow!("cannot create a folder in {}", parent.display()))?;
+    let _live = crate::cleanup::Live::new(&tmp);
     let written = (|| -> Result<()> {
         let digits = turned.len().saturating_sub(1).to_string().len().max(4);
         let bar = ProgressBar::new(turned.len() as u64);

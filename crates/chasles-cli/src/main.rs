@@ -18,6 +18,7 @@
 mod blend;
 mod blend_pictures;
 mod choice;
+mod cleanup;
 mod convert;
 mod device;
 mod interp;
@@ -208,6 +209,7 @@ fn parse_repr(s: &str) -> Result<Repr, String> {
 fn main() {
     // Rust ignores SIGPIPE, which turns a closed pipe into a panic in println!.
     sigpipe::reset();
+    cleanup::install();
     device::quiet_vulkan_loader();
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,

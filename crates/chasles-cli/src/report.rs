@@ -11,6 +11,7 @@ use std::path::{Path, PathBuf};
 
 /// The report being written.
 pub struct Report {
+    _live: crate::cleanup::Live,
     dir: PathBuf,
     building: PathBuf,
     done: bool,
@@ -34,6 +35,7 @@ impl Report {
         std::fs::create_dir(&building)
             .with_context(|| format!("cannot create {}", building.display()))?;
         Ok(Report {
+            _live: crate::cleanup::Live::new(&building),
             dir: dir.to_path_buf(),
             building,
             done: false,

@@ -1,0 +1,51 @@
+//! Temporaries removed when the run is stopped: `write_atomic`'s hidden files, the tour's
+//! report being built, `--frames-dir`'s hidden folder. Each registers while it exists
+//! ([`Live`]); on SIGINT or SIGTERM (the `ctrlc` crate's handler) every registered path is
+//! removed and the process ends with exit 130, so an interrupted run leaves no `.tmpXXXX`
+//! or half report behind. (SIGKILL cannot be caught; nothing can clean up after it.)
+
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+
+/// The paths to remove if the run is stopped.
+static LIVE: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+
+/// Installs the handler (once, at start).
+pub fn install() {
+    let _ = ctrlc::set_handler(|| {
+        if let Ok(paths) = LIVE.lock() {
+            for p in paths.iter() {
+                if p.is_dir() {
+                    let _ = std::fs::remove_dir_all(p);
+                } else {
+                    let _ = std::fs::remove_file(p);
+                }
+            }
+        }
+        eprintln!("\nchasles: interrupted; temporary files removed");
+        std::process::exit(130);
+    });
+}
+
+/// A temporary path, registered while this lives.
+pub struct Live(PathBuf);
+
+impl Live {
+    /// Registers `path` (a file or a folder) for removal if the run is stopped.
+    pub fn new(path: &Path) -> Self {
+        if let Ok(mut paths) = LIVE.lock() {
+            paths.push(path.to_path_buf());
+        }
+        Live(path.to_path_buf())
+    }
+}
+
+impl Drop for Live {
+    fn drop(&mut self) {
+        if let Ok(mut paths) = LIVE.lock() {
+            if let Some(i) = paths.iter().rposition(|p| *p == self.0) {
+                paths.swap_remove(i);
+            }
+        }
+    }
+}
