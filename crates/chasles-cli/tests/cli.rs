@@ -1,28 +1,9 @@
 //! The `chasles` binary end to end: conversions checked against closed forms, JSON lines,
 //! errors on bad input (one line, non-zero exit), and the tour.
 
-use std::io::Write;
+mod common;
+use common::*;
 use std::process::{Command, Output, Stdio};
-
-fn chasles(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_chasles"))
-        .args(args)
-        .output()
-        .unwrap()
-}
-
-fn with_stdin(args: &[&str], input: &str) -> Output {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_chasles"))
-        .args(args)
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    // The child may exit before reading (e.g. on a bad option): a broken pipe is fine.
-    let _ = child.stdin.take().unwrap().write_all(input.as_bytes());
-    child.wait_with_output().unwrap()
-}
 
 fn numbers(s: &str) -> Vec<f64> {
     s.split(|c: char| c.is_whitespace() || c == ',' || c == '[' || c == ']')

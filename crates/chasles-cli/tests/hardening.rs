@@ -2,29 +2,10 @@
 //! one-line typed error (exit 2, never 101 or an abort): absurd sizes, device files posing
 //! as inputs, endless lines, values past f64's range, iteration caps, malformed glTF.
 
-use std::io::Write;
+mod common;
+use common::*;
 use std::path::Path;
 use std::process::{Command, Output, Stdio};
-
-fn chasles(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_chasles"))
-        .args(args)
-        .output()
-        .unwrap()
-}
-
-fn with_stdin(args: &[&str], input: &[u8]) -> Output {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_chasles"))
-        .args(args)
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    // The child may stop reading early (that is the point): a broken pipe is fine.
-    let _ = child.stdin.take().unwrap().write_all(input);
-    child.wait_with_output().unwrap()
-}
 
 /// Exit 2 with one line of error saying `words`.
 fn refused(o: &Output, words: &str) {

@@ -4,15 +4,10 @@
 //! options, frames as a numbered PNG sequence, and LinEuler on keys given as Euler triples
 //! (eq. 6.1 on the triples themselves).
 
+mod common;
+use common::*;
 use std::path::Path;
-use std::process::{Command, Output};
-
-fn chasles(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_chasles"))
-        .args(args)
-        .output()
-        .unwrap()
-}
+use std::process::Output;
 
 fn ok(o: &Output) -> (String, String) {
     let err = String::from_utf8_lossy(&o.stderr).to_string();

@@ -1,0 +1,29 @@
+//! What the CLI's test files share: running the `chasles` binary, with or without stdin.
+
+#![allow(dead_code)] // each test file uses its own part
+
+use std::io::Write;
+use std::process::{Command, Output, Stdio};
+
+/// `chasles ARGS`, waited for.
+pub fn chasles(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_chasles"))
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+/// `chasles ARGS` with `input` on stdin.
+pub fn with_stdin(args: &[&str], input: impl AsRef<[u8]>) -> Output {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_chasles"))
+        .args(args)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    // The child may exit before reading (a bad option, an input past a cap): a broken
+    // pipe is fine.
+    let _ = child.stdin.take().unwrap().write_all(input.as_ref());
+    child.wait_with_output().unwrap()
+}
