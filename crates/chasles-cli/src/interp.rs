@@ -43,6 +43,9 @@ pub struct InterpArgs {
     pub pictures: Pictures,
 }
 
+/// The most frames `--gif` draws (each is a picture held in memory until the GIF is made).
+const MAX_GIF_FRAMES: usize = 2_000;
+
 /// Frames when neither `--frames` nor `--levels` says.
 const DEFAULT_FRAMES: usize = 200;
 
@@ -255,6 +258,24 @@ pub fn run(args: InterpArgs) -> Result<()> {
         check_frames_dir(dir)?;
     }
     let run = compute(&args)?;
+    // Nothing silent: every frame and velocity finite, or the run fails naming the first.
+    if let Some(i) = run.frames.iter().position(|f| !f.q.is_finite()) {
+        bail!("frame {i} is {:?}, not finite", run.frames[i].q.to_array());
+    }
+    if let Some(i) = run.velocity.iter().position(|v| !v.is_finite()) {
+        bail!(
+            "the velocity at frame {i} is {}, not finite",
+            run.velocity[i]
+        );
+    }
+    if args.pictures.gif.is_some() && run.frames.len() > MAX_GIF_FRAMES {
+        bail!(
+            "--gif draws every frame: at most {MAX_GIF_FRAMES}, and this run has {} (ask for fewer --frames)",
+            run.frames.len()
+        );
+    }
+    // Every picture made before any is written: a failure leaves none behind.
+    let mut files: Vec<(&Path, Vec<u8>, String)> = Vec::new();
     if let Some(p) = &args.pictures.plot {
         let keys = chasles_viz::graph::key_indices(&run.frames);
         let title = format!(
@@ -262,19 +283,16 @@ pub fn run(args: InterpArgs) -> Result<()> {
             args.method.name(),
             args.keys
         );
-        if extension(p) == "png" {
-            let img = chasles_viz::graph::velocity_png(&run.velocity, &keys, 900, 420);
-            write_atomic(p, &img.png())?;
+        let bytes = if extension(p) == "png" {
+            chasles_viz::graph::velocity_png(&run.velocity, &keys, 900, 420).png()
         } else {
-            let svg = chasles_viz::graph::velocity_svg(&run.velocity, &keys, &title);
-            write_atomic(p, svg.as_bytes())?;
-        }
-        eprintln!("wrote {}", p.display());
+            chasles_viz::graph::velocity_svg(&run.velocity, &keys, &title).into_bytes()
+        };
+        files.push((p, bytes, format!("wrote {}", p.display())));
     }
     if let Some(p) = &args.pictures.sphere {
         let img = chasles_viz::sphere::render_frames(&run.frames, 600);
-        write_atomic(p, &img.png())?;
-        eprintln!("wrote {}", p.display());
+        files.push((p, img.png(), format!("wrote {}", p.display())));
     }
     // The frames as rotations: a non-unit frame (raw Lerp) is shown by its rotation.
     let turned: Vec<Quat<f64>> = run
@@ -284,25 +302,37 @@ pub fn run(args: InterpArgs) -> Result<()> {
         .collect();
     if let Some(p) = &args.pictures.gif {
         let frames = chasles_viz::letter::animate(&turned, 240);
-        write_atomic(p, &chasles_viz::gif(&frames, 4)?)?;
-        eprintln!("wrote {} ({} frames)", p.display(), frames.len());
+        let n = frames.len();
+        files.push((
+            p,
+            chasles_viz::gif(&frames, 4)?,
+            format!("wrote {} ({n} frames)", p.display()),
+        ));
+    }
+    if let Some(p) = &args.pictures.render {
+        let png = chasles_viz::letter::strip(&turned, 8, 180).png();
+        files.push((p, png, format!("wrote {}", p.display())));
+    }
+    if let Some(out) = &args.out {
+        let text = if extension(out) == "json" {
+            to_json(&run)
+        } else {
+            to_csv(&run)
+        };
+        files.push((out, text.into_bytes(), String::new()));
     }
     if let Some(dir) = &args.frames_dir {
         write_frames(dir, &turned)?;
         eprintln!("wrote {} ({} frames)", dir.display(), turned.len());
     }
-    if let Some(p) = &args.pictures.render {
-        write_atomic(p, &chasles_viz::letter::strip(&turned, 8, 180).png())?;
-        eprintln!("wrote {}", p.display());
+    for (p, bytes, said) in &files {
+        write_atomic(p, bytes)?;
+        if !said.is_empty() {
+            eprintln!("{said}");
+        }
     }
     match &args.out {
         Some(out) => {
-            let text = if extension(out) == "json" {
-                to_json(&run)
-            } else {
-                to_csv(&run)
-            };
-            write_atomic(out, text.as_bytes())?;
             println!("{}\nwrote             {}", run.summary, out.display());
         }
         None => {

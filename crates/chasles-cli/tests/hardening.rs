@@ -350,3 +350,49 @@ fn an_interrupted_tour_leaves_nothing_behind() {
         .collect();
     assert!(left.is_empty(), "{left:?}");
 }
+
+/// `interp --gif` draws every frame: a ceiling, checked before any picture is made or any
+/// file written (the plot asked for beside it is not written either).
+#[test]
+fn interp_pictures_are_all_made_before_any_is_written() {
+    let dir = tempfile::tempdir().unwrap();
+    let (gif, plot, csv) = (
+        dir.path().join("a.gif"),
+        dir.path().join("v.svg"),
+        dir.path().join("f.csv"),
+    );
+    refused(
+        &chasles(&[
+            "interp",
+            "--method",
+            "slerp",
+            "--keys",
+            "builtin:table5.1",
+            "--frames",
+            "5000",
+            "--gif",
+            gif.to_str().unwrap(),
+            "--plot",
+            plot.to_str().unwrap(),
+            "--out",
+            csv.to_str().unwrap(),
+        ]),
+        "--gif draws every frame: at most 2000",
+    );
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+    let o = chasles(&[
+        "interp",
+        "--method",
+        "slerp",
+        "--keys",
+        "builtin:table5.1",
+        "--frames",
+        "40",
+        "--plot",
+        plot.to_str().unwrap(),
+        "--out",
+        csv.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(plot.is_file() && csv.is_file());
+}
