@@ -3,8 +3,8 @@
 
 use crate::choice::InterpMethod;
 use crate::keyfile;
-use crate::output::{extension, num, write_atomic};
-use crate::picture_args::Pictures;
+use crate::output::{extension, num, parent_of, write_atomic};
+use crate::picture_args::{Pictures, MAX_GIF_FRAMES};
 use crate::spring_args::{configure, options, SpringArgs};
 use anyhow::{bail, Context, Result};
 use chasles::analysis::curvature::{curvature_energy, Width};
@@ -42,9 +42,6 @@ pub struct InterpArgs {
     /// The pictures asked for (`--plot` SVG or PNG).
     pub pictures: Pictures,
 }
-
-/// The most frames `--gif` draws (each is a picture held in memory until the GIF is made).
-const MAX_GIF_FRAMES: usize = 2_000;
 
 /// Frames when neither `--frames` nor `--levels` says.
 const DEFAULT_FRAMES: usize = 200;
@@ -341,14 +338,6 @@ pub fn run(args: InterpArgs) -> Result<()> {
         }
     }
     Ok(())
-}
-
-/// The folder `dir` is made in.
-fn parent_of(dir: &Path) -> &Path {
-    match dir.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p,
-        _ => Path::new("."),
-    }
 }
 
 /// Refuses, before any work, a `--frames-dir` whose parent is not a folder, or that is a

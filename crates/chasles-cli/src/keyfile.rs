@@ -29,7 +29,7 @@
 //! field, an unknown Euler order, a zero axis alike).
 
 use crate::json::{from_json, Order};
-use crate::spring_args::SpringSpec;
+use crate::spring_args::SpringArgs;
 use anyhow::{anyhow, bail, Context, Result};
 use chasles::interp::examples;
 use chasles::{EulerOrder, Quat, Vec3};
@@ -48,9 +48,9 @@ struct Doc {
     order: Option<Order>,
     /// The keys, in order.
     keys: Vec<Spec>,
-    /// Spring's controls ([`SpringSpec`]).
+    /// Spring's controls ([`SpringArgs`]).
     #[serde(default)]
-    spring: Option<SpringSpec>,
+    spring: Option<SpringArgs>,
 }
 
 /// A JSON key file: a [`Doc`], or just its array of keys. (Not an untagged enum, which
@@ -111,7 +111,7 @@ pub struct Keys {
     /// (LinEuler then interpolates the triples as given, eq. 6.1).
     pub euler: Option<(EulerOrder, Vec<[f64; 3]>)>,
     /// The file's `[spring]` table, if any.
-    pub spring: Option<SpringSpec>,
+    pub spring: Option<SpringArgs>,
     /// A name for messages: the file or `builtin:NAME`.
     pub source: String,
 }

@@ -4,6 +4,10 @@
 use crate::output::check_extension;
 use std::path::PathBuf;
 
+/// The most frames a `--gif` draws, whatever else allows: each frame is a picture held in
+/// memory until the file is written.
+pub const MAX_GIF_FRAMES: usize = 2_000;
+
 /// `--plot`, `--render`, `--gif`, `--sphere`: what each draws depends on the command.
 #[derive(clap::Args, Clone, Debug, Default)]
 pub struct Pictures {

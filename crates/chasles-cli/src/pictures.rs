@@ -169,10 +169,9 @@ pub fn twist_sweep(frames: usize) -> Result<Vec<Image>> {
         .collect()
 }
 
-/// Frames of LBS beside DQS playing clip `clip` of `rig` at `fps`.
-pub fn clip_frames(rig: &Rig, clip: usize, fps: f32) -> Result<Vec<Image>> {
-    let duration = rig.animations[clip].duration();
-    let n = (duration * fps).floor() as usize + 1;
+/// The first `n` frames of LBS beside DQS playing clip `clip` of `rig` at `fps` (the
+/// caller counts them, against its ceiling).
+pub fn clip_frames(rig: &Rig, clip: usize, fps: f32, n: usize) -> Result<Vec<Image>> {
     (0..n)
         .map(|f| {
             let pose = Pose::animated(rig, clip, f as f32 / fps)?;

@@ -21,11 +21,8 @@ pub struct Report {
 impl Report {
     /// A report to be put into `dir` when finished.
     pub fn new(dir: &Path) -> Result<Self> {
-        let parent = match dir.parent() {
-            Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
-            _ => PathBuf::from("."),
-        };
-        std::fs::create_dir_all(&parent)
+        let parent = crate::output::parent_of(dir);
+        std::fs::create_dir_all(parent)
             .with_context(|| format!("cannot create {}", parent.display()))?;
         let base = dir
             .file_name()

@@ -4,6 +4,7 @@
 use crate::choice::SkinMethod;
 use crate::output::{extension, write_atomic};
 use crate::picture_args::Pictures;
+use crate::picture_args::MAX_GIF_FRAMES;
 use crate::pictures;
 use anyhow::{anyhow, bail, Context, Result};
 use chasles_skin::cylinder::{self, Motion};
@@ -317,8 +318,8 @@ pub fn run(a: SkinArgs) -> Result<()> {
             bail!("--gif needs --fps in (0, 50], got {}", a.fps);
         }
         let c = clip(&rig, &a.anim)?;
-        frame_count(&rig, c, a.fps, a.max_frames.min(MAX_GIF_FRAMES), "--gif")?;
-        let frames = pictures::clip_frames(&rig, c, a.fps)?;
+        let n = frame_count(&rig, c, a.fps, a.max_frames.min(MAX_GIF_FRAMES), "--gif")?;
+        let frames = pictures::clip_frames(&rig, c, a.fps, n)?;
         write_atomic(
             p,
             &chasles_viz::gif(&frames, (100.0 / a.fps).round() as u16)?,
@@ -421,10 +422,6 @@ pub fn run(a: SkinArgs) -> Result<()> {
     );
     Ok(())
 }
-
-/// The most frames a GIF draws, whatever --max-frames says: each frame is a picture held
-/// in memory until the file is written.
-const MAX_GIF_FRAMES: usize = 2_000;
 
 /// The frames of clip `c` at `fps` (`duration · fps` + 1), checked against `max` (the
 /// ceiling of `flag`) before anything is made: a clip whose last key is at 1e7 s is an

@@ -72,7 +72,11 @@ fn step_text(s: StepRule) -> String {
 }
 
 /// The Spring controls, each unset unless given.
-#[derive(clap::Args, Clone, Debug, Default)]
+///
+/// The same type reads a key file's `[spring]` table (serde, names with `_`; unknown
+/// fields are errors), so the command line and the file cannot drift apart.
+#[derive(clap::Args, Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct SpringArgs {
     /// Spring methods: frames at each step, coarse to fine, e.g. 22,110,550 (Figures
     /// 6.16–6.17); the last is the total (and --frames, if given, must equal it).
@@ -84,6 +88,7 @@ pub struct SpringArgs {
     /// Spring methods: the step rule, fixed:E or normalized:E (the report's), adaptive:E or
     /// accelerated:E.
     #[arg(long, value_parser = parse_step, value_name = "RULE:E")]
+    #[serde(default, deserialize_with = "step_field")]
     pub step: Option<StepRule>,
     /// Spring methods: weight c of the unit-length penalty (eq. 6.28).
     #[arg(long, allow_negative_numbers = true, value_name = "C")]
@@ -99,29 +104,6 @@ pub struct SpringArgs {
     pub velocity_weight: Option<f64>,
     /// Spring methods: the curve the first step starts from.
     #[arg(long, value_enum)]
-    pub start: Option<StartArg>,
-}
-
-/// A key file's `[spring]` table: the same controls.
-#[derive(Clone, Debug, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct SpringSpec {
-    /// Frames at each step.
-    pub levels: Option<Vec<usize>>,
-    /// Iterations at each step.
-    pub iterations: Option<Vec<usize>>,
-    /// The step rule, as on the command line.
-    #[serde(default, deserialize_with = "step_field")]
-    pub step: Option<StepRule>,
-    /// c of eq. 6.28.
-    pub penalty: Option<f64>,
-    /// The parameter width.
-    pub width: Option<WidthArg>,
-    /// c_k.
-    pub key_weight: Option<f64>,
-    /// c_w.
-    pub velocity_weight: Option<f64>,
-    /// The start curve.
     pub start: Option<StartArg>,
 }
 
@@ -148,6 +130,20 @@ impl SpringArgs {
         .filter_map(|(f, on)| on.then_some(f))
         .collect()
     }
+
+    /// Each control from `self`, else from `other`.
+    fn or(self, other: SpringArgs) -> SpringArgs {
+        SpringArgs {
+            levels: self.levels.or(other.levels),
+            iterations: self.iterations.or(other.iterations),
+            step: self.step.or(other.step),
+            penalty: self.penalty.or(other.penalty),
+            width: self.width.or(other.width),
+            key_weight: self.key_weight.or(other.key_weight),
+            velocity_weight: self.velocity_weight.or(other.velocity_weight),
+            start: self.start.or(other.start),
+        }
+    }
 }
 
 /// The most iterations one step may ask for: far past any convergence (the report's
@@ -155,7 +151,7 @@ impl SpringArgs {
 pub const MAX_ITERATIONS: usize = 10_000_000;
 
 /// `preset` with the key file's `[spring]` table and then the command line's options
-/// applied, for `keys` keys, and the total frame count: `frames` if given, else the last of
+/// applied (each control from the command line, else the file), for `keys` keys, and the total frame count: `frames` if given, else the last of
 /// the levels, else `default_frames`. Errors name the option (`--levels`, or the key file's
 /// `spring.levels`): a step of fewer frames than Spring gives a coarse step
 /// (`4(keys − 1) + 1`) or more than the total, a total that disagrees with --frames,
@@ -163,15 +159,14 @@ pub const MAX_ITERATIONS: usize = 10_000_000;
 /// by the library's Spring.
 pub fn configure(
     mut cfg: SpringConfig,
-    file: Option<&SpringSpec>,
+    file: Option<&SpringArgs>,
     cli: &SpringArgs,
     frames: Option<usize>,
     default_frames: usize,
     keys: usize,
 ) -> Result<(SpringConfig, usize)> {
-    let file = file.cloned().unwrap_or_default();
-    let levels = cli.levels.clone().or(file.levels);
-    let iterations = cli.iterations.clone().or(file.iterations);
+    let given = cli.clone().or(file.cloned().unwrap_or_default());
+    let (levels, iterations) = (given.levels, given.iterations);
     let total = match (&levels, frames) {
         (Some(l), Some(f)) if l.last() != Some(&f) => bail!(
             "--levels (or spring.levels) ends at {} frames but --frames is {f}: the last step is the total",
@@ -236,26 +231,26 @@ pub fn configure(
     {
         bail!("--iterations (or spring.iterations): at most {MAX_ITERATIONS} a step, got {n}");
     }
-    if let Some(s) = cli.step.or(file.step) {
+    if let Some(s) = given.step {
         cfg.step = s;
     }
-    if let Some(c) = cli.penalty.or(file.penalty) {
+    if let Some(c) = given.penalty {
         cfg.unit_penalty = c;
     }
-    if let Some(w) = cli.width.or(file.width) {
+    if let Some(w) = given.width {
         cfg.width = match w {
             WidthArg::One => Width::Unit,
             WidthArg::Chord => Width::Centered,
             WidthArg::Angle => Width::Angle,
         };
     }
-    if let Some(c) = cli.key_weight.or(file.key_weight) {
+    if let Some(c) = given.key_weight {
         cfg.key_weight = c;
     }
-    if let Some(c) = cli.velocity_weight.or(file.velocity_weight) {
+    if let Some(c) = given.velocity_weight {
         cfg.velocity_penalty = c;
     }
-    if let Some(s) = cli.start.or(file.start) {
+    if let Some(s) = given.start {
         cfg.start = match s {
             StartArg::Slerp => Start::Slerp,
             StartArg::Squad => Start::Squad,
@@ -358,7 +353,7 @@ mod tests {
 
     #[test]
     fn the_command_line_overrides_the_file_and_the_file_the_preset() {
-        let file: SpringSpec = toml::from_str(
+        let file: SpringArgs = toml::from_str(
             "levels = [20, 100]\niterations = [5, 6]\nstep = \"fixed:0.01\"\nkey_weight = 1.2\nwidth = \"angle\"\nstart = \"squad\"",
         )
         .unwrap();
@@ -405,9 +400,9 @@ mod tests {
         for bad in ["fixed", "fixed:x", "fixed:-1", "slow:0.1", "fixed:inf"] {
             assert!(parse_step(bad).is_err(), "{bad}");
         }
-        let bad: Result<SpringSpec, _> = toml::from_str("step = \"up:1\"");
+        let bad: Result<SpringArgs, _> = toml::from_str("step = \"up:1\"");
         assert!(bad.unwrap_err().to_string().contains("unknown step rule"));
-        let bad: Result<SpringSpec, _> = toml::from_str("widht = \"one\"");
+        let bad: Result<SpringArgs, _> = toml::from_str("widht = \"one\"");
         assert!(bad.unwrap_err().to_string().contains("widht"));
     }
 }

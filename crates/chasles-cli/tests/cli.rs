@@ -3,21 +3,12 @@
 
 mod common;
 use common::*;
-use std::process::{Command, Output, Stdio};
+use std::process::{Command, Stdio};
 
 fn numbers(s: &str) -> Vec<f64> {
     s.split(|c: char| c.is_whitespace() || c == ',' || c == '[' || c == ']')
         .filter_map(|t| t.parse().ok())
         .collect()
-}
-
-fn stdout(o: &Output) -> String {
-    assert!(
-        o.status.success(),
-        "failed: {}",
-        String::from_utf8_lossy(&o.stderr)
-    );
-    String::from_utf8(o.stdout.clone()).unwrap()
 }
 
 fn assert_close(got: &[f64], want: &[f64], tol: f64) {

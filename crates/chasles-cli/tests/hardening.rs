@@ -15,11 +15,6 @@ fn refused(o: &Output, words: &str) {
     assert_eq!(err.trim().lines().count(), 1, "{err}");
 }
 
-fn stdout(o: &Output) -> String {
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    String::from_utf8(o.stdout.clone()).unwrap()
-}
-
 #[test]
 fn absurd_sizes_are_refused_before_any_allocation() {
     refused(

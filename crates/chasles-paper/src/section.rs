@@ -101,12 +101,7 @@ impl Section {
 
     /// Adds a picture.
     pub fn figure(&mut self, file: &str, bytes: Vec<u8>, caption: &str) {
-        self.items.push(Item::Figure(Figure {
-            file: file.to_string(),
-            caption: caption.to_string(),
-            of: None,
-            bytes,
-        }));
+        self.push_figure(file, Ok::<_, String>(bytes), caption, None);
     }
 
     /// Adds our picture of the paper's figure `of`, with our caption beside the paper's;
@@ -118,15 +113,7 @@ impl Section {
         bytes: Result<Vec<u8>, E>,
         caption: &str,
     ) {
-        match bytes {
-            Ok(bytes) => self.items.push(Item::Figure(Figure {
-                file: file.to_string(),
-                caption: caption.to_string(),
-                of: Some(of),
-                bytes,
-            })),
-            Err(e) => self.text(format!("{}: picture {file} failed: {e}", of.cite())),
-        }
+        self.push_figure(file, bytes, caption, Some(of));
     }
 
     /// Adds a picture that may have failed to draw: on failure, a paragraph saying so
@@ -137,9 +124,29 @@ impl Section {
         bytes: Result<Vec<u8>, E>,
         caption: &str,
     ) {
+        self.push_figure(file, bytes, caption, None);
+    }
+
+    /// The one way a picture is added: the figure, or the paragraph saying it failed (with
+    /// the paper's figure it stood for, if any).
+    fn push_figure<E: fmt::Display>(
+        &mut self,
+        file: &str,
+        bytes: Result<Vec<u8>, E>,
+        caption: &str,
+        of: Option<PaperFigure>,
+    ) {
         match bytes {
-            Ok(b) => self.figure(file, b, caption),
-            Err(e) => self.text(format!("picture {file} failed: {e}")),
+            Ok(bytes) => self.items.push(Item::Figure(Figure {
+                file: file.to_string(),
+                caption: caption.to_string(),
+                of,
+                bytes,
+            })),
+            Err(e) => {
+                let cite = of.map_or(String::new(), |o| format!("{}: ", o.cite()));
+                self.text(format!("{cite}picture {file} failed: {e}"));
+            }
         }
     }
 

@@ -12,8 +12,8 @@ pub const MAX_MODEL_BYTES: u64 = 1 << 30;
 /// The largest pose, key or blend-case file read: 64 MiB.
 pub const MAX_TEXT_BYTES: u64 = 64 << 20;
 
-/// The bytes of the regular file `path`, at most `limit` of them.
-pub fn read_file(path: &Path, limit: u64) -> Result<Vec<u8>> {
+/// The regular file `path`, opened, and its length; a device, folder or pipe is refused.
+fn open_regular(path: &Path) -> Result<(std::fs::File, u64)> {
     let name = || path.display().to_string();
     let io = |source| SkinError::Io {
         path: name(),
@@ -23,15 +23,36 @@ pub fn read_file(path: &Path, limit: u64) -> Result<Vec<u8>> {
     if !meta.is_file() {
         return Err(SkinError::NotAFile { path: name() });
     }
-    if meta.len() > limit {
+    Ok((std::fs::File::open(path).map_err(io)?, meta.len()))
+}
+
+/// The bytes of the regular file `path`, at most `limit` of them.
+pub fn read_file(path: &Path, limit: u64) -> Result<Vec<u8>> {
+    let (file, len) = open_regular(path)?;
+    let name = path.display().to_string();
+    if len > limit {
         return Err(SkinError::TooLarge {
-            path: name(),
-            size: meta.len(),
+            path: name,
+            size: len,
             limit,
         });
     }
-    let file = std::fs::File::open(path).map_err(io)?;
-    read_capped(file, limit, &name())
+    read_capped(file, limit, &name)
+}
+
+/// The first `n` bytes of the regular file `path` (fewer if it is shorter; what follows is
+/// not read), with `n` at most `limit`: a glTF buffer's declared length.
+pub fn read_prefix(path: &Path, n: u64, limit: u64) -> Result<Vec<u8>> {
+    let name = path.display().to_string();
+    if n > limit {
+        return Err(SkinError::TooLarge {
+            path: name,
+            size: n,
+            limit,
+        });
+    }
+    let (file, _) = open_regular(path)?;
+    read_capped(file.take(n), n, &name)
 }
 
 /// All of `reader`, at most `limit` bytes (a file that grew, or stdin); `name` names it.
@@ -91,6 +112,12 @@ mod tests {
         // A stream past its cap stops at the cap.
         let e = read_capped(std::io::repeat(0).take(1 << 20), 1000, "stdin").unwrap_err();
         assert!(matches!(e, SkinError::TooLarge { limit: 1000, .. }), "{e}");
+        // A prefix stops at its length; past the limit it is refused.
+        assert_eq!(read_prefix(&f, 4, 10).unwrap(), [7u8; 4]);
+        assert!(matches!(
+            read_prefix(&f, 40, 10),
+            Err(SkinError::TooLarge { size: 40, .. })
+        ));
         std::fs::write(&f, [0xff, 0xfe]).unwrap();
         assert!(read_text(&f, 10).unwrap_err().to_string().contains("UTF-8"));
     }

@@ -9,7 +9,7 @@
 //! naming the accessor, attribute, node or channel:
 //!
 //! * accessors: a known componentType and type; the element inside its view's stride; a
-//!   count of at least 1 and no sparse storage where this crate reads them;
+//!   count of at least 1, a buffer view and no sparse storage where this crate reads them;
 //!   `byteOffset + stride · (count − 1) + element` computed with checked arithmetic;
 //! * buffer views: an existing buffer, inside its declared length (checked arithmetic), a
 //!   byteStride of 4 to 252 bytes in steps of 4;
@@ -253,6 +253,13 @@ pub(crate) fn check(root: &Root, name: &str) -> Result<()> {
                     "{}: accessor {index} has count 0 (glTF asks for at least 1)",
                     e.what
                 ),
+            ));
+        }
+        if a.buffer_view.is_none() {
+            return Err(gltf_content(
+                name,
+                at(),
+                format!("{}: accessor {index} has no buffer view", e.what),
             ));
         }
         if a.sparse.is_some() {

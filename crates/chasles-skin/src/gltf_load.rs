@@ -7,8 +7,10 @@
 //! absent, as the specification says); every node's rest transform and parent; and every
 //! animation's translation, rotation and scale channels (morph-target weights are skipped).
 //!
-//! Every accessor is checked against its buffer view and buffer before it is read, so a
-//! truncated file is a [`SkinError::Truncated`] naming the accessor, never a panic. Joint
+//! The document is checked first (`gltf_check`: every accessor inside its buffer view,
+//! every view inside its buffer, the types the specification allows where they are read),
+//! and every buffer is as long as it declares (`load_buffers`), so a truncated file is a
+//! [`SkinError::Truncated`] naming the accessor, never a panic. Joint
 //! indices and weights are checked per vertex ([`Influences::from_lists`]).
 
 use crate::animation::{Animation, Channel, Interpolation, Path as ChannelPath};
@@ -18,13 +20,6 @@ use base64::Engine;
 use chasles::{Mat4, Quat, Vec3};
 use gltf::mesh::Semantic;
 use std::path::Path;
-
-fn io(path: &Path, source: std::io::Error) -> SkinError {
-    SkinError::Io {
-        path: path.display().to_string(),
-        source,
-    }
-}
 
 fn load_buffers(
     doc: &gltf::Document,
@@ -62,21 +57,12 @@ fn load_buffers(
                                 )
                             })?
                     } else if let Some(base) = base {
-                        // At most the declared length (plus one, to see a longer file).
-                        let p = base.join(uri);
-                        let cap = (b.length() as u64).min(crate::bounded::MAX_MODEL_BYTES);
-                        match crate::bounded::read_file(&p, cap) {
-                            Err(SkinError::TooLarge { .. }) if b.length() as u64 <= cap => {
-                                // Longer than declared: glTF allows it; read the declared part.
-                                let f = std::fs::File::open(&p).map_err(|e| io(&p, e))?;
-                                crate::bounded::read_capped(
-                                    std::io::Read::take(f, b.length() as u64),
-                                    cap,
-                                    &p.display().to_string(),
-                                )?
-                            }
-                            r => r?,
-                        }
+                        // The declared length (glTF allows a longer file), read no further.
+                        crate::bounded::read_prefix(
+                            &base.join(uri),
+                            b.length() as u64,
+                            crate::bounded::MAX_MODEL_BYTES,
+                        )?
                     } else {
                         return Err(gltf_content(
                             name,
@@ -100,51 +86,6 @@ fn load_buffers(
             Ok(data)
         })
         .collect()
-}
-
-/// Checks that an accessor lies inside its view and buffer.
-fn check_accessor(a: &gltf::Accessor, buffers: &[Vec<u8>], what: &str, name: &str) -> Result<()> {
-    let Some(view) = a.view() else {
-        return Err(gltf_content(
-            name,
-            format!("accessor {} ({what})", a.index()),
-            "has no buffer view (sparse-only accessors are not supported)",
-        ));
-    };
-    // Checked arithmetic throughout: the sizes are the file's numbers (gltf_check has
-    // already refused those that overflow; this stays safe on its own).
-    let elem = a.size();
-    let stride = view.stride().unwrap_or(elem);
-    let needed = if a.count() == 0 {
-        Some(0)
-    } else {
-        (a.count() - 1)
-            .checked_mul(stride)
-            .and_then(|x| x.checked_add(a.offset()))
-            .and_then(|x| x.checked_add(elem))
-    }
-    .unwrap_or(usize::MAX);
-    if needed > view.length() {
-        return Err(SkinError::Truncated {
-            file: name.to_string(),
-            accessor: a.index(),
-            what: what.into(),
-            needed,
-            available: view.length(),
-        });
-    }
-    let available = buffers.get(view.buffer().index()).map_or(0, Vec::len);
-    let end = view.offset().saturating_add(view.length());
-    if end > available {
-        return Err(SkinError::Truncated {
-            file: name.to_string(),
-            accessor: a.index(),
-            what: format!("{what}, buffer view {}", view.index()),
-            needed: end,
-            available,
-        });
-    }
-    Ok(())
 }
 
 fn trs(node: &gltf::Node) -> Trs {
@@ -231,16 +172,8 @@ fn from_document(doc: &gltf::Document, buffers: &[Vec<u8>], name: &str) -> Resul
         }
         let base = positions.len() as u32;
         let item = || format!("primitive {}", prim.index());
-        let pos_acc = prim
-            .get(&Semantic::Positions)
+        prim.get(&Semantic::Positions)
             .ok_or_else(|| gltf_content(name, item(), "has no POSITION"))?;
-        check_accessor(&pos_acc, buffers, "POSITION", name)?;
-        for (s, a) in prim.attributes() {
-            check_accessor(&a, buffers, &format!("{s:?}"), name)?;
-        }
-        if let Some(ix) = prim.indices() {
-            check_accessor(&ix, buffers, "indices", name)?;
-        }
         let reader = prim.reader(get);
         let p: Vec<Vec3<f32>> = reader
             .read_positions()
@@ -313,8 +246,7 @@ fn from_document(doc: &gltf::Document, buffers: &[Vec<u8>], name: &str) -> Resul
         normals = compute_normals(&positions, &triangles);
     }
     let inverse_bind = match skin.inverse_bind_matrices() {
-        Some(a) => {
-            check_accessor(&a, buffers, "inverseBindMatrices", name)?;
+        Some(_) => {
             let m: Vec<Mat4<f32>> = skin
                 .reader(get)
                 .read_inverse_bind_matrices()
@@ -346,8 +278,6 @@ fn from_document(doc: &gltf::Document, buffers: &[Vec<u8>], name: &str) -> Resul
         for c in a.channels() {
             use gltf::animation::util::ReadOutputs;
             let s = c.sampler();
-            check_accessor(&s.input(), buffers, "animation input", name)?;
-            check_accessor(&s.output(), buffers, "animation output", name)?;
             let r = c.reader(get);
             let times: Vec<f32> = r
                 .read_inputs()

@@ -27,3 +27,13 @@ pub fn with_stdin(args: &[&str], input: impl AsRef<[u8]>) -> Output {
     let _ = child.stdin.take().unwrap().write_all(input.as_ref());
     child.wait_with_output().unwrap()
 }
+
+/// The stdout of a run that must succeed (its stderr in the failure message).
+pub fn stdout(o: &Output) -> String {
+    assert!(
+        o.status.success(),
+        "failed: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    String::from_utf8(o.stdout.clone()).unwrap()
+}

@@ -16,13 +16,12 @@
 //!   6.18 against 6.19: c_k = 1.2 lowers the curvature at the sharp key; 6.20 against 6.17:
 //!   c_k = 1.3 is "only marginally better".
 
-use super::dam_figures::{energy, keys_of, speed_spread, Keys, Run};
+use super::dam_figures::{energy, inner, run, speed_spread, Curve, Run, Spec};
 use super::interpolation::speed_ratio_within_intervals;
 use super::squad_and_spring::{curvature_near_key, key_frame};
 use crate::claim::Paper::Dam1998;
 use crate::section::Section;
-use chasles::analysis::curvature::{curvature_energy, Width};
-use chasles::interp::{interpolate, Method};
+use chasles::interp::{Method, Timing};
 
 /// The run of figure `n`, or why there is none.
 fn get<'a>(runs: &'a [Run], n: &str) -> Result<&'a Run, String> {
@@ -51,11 +50,7 @@ fn off_picture(r: &Run) -> f64 {
 /// The total variation of the velocity (inner frames) over its maximum: small for a smooth
 /// graph whatever the frame count, large for a jagged one.
 fn roughness(r: &Run) -> f64 {
-    let v = if r.velocity.len() > 2 {
-        &r.velocity[1..r.velocity.len() - 1]
-    } else {
-        &r.velocity[..]
-    };
+    let v = inner(&r.velocity);
     let max = v.iter().copied().fold(0.0, f64::max);
     v.windows(2).map(|w| (w[1] - w[0]).abs()).sum::<f64>() / max
 }
@@ -95,7 +90,7 @@ pub fn chapter_5_claims(s: &mut Section, runs: &[Run]) {
         let off: Vec<usize> = keys.iter().map(|&k| minima.iter().map(|&m| m.abs_diff(k)).min().unwrap_or(usize::MAX)).collect();
         let worst = off.iter().copied().max().unwrap_or(0);
         let mean = v.iter().sum::<f64>() / v.len() as f64;
-        let jump = v[1..v.len() - 1].windows(2).map(|w| (w[1] - w[0]).abs()).fold(0.0, f64::max) / mean;
+        let jump = inner(v).windows(2).map(|w| (w[1] - w[0]).abs()).fold(0.0, f64::max) / mean;
         Ok::<_, String>((
             format!("the velocity has a local minimum within {worst} frames of each of the {} inner keys (offsets {off:?}, of {} frames); its largest step from frame to frame is {jump:.3} of its mean", keys.len(), v.len()),
             worst * 100 <= v.len() && jump < 0.05,
@@ -132,16 +127,10 @@ pub fn chapter_6_claims(s: &mut Section, runs: &[Run]) {
         ))
     });
     s.attempt(Dam1998, "Figure 6.11, §6.2.1", "We choose to determine the number of frames between each pair of key frames relative to the distance between the two key frames. This is not the optimal choice, but a simple and effective heuristic.", |_| {
+        // The same figure with the frames shared equally.
         let by_angle = get(runs, "6.11")?;
-        let keys = keys_of(Keys::Set("table5.1")).map_err(|e| e.to_string())?;
-        let uniform = interpolate(Method::Squad, &keys, by_angle.spec.frames, chasles::interp::Timing::Uniform).map_err(|e| e.to_string())?;
-        let v = chasles::analysis::velocity::velocity_chord(&uniform.iter().map(|f| f.q).collect::<Vec<_>>());
-        let spread = |v: &[f64]| {
-            let v = &v[1..v.len() - 1];
-            let (lo, hi) = v.iter().fold((f64::INFINITY, 0.0f64), |(a, b), x| (a.min(*x), b.max(*x)));
-            hi / lo
-        };
-        let (a, u) = (spread(&by_angle.velocity), spread(&v));
+        let uniform = run(&Spec { timing: Timing::Uniform, ..by_angle.spec.clone() }).map_err(|e| e.to_string())?;
+        let (a, u) = (speed_spread(by_angle), speed_spread(&uniform));
         Ok::<_, String>((
             format!("Squad's velocity max/min over the curve: {a:.2} with frames by interval angle, {u:.2} with equal shares — more even, not constant"),
             a < u && a > 1.5,
@@ -151,9 +140,9 @@ pub fn chapter_6_claims(s: &mut Section, runs: &[Run]) {
         let (one, first, multi) = (get(runs, "6.15")?, get(runs, "6.16")?, get(runs, "6.17")?);
         let (r1, r3) = (roughness(one), roughness(multi));
         let (k1, k3) = (worst_at_keys(one), worst_at_keys(multi));
-        let keys = keys_of(Keys::Set("table5.1")).map_err(|e| e.to_string())?;
-        let start = interpolate(Method::Slerp, &keys, first.spec.frames, first.spec.timing).map_err(|e| e.to_string())?;
-        let e0 = curvature_energy(&start.iter().map(|f| f.q).collect::<Vec<_>>(), Width::Unit);
+        // The first step's own start: Slerp through the same keys and frames.
+        let start = run(&Spec { curve: Curve::Piecewise(Method::Slerp), ..first.spec.clone() }).map_err(|e| e.to_string())?;
+        let e0 = energy(&start);
         Ok::<_, String>((
             format!("velocity roughness (total variation over maximum): one step {r1:.2}, three steps {r3:.2}; largest geodesic curvature at a key: {k1:.0} against {k3:.0}; the first step (6.16) takes the energy from {e0:.3e} (Slerp) to {:.3e}", energy(first)),
             r1 > r3 && k1 > k3 && energy(first) < e0,

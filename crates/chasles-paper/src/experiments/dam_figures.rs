@@ -353,26 +353,36 @@ pub fn section(title: &str, specs: &[Spec], figures: Figures) -> (Section, Vec<R
     (s, runs)
 }
 
+/// [`section`] of `specs` with `claims` checked on its runs.
+pub fn checked_section(
+    title: &str,
+    specs: &[Spec],
+    figures: Figures,
+    claims: fn(&mut Section, &[Run]),
+) -> Section {
+    let (mut s, runs) = section(title, specs, figures);
+    claims(&mut s, &runs);
+    s
+}
+
 /// Figures 5.1–5.3 as a section, with their captions checked.
 pub fn chapter_5_section(figures: Figures) -> Section {
-    let (mut s, runs) = section(
+    checked_section(
         "Dam et al. ch. 5: Figures 5.1–5.3, the curve on the sphere and its velocity (Table 5.1's keys)",
         &chapter_5(),
         figures,
-    );
-    super::captions::chapter_5_claims(&mut s, &runs);
-    s
+        super::captions::chapter_5_claims,
+    )
 }
 
 /// Figures 6.1–6.20 as a section, with their captions checked.
 pub fn chapter_6_section(figures: Figures) -> Section {
-    let (mut s, runs) = section(
+    checked_section(
         "Dam et al. ch. 6: Figures 6.1–6.20, each method with its caption's frames, steps and weights",
         &chapter_6(),
         figures,
-    );
-    super::captions::chapter_6_claims(&mut s, &runs);
-    s
+        super::captions::chapter_6_claims,
+    )
 }
 
 #[cfg(test)]

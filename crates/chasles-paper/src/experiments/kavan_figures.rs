@@ -177,26 +177,11 @@ fn distance(a: DualQuat<f64>, b: DualQuat<f64>) -> chasles::Result<f64> {
     Ok(l.iter().map(|x| x * x).sum::<f64>().sqrt())
 }
 
-/// The iterates of DIB (`b̂ ← b̂ exp(Σ wᵢ log(b̂* q̂ᵢ))` from DLB) for `q`, `w`: the blends
-/// after 0, 1, … updates until the update is below 1e-14 (at most 12).
+/// The iterates of the library's DIB for `q`, `w` (convex): the DLB start and the blend
+/// after each update, until the update is below 1e-14 (at most 12).
 fn dib_iterates(q: &[DualQuat<f64>], w: &[f64]) -> chasles::Result<Vec<DualQuat<f64>>> {
-    let mut b = chasles::blend::dlb::dlb(q, w)?;
-    let mut out = vec![b];
-    for _ in 0..12 {
-        let bc = b.conjugate();
-        let mut x = [0.0f64; 8];
-        for (qi, wi) in q.iter().zip(w) {
-            let l = (bc * *qi).to_positive_hemisphere().log()?.to_array();
-            for c in 0..8 {
-                x[c] += wi * l[c];
-            }
-        }
-        if x.iter().map(|v| v * v).sum::<f64>().sqrt() < 1e-14 {
-            break;
-        }
-        b = (b * DualQuat::from_array(x).exp()).normalize()?;
-        out.push(b);
-    }
+    let mut out = Vec::new();
+    chasles::blend::dib::dib_convex_observed(q, w, 1e-14, 12, |b| out.push(*b))?;
     Ok(out)
 }
 

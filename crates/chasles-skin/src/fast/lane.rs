@@ -209,8 +209,8 @@ impl Lane for __m256 {
     }
     #[inline(always)]
     fn neg_where(self, m: __m256) -> Self {
-        // SAFETY: as for splat.
-        unsafe { _mm256_xor_ps(self, _mm256_and_ps(m, _mm256_set1_ps(-0.0))) }
+        // A true lane is all ones, its sign bit set: the flip by the sign of the mask.
+        self.flip_by_sign_of(m)
     }
     #[inline(always)]
     fn flip_by_sign_of(self, of: Self) -> Self {

@@ -37,7 +37,20 @@ pub fn dib_convex<T: Real>(
     precision: T,
     max_iterations: usize,
 ) -> Result<(DualQuat<T>, usize)> {
+    dib_convex_observed(q, w, precision, max_iterations, |_| {})
+}
+
+/// [`dib_convex`], calling `observe` with the DLB start and with every iterate after it
+/// (each unit): for pictures and studies of the convergence (Kavan et al. Figure 4).
+pub fn dib_convex_observed<T: Real>(
+    q: &[DualQuat<T>],
+    w: &[T],
+    precision: T,
+    max_iterations: usize,
+    mut observe: impl FnMut(&DualQuat<T>),
+) -> Result<(DualQuat<T>, usize)> {
     let mut b = dlb_convex(q, w)?;
+    observe(&b);
     let mut steps = 0;
     let mut last = T::from_f64(f64::INFINITY);
     while steps < max_iterations {
@@ -52,6 +65,7 @@ pub fn dib_convex<T: Real>(
         }
         last = norm;
         b = (b * x.exp()).normalize()?;
+        observe(&b);
         steps += 1;
     }
     Ok((b.normalize()?, steps))
