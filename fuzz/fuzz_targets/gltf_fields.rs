@@ -117,10 +117,18 @@ fn value_of(r: &Replacement, doc: &Value, all: &[Vec<Value>]) -> Option<Value> {
         Replacement::Float(x) if x.is_finite() => json!(x),
         Replacement::Float(_) => json!(1e308),
         Replacement::Huge(neg) => json!(if *neg { -1e300 } else { 1e300 }),
-        Replacement::ComponentType(k) => json!([5120, 5121, 5122, 5123, 5125, 5126, 5124, 0][*k as usize % 8]),
-        Replacement::Type(k) => json!(["SCALAR", "VEC2", "VEC3", "VEC4", "MAT2", "MAT3", "MAT4", "VEC5"][*k as usize % 8]),
-        Replacement::Path(k) => json!(["translation", "rotation", "scale", "weights", "wobble"][*k as usize % 5]),
-        Replacement::Interpolation(k) => json!(["LINEAR", "STEP", "CUBICSPLINE", "SMOOTH"][*k as usize % 4]),
+        Replacement::ComponentType(k) => {
+            json!([5120, 5121, 5122, 5123, 5125, 5126, 5124, 0][*k as usize % 8])
+        }
+        Replacement::Type(k) => json!(
+            ["SCALAR", "VEC2", "VEC3", "VEC4", "MAT2", "MAT3", "MAT4", "VEC5"][*k as usize % 8]
+        ),
+        Replacement::Path(k) => {
+            json!(["translation", "rotation", "scale", "weights", "wobble"][*k as usize % 5])
+        }
+        Replacement::Interpolation(k) => {
+            json!(["LINEAR", "STEP", "CUBICSPLINE", "SMOOTH"][*k as usize % 4])
+        }
         Replacement::EmptyArray => json!([]),
         Replacement::EmptyObject => json!({}),
         Replacement::Null => Value::Null,
@@ -152,7 +160,12 @@ fn parsed() -> &'static [Parsed] {
                 paths(&doc, &mut Vec::new(), &mut all);
                 // Leave the base64 buffers alone: editing their text finds nothing new.
                 all.retain(|p| p.first() != Some(&json!("buffers")) || p.len() < 3);
-                Some(Parsed { file: m.file, doc, bin, all })
+                Some(Parsed {
+                    file: m.file,
+                    doc,
+                    bin,
+                    all,
+                })
             })
             .collect()
     })
@@ -170,7 +183,9 @@ fn edit(u: &mut Unstructured) -> arbitrary::Result<()> {
         let r = Replacement::arbitrary(u)?;
         let new = value_of(&r, &model.doc, all);
         let (last, parent) = p.split_last().expect("not empty");
-        let Some(parent) = get_mut(&mut doc, parent) else { continue };
+        let Some(parent) = get_mut(&mut doc, parent) else {
+            continue;
+        };
         match (parent, last, new) {
             (Value::Object(o), Value::String(k), Some(v)) => {
                 o.insert(k.clone(), v);

@@ -14,7 +14,9 @@ fn simple_skin() -> &'static chasles_skin::Rig {
 }
 
 fuzz_target!(|data: &[u8]| {
-    let Ok(text) = std::str::from_utf8(data) else { return };
+    let Ok(text) = std::str::from_utf8(data) else {
+        return;
+    };
     if let Ok(rig) = chasles_skin::json_rig::parse_rig(text, "fuzz.json") {
         if rig.mesh.positions.len() <= 10_000 {
             let pose = chasles_skin::Pose::rest(&rig);

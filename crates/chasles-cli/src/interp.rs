@@ -3,7 +3,7 @@
 
 use crate::choice::InterpMethod;
 use crate::keyfile;
-use crate::output::{extension, num, parent_of, write_atomic};
+use crate::output::{extension, num, parent_of, write_all};
 use crate::picture_args::{Pictures, MAX_GIF_FRAMES};
 use crate::spring_args::{configure, options, SpringArgs};
 use anyhow::{bail, Context, Result};
@@ -322,11 +322,10 @@ pub fn run(args: InterpArgs) -> Result<()> {
         write_frames(dir, &turned)?;
         eprintln!("wrote {} ({} frames)", dir.display(), turned.len());
     }
-    for (p, bytes, said) in &files {
-        write_atomic(p, bytes)?;
-        if !said.is_empty() {
-            eprintln!("{said}");
-        }
+    let all: Vec<(&Path, &[u8])> = files.iter().map(|(p, b, _)| (*p, &b[..])).collect();
+    write_all(&all)?;
+    for (_, _, said) in files.iter().filter(|f| !f.2.is_empty()) {
+        eprintln!("{said}");
     }
     match &args.out {
         Some(out) => {

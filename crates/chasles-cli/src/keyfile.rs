@@ -142,9 +142,15 @@ pub fn load(spec: &str) -> Result<Keys> {
         .and_then(|e| e.to_str())
         .unwrap_or("")
         .to_ascii_lowercase();
-    let doc = match ext.as_str() {
+    from_text(&text, &ext, spec)
+}
+
+/// Reads key-file `text` in the format of the extension `ext` (`toml` or `json`, lower
+/// case); `spec` names the file in messages.
+pub fn from_text(text: &str, ext: &str, spec: &str) -> Result<Keys> {
+    let doc = match ext {
         "toml" => {
-            let de = toml::Deserializer::parse(&text)
+            let de = toml::Deserializer::parse(text)
                 .map_err(|e| anyhow!("{spec}: {}", one_line(&e.to_string())))?;
             serde_path_to_error::deserialize::<_, Doc>(de).map_err(|e| {
                 let path = match e.path().to_string() {
@@ -155,7 +161,7 @@ pub fn load(spec: &str) -> Result<Keys> {
             })?
         }
         "json" => {
-            let doc = from_json::<JsonDoc>(&text).map_err(|e| {
+            let doc = from_json::<JsonDoc>(text).map_err(|e| {
                 // A bare array of keys: its `[i]` is `keys[i]`, as in the object form.
                 let e = if e.path.starts_with('[') {
                     e.within("keys")

@@ -16,6 +16,7 @@
 #![forbid(unsafe_code)]
 
 mod blend;
+mod blend_case;
 mod blend_pictures;
 mod choice;
 mod cleanup;

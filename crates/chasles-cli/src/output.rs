@@ -1,6 +1,8 @@
 //! Writing result files whole or not at all: the bytes go to a temporary file in the same
-//! folder, which is renamed over the target only when complete. A failure (full disk, bad
-//! input discovered late, Ctrl-C) never leaves a half-written file behind.
+//! folder, which is renamed over the target only when complete — and a command's several
+//! outputs ([`write_all`]) are renamed only when all are complete. A failure (full disk, a
+//! missing folder, bad input discovered late, Ctrl-C) never leaves a half-written file or
+//! half of a command's outputs behind.
 
 use anyhow::{Context, Result};
 use std::io::Write;
@@ -8,15 +10,29 @@ use std::path::Path;
 
 /// Writes `bytes` to `path` atomically.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
-    let dir = parent_of(path);
-    let mut tmp = tempfile::NamedTempFile::new_in(dir)
-        .with_context(|| format!("cannot create a file in {}", dir.display()))?;
-    let _live = crate::cleanup::Live::new(tmp.path());
-    tmp.write_all(bytes)
-        .with_context(|| format!("cannot write {}", path.display()))?;
-    tmp.persist(path)
-        .map_err(|e| e.error)
-        .with_context(|| format!("cannot write {}", path.display()))?;
+    write_all(&[(path, bytes)])
+}
+
+/// Writes every `(path, bytes)` whole or none of them: each goes to a temporary file beside
+/// its target first, and only when all are written are they renamed over their targets. A
+/// folder that does not exist, a full disk or Ctrl-C before the renames leaves every
+/// target as it was.
+pub fn write_all(files: &[(&Path, &[u8])]) -> Result<()> {
+    let mut ready = Vec::with_capacity(files.len());
+    for (path, bytes) in files {
+        let dir = parent_of(path);
+        let mut tmp = tempfile::NamedTempFile::new_in(dir)
+            .with_context(|| format!("cannot create a file in {}", dir.display()))?;
+        let live = crate::cleanup::Live::new(tmp.path());
+        tmp.write_all(bytes)
+            .with_context(|| format!("cannot write {}", path.display()))?;
+        ready.push((tmp, live, path));
+    }
+    for (tmp, _live, path) in ready {
+        tmp.persist(path)
+            .map_err(|e| e.error)
+            .with_context(|| format!("cannot write {}", path.display()))?;
+    }
     Ok(())
 }
 

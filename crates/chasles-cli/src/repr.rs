@@ -595,7 +595,7 @@ pub fn render(m: &Motion, to: Repr, f: Fmt) -> Result<Output> {
 
 /// The path of the first number of `v` that is not finite — which `serde_json` holds as
 /// `null` — leaving out `pitch`, whose `null` means a pure translation.
-pub(crate) fn first_non_finite(v: &serde_json::Value, at: &str) -> Option<String> {
+pub fn first_non_finite(v: &serde_json::Value, at: &str) -> Option<String> {
     use serde_json::Value;
     match v {
         Value::Null => Some(at.to_string()),

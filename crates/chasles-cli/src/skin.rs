@@ -2,7 +2,7 @@
 //! or a whole clip, and the candy-wrapper table (`--artifacts`).
 
 use crate::choice::SkinMethod;
-use crate::output::{extension, write_atomic};
+use crate::output::{extension, write_all, write_atomic};
 use crate::picture_args::Pictures;
 use crate::picture_args::MAX_GIF_FRAMES;
 use crate::pictures;
@@ -243,7 +243,37 @@ pub fn bench() -> Result<()> {
     Ok(())
 }
 
-/// Runs `chasles skin`.
+/// Files made and checked, not yet written: each path, its bytes and what to say once it
+/// is written. `chasles skin` writes them only after everything it was asked for is made.
+#[derive(Default)]
+struct Pending(Vec<(PathBuf, Vec<u8>, String)>);
+
+impl Pending {
+    /// Adds `bytes` for `path`, with the words said once it is written.
+    fn add(&mut self, path: &Path, bytes: Vec<u8>, said: String) {
+        self.0.push((path.to_path_buf(), bytes, said));
+    }
+
+    /// Writes every file, all or none ([`write_all`]), and says so.
+    fn write(self) -> Result<()> {
+        let all: Vec<(&Path, &[u8])> = self
+            .0
+            .iter()
+            .map(|(p, b, _)| (p.as_path(), &b[..]))
+            .collect();
+        write_all(&all)?;
+        for (p, _, said) in &self.0 {
+            match said.as_str() {
+                "" => {}
+                _ => println!("wrote {} ({said})", p.display()),
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Runs `chasles skin`: every picture and output is made and checked before any file is
+/// written; `--all-frames` removes the frames it wrote when a later one fails.
 pub fn run(a: SkinArgs) -> Result<()> {
     if a.bench {
         return match a.device {
@@ -252,33 +282,30 @@ pub fn run(a: SkinArgs) -> Result<()> {
         };
     }
     a.pictures.check(&["svg"])?;
+    let mut pending = Pending::default();
     if a.artifacts {
-        print!("{}", artifacts_table()?);
+        let table = artifacts_table()?;
         let rig = cylinder::twisted_cylinder();
         if let Some(p) = &a.pictures.render {
             let pose = cylinder::pose(&rig, Motion::Twist, std::f32::consts::PI);
-            write_atomic(
+            let img = pictures::methods_side_by_side(&rig, &pose, &Method::ALL)?;
+            pending.add(
                 p,
-                &pictures::methods_side_by_side(&rig, &pose, &Method::ALL)?.png(),
-            )?;
-            println!(
-                "wrote {} (the cylinder twisted 180°, every method)",
-                p.display()
+                img.png(),
+                "the cylinder twisted 180°, every method".into(),
             );
         }
         if let Some(p) = &a.pictures.gif {
             let frames = pictures::twist_sweep(25)?;
-            write_atomic(p, &chasles_viz::gif(&frames, 6)?)?;
-            println!("wrote {} (twist 0°→180°→0°, LBS beside DQS)", p.display());
+            let gif = chasles_viz::gif(&frames, 6)?;
+            pending.add(p, gif, "twist 0°→180°→0°, LBS beside DQS".into());
         }
         if let Some(p) = &a.pictures.plot {
-            write_atomic(p, pictures::twist_plot()?.as_bytes())?;
-            println!(
-                "wrote {} (middle radius against twist, every method)",
-                p.display()
-            );
+            let svg = pictures::twist_plot()?.into_bytes();
+            pending.add(p, svg, "middle radius against twist, every method".into());
         }
-        return Ok(());
+        print!("{table}");
+        return pending.write();
     }
     let m = a.method.0;
     let rig_path = a
@@ -288,27 +315,17 @@ pub fn run(a: SkinArgs) -> Result<()> {
     let rig = chasles_skin::load(rig_path)?;
     if let Some(p) = &a.pictures.plot {
         let c = clip(&rig, &a.anim)?;
-        write_atomic(p, pictures::volume_plot(&rig, c)?.as_bytes())?;
-        println!(
-            "wrote {} (LBS's smallest local volume over the clip)",
-            p.display()
-        );
+        let svg = pictures::volume_plot(&rig, c)?.into_bytes();
+        pending.add(p, svg, "LBS's smallest local volume over the clip".into());
     }
     if let Some(p) = &a.pictures.sphere {
         let c = clip(&rig, &a.anim)?;
         let (img, joint) = pictures::rotation_sphere(&rig, c)?;
-        write_atomic(p, &img.png())?;
-        println!(
-            "wrote {} (the rotation of {joint} over the clip)",
-            p.display()
+        pending.add(
+            p,
+            img.png(),
+            format!("the rotation of {joint} over the clip"),
         );
-    }
-    if (a.pictures.plot.is_some() || a.pictures.sphere.is_some())
-        && a.out.is_none()
-        && a.pictures.render.is_none()
-        && a.pictures.gif.is_none()
-    {
-        return Ok(());
     }
     if let Some(p) = &a.pictures.gif {
         if a.all_frames || a.pose.is_some() || a.time.is_some() {
@@ -320,28 +337,21 @@ pub fn run(a: SkinArgs) -> Result<()> {
         let c = clip(&rig, &a.anim)?;
         let n = frame_count(&rig, c, a.fps, a.max_frames.min(MAX_GIF_FRAMES), "--gif")?;
         let frames = pictures::clip_frames(&rig, c, a.fps, n)?;
-        write_atomic(
-            p,
-            &chasles_viz::gif(&frames, (100.0 / a.fps).round() as u16)?,
-        )?;
-        println!(
-            "wrote {} ({} frames, LBS beside DQS)",
-            p.display(),
-            frames.len()
-        );
-        if a.out.is_none() && a.pictures.render.is_none() {
-            return Ok(());
-        }
+        let gif = chasles_viz::gif(&frames, (100.0 / a.fps).round() as u16)?;
+        pending.add(p, gif, format!("{} frames, LBS beside DQS", frames.len()));
     }
-    if a.pictures.render.is_some() && a.out.is_none() && !a.all_frames {
-        let pose = chosen_pose(&rig, &a)?.0;
-        let p = a.pictures.render.as_ref().unwrap_or_else(|| unreachable!());
-        write_atomic(
-            p,
-            &pictures::methods_side_by_side(&rig, &pose, &Method::ALL)?.png(),
-        )?;
-        println!("wrote {} (every method side by side)", p.display());
-        return Ok(());
+    let pictures_only =
+        a.pictures.plot.is_some() || a.pictures.sphere.is_some() || a.pictures.gif.is_some();
+    if a.out.is_none() && !a.all_frames {
+        if let Some(p) = &a.pictures.render {
+            let pose = chosen_pose(&rig, &a)?.0;
+            let img = pictures::methods_side_by_side(&rig, &pose, &Method::ALL)?;
+            pending.add(p, img.png(), "every method side by side".into());
+            return pending.write();
+        }
+        if pictures_only {
+            return pending.write();
+        }
     }
     let out = a
         .out
@@ -354,42 +364,8 @@ pub fn run(a: SkinArgs) -> Result<()> {
         let c = clip(&rig, &a.anim)?;
         let duration = rig.animations[c].duration();
         let frames = frame_count(&rig, c, a.fps, a.max_frames, "--all-frames")?;
-        let created = !out.exists();
-        std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
-        let engine = crate::device::Engine::new(a.device, &rig, m)?;
-        let bar = ProgressBar::new(frames as u64);
-        bar.set_style(
-            ProgressStyle::with_template("skinning [{bar:30}] {pos}/{len} frames")
-                .unwrap_or_else(|_| ProgressStyle::default_bar()),
-        );
-        // All or nothing: a frame that fails takes the frames of this run with it (and the
-        // folder, when this run made it).
-        let mut written = Vec::with_capacity(frames);
-        let run = (|| -> Result<()> {
-            for f in 0..frames {
-                let t = f as f32 / a.fps;
-                let s = engine.skin(&rig, &Pose::animated(&rig, c, t)?, m)?;
-                let file = out.join(format!("frame_{f:05}.obj"));
-                let comment = format!("{} skinned with {} at t = {t} s", rig.name, m.name());
-                write_atomic(&file, &encode(&rig, &s, &file, &comment)?)?;
-                written.push(file);
-                bar.inc(1);
-            }
-            Ok(())
-        })();
-        bar.finish_and_clear();
-        if let Err(e) = run {
-            for f in &written {
-                let _ = std::fs::remove_file(f);
-            }
-            if created {
-                let _ = std::fs::remove_dir(out);
-            }
-            return Err(e.context(format!(
-                "frame {} of {frames}; the frames written are removed",
-                written.len()
-            )));
-        }
+        all_frames(&rig, &a, c, frames, out)?;
+        pending.write()?;
         println!(
             "wrote {frames} frames of {:.3} s at {} fps to {}",
             duration,
@@ -400,17 +376,14 @@ pub fn run(a: SkinArgs) -> Result<()> {
     }
     let (pose, when) = chosen_pose(&rig, &a)?;
     if let Some(p) = &a.pictures.render {
-        write_atomic(
-            p,
-            &pictures::methods_side_by_side(&rig, &pose, &Method::ALL)?.png(),
-        )?;
-        println!("wrote {} (every method side by side)", p.display());
+        let img = pictures::methods_side_by_side(&rig, &pose, &Method::ALL)?;
+        pending.add(p, img.png(), "every method side by side".into());
     }
     let engine = crate::device::Engine::new(a.device, &rig, m)?;
     let s = engine.skin(&rig, &pose, m)?;
     let comment = format!("{} skinned with {} in {when}", rig.name, m.name());
-    let bytes = encode(&rig, &s, out, &comment)?;
-    write_atomic(out, &bytes)?;
+    pending.add(out, encode(&rig, &s, out, &comment)?, String::new());
+    pending.write()?;
     println!(
         "{}: {} vertices, {} joints, skinned with {} in {when} on {}; wrote {}",
         rig.name,
@@ -420,6 +393,48 @@ pub fn run(a: SkinArgs) -> Result<()> {
         engine.describe(),
         out.display()
     );
+    Ok(())
+}
+
+/// Skins `frames` frames of clip `c` into the folder `out`, one OBJ each, all or nothing:
+/// a frame that fails takes the frames of this run with it (and the folder, when this run
+/// made it).
+fn all_frames(rig: &Rig, a: &SkinArgs, c: usize, frames: usize, out: &Path) -> Result<()> {
+    let m = a.method.0;
+    let created = !out.exists();
+    std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
+    let engine = crate::device::Engine::new(a.device, rig, m)?;
+    let bar = ProgressBar::new(frames as u64);
+    bar.set_style(
+        ProgressStyle::with_template("skinning [{bar:30}] {pos}/{len} frames")
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    let mut written = Vec::with_capacity(frames);
+    let run = (|| -> Result<()> {
+        for f in 0..frames {
+            let t = f as f32 / a.fps;
+            let s = engine.skin(rig, &Pose::animated(rig, c, t)?, m)?;
+            let file = out.join(format!("frame_{f:05}.obj"));
+            let comment = format!("{} skinned with {} at t = {t} s", rig.name, m.name());
+            write_atomic(&file, &encode(rig, &s, &file, &comment)?)?;
+            written.push(file);
+            bar.inc(1);
+        }
+        Ok(())
+    })();
+    bar.finish_and_clear();
+    if let Err(e) = run {
+        for f in &written {
+            let _ = std::fs::remove_file(f);
+        }
+        if created {
+            let _ = std::fs::remove_dir(out);
+        }
+        return Err(e.context(format!(
+            "frame {} of {frames}; the frames written are removed",
+            written.len()
+        )));
+    }
     Ok(())
 }
 

@@ -391,3 +391,135 @@ fn interp_pictures_are_all_made_before_any_is_written() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     assert!(plot.is_file() && csv.is_file());
 }
+
+/// `skin` and `blend` make every output before writing any, and write all or none: a late
+/// failure (an --out of a kind skin cannot write, a folder that does not exist) leaves
+/// nothing behind, not the GIF or plot made before it.
+#[test]
+fn skin_and_blend_write_all_their_outputs_or_none() {
+    let dir = tempfile::tempdir().unwrap();
+    let rig = dir.path().join("simple.gltf");
+    std::fs::write(&rig, chasles_models::SIMPLE_SKIN.bytes).unwrap();
+    let at = |name: &str| dir.path().join(name).to_str().unwrap().to_string();
+    let rig = rig.to_str().unwrap();
+    let before = || std::fs::read_dir(dir.path()).unwrap().count();
+    let n = before();
+    refused(
+        &chasles(&[
+            "skin",
+            "--rig",
+            rig,
+            "--gif",
+            &at("walk.gif"),
+            "--out",
+            &at("mesh.xyz"),
+        ]),
+        "--out must end in .obj, .ply, .glb or .json",
+    );
+    assert_eq!(before(), n, "the GIF was written before --out failed");
+    let missing = dir.path().join("no-such-folder").join("mesh.obj");
+    let o = chasles(&[
+        "skin",
+        "--rig",
+        rig,
+        "--plot",
+        &at("volume.svg"),
+        "--render",
+        &at("methods.png"),
+        "--out",
+        missing.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(
+        before(),
+        n,
+        "pictures were written though --out could not be"
+    );
+    let o = chasles(&[
+        "skin",
+        "--rig",
+        rig,
+        "--plot",
+        &at("volume.svg"),
+        "--render",
+        &at("methods.png"),
+        "--out",
+        &at("mesh.obj"),
+    ]);
+    stdout(&o);
+    assert_eq!(before(), n + 3);
+
+    let case = r#"{"transforms": [{"rotation": [1,0,0,0]}, {"rotation": [0.6,0.8,0,0], "translation": [1,2,3]}], "weights": [0.5, 0.5]}"#;
+    let input = dir.path().join("case.json");
+    std::fs::write(&input, case).unwrap();
+    let n = before();
+    let o = chasles(&[
+        "blend",
+        "--method",
+        "dlb",
+        "--input",
+        input.to_str().unwrap(),
+        "--plot",
+        &at("blend.svg"),
+        "--render",
+        missing.with_extension("png").to_str().unwrap(),
+    ]);
+    assert_eq!(
+        o.status.code(),
+        Some(2),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert_eq!(
+        before(),
+        n,
+        "the plot was written though the render could not be"
+    );
+}
+
+/// A bind position or a joint past the range every skinning path keeps finite (±2⁶⁴ for
+/// positions and translations, ±2³⁰ for the 3×3 block) is refused naming it, on the CPU
+/// (and on the GPU alike: `crates/chasles-skin/tests/gpu.rs`).
+#[test]
+fn positions_and_joints_past_the_reach_of_f32_are_named() {
+    let dir = tempfile::tempdir().unwrap();
+    let rig = dir.path().join("far.json");
+    std::fs::write(
+        &rig,
+        r#"{"positions": [[0,0,0],[1,0,0],[0,1e20,0]], "triangles": [[0,1,2]],
+            "joints": [{"name": "root"}], "influences": [[[0,1]],[[0,1]],[[0,1]]]}"#,
+    )
+    .unwrap();
+    let out = dir.path().join("o.obj");
+    refused(
+        &chasles(&[
+            "skin",
+            "--rig",
+            rig.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ]),
+        "the position of vertex 2 (coordinate 1) is 1e20, past ±1.8446744e19",
+    );
+    std::fs::write(
+        &rig,
+        r#"{"positions": [[0,0,0],[1,0,0],[0,1,0]], "triangles": [[0,1,2]],
+            "joints": [{"name": "root"}], "influences": [[[0,1]],[[0,1]],[[0,1]]]}"#,
+    )
+    .unwrap();
+    let pose = dir.path().join("pose.json");
+    std::fs::write(&pose, r#"{"joints": {"0": {"scale": [1e10, 1, 1]}}}"#).unwrap();
+    refused(
+        &chasles(&[
+            "skin",
+            "--rig",
+            rig.to_str().unwrap(),
+            "--pose",
+            pose.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ]),
+        "joint 0's matrix entry (0, 0) is 1e10, past ±1.0737418e9",
+    );
+    assert!(!out.exists());
+}

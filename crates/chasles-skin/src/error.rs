@@ -98,6 +98,18 @@ pub enum SkinError {
         /// The number (`the position of vertex 7`, `time NaN`).
         what: String,
     },
+    /// A number past the range every skinning path keeps finite ([`crate::reach`]).
+    #[error("{rig}: {what} is {value:e}, past ±{limit:e}, the range in which every skinning path stays finite")]
+    OutOfReach {
+        /// The rig.
+        rig: String,
+        /// The number (`joint 3's translation[0]`).
+        what: String,
+        /// Its value.
+        value: f32,
+        /// The bound it passes.
+        limit: f32,
+    },
     /// A node whose parent chain is broken or a cycle.
     #[error("{rig}: node {node} has a broken or cyclic parent chain")]
     Hierarchy {

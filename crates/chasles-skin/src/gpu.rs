@@ -45,8 +45,8 @@ pub enum GpuError {
         /// Joints of the rig.
         joints: usize,
     },
-    /// The shader produced non-finite positions (e.g. DQS weights cancelling out).
-    #[error("the GPU produced a non-finite position at vertex {0}")]
+    /// The shader produced a non-finite position or normal (e.g. DQS weights cancelling out).
+    #[error("the GPU produced a non-finite position or normal at vertex {0}")]
     NonFinite(usize),
 }
 
@@ -336,6 +336,7 @@ impl GpuSkinner {
                 joints: self.joints,
             });
         }
+        crate::reach::check_joints("the GPU's rig", &jt.matrices, Some(&jt.dual_quats))?;
         let joints = match method {
             Method::Lbs => Joints::Lbs(jt.matrices.iter().map(affine).collect()),
             Method::Dqs => Joints::Dqs(jt.dual_quats.iter().map(unit).collect()),
@@ -428,7 +429,8 @@ impl GpuSkinner {
 
     /// Copies each chunk's skinned vertices (8 floats: position, 0, normal, 0) back and hands
     /// them to `put(index of the chunk's first vertex, vertices)`, in order; then
-    /// [`GpuError::NonFinite`] names the first vertex whose position is not finite.
+    /// [`GpuError::NonFinite`] names the first vertex whose position or normal is not finite
+    /// (the CPU paths' rule).
     fn read_chunks(&self, mut put: impl FnMut(usize, &[[f32; 8]])) -> Result<(), GpuError> {
         let mut first = 0;
         for c in &self.chunks {
@@ -443,7 +445,7 @@ impl GpuSkinner {
                 put(first, skinned);
                 skinned
                     .par_iter()
-                    .position_first(|v| !v[..3].iter().all(|x| x.is_finite()))
+                    .position_first(|v| !v[..3].iter().chain(&v[4..7]).all(|x| x.is_finite()))
             })?;
             if let Some(v) = bad {
                 return Err(GpuError::NonFinite(first + v));

@@ -33,6 +33,7 @@ pub mod gltf_load;
 pub mod gpu;
 pub mod json_rig;
 pub mod pose;
+pub mod reach;
 pub mod rig;
 pub mod rotation_centre;
 pub mod skinning;

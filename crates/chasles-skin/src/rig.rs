@@ -279,6 +279,7 @@ impl Rig {
                 what: format!("the position of vertex {i}"),
             });
         }
+        crate::reach::check_positions(&rig(), &self.mesh.positions)?;
         if let Some(i) = self.mesh.normals.iter().position(|p| !p.is_finite()) {
             return Err(SkinError::NotFinite {
                 rig: rig(),

@@ -115,6 +115,7 @@ pub fn skin_joints(rig: &Rig, jt: &JointTransforms, method: Method) -> Result<Sk
             got: jt.matrices.len().min(jt.dual_quats.len()),
         });
     }
+    crate::reach::check_joints(&rig.name, &jt.matrices, Some(&jt.dual_quats))?;
     let n = rig.mesh.positions.len();
     let mut positions = Vec::with_capacity(n);
     let mut normals = Vec::with_capacity(n);
@@ -202,7 +203,13 @@ pub fn skin_joints(rig: &Rig, jt: &JointTransforms, method: Method) -> Result<Sk
             }
         }
     }
-    if let Some(vertex) = positions.iter().position(|p| !p.is_finite()) {
+    // The rule every path (reference, fast, GPU) keeps: a vertex whose position or normal
+    // is not finite is an error naming it.
+    if let Some(vertex) = positions
+        .iter()
+        .zip(&normals)
+        .position(|(p, n)| !p.is_finite() || !n.is_finite())
+    {
         return Err(SkinError::NonFiniteOutput {
             rig: rig.name.clone(),
             method: method.name(),

@@ -173,24 +173,38 @@ fn gpu_matches_the_fast_path_on_a_synthetic_mesh() {
         assert_eq!(a.positions, b.positions, "{}", m.name());
         assert_eq!(a.normals, b.normals);
     }
-    // A non-finite joint matrix is caught on the way back, naming the first vertex it
-    // reaches, in whichever dispatch that vertex lies.
+    // A joint matrix past the range every path keeps finite is refused before the
+    // dispatch, naming the joint.
     let mut broken = jt.clone();
     broken.matrices[17].m[0][3] = f32::NAN;
+    let e = gpu.skin(&broken, Method::Lbs).unwrap_err();
+    assert!(e.to_string().contains("joint 17's translation[0]"), "{e}");
+    // A result that is not finite anyway (joints whose rotation part is zero: DQS divides
+    // by its length) is caught on the way back, naming the first vertex it reaches, in
+    // whichever dispatch that vertex lies.
+    let target = rig.vertices().len() / 2;
+    let weighted = |v: &chasles_skin::fast::Vertex<4>| -> Vec<usize> {
+        v.j.iter()
+            .zip(v.w)
+            .filter(|(_, w)| *w > 0.0)
+            .map(|(j, _)| usize::from(*j))
+            .collect()
+    };
+    let zeroed = weighted(&rig.vertices()[target]);
+    let mut broken = jt.clone();
+    for &j in &zeroed {
+        broken.dual_quats[j].real = chasles::Quat::new(0.0, 0.0, 0.0, 0.0);
+    }
     let first = rig
         .vertices()
         .iter()
-        .position(|v| {
-            v.j.iter()
-                .zip(v.w)
-                .any(|(j, w)| usize::from(*j) == 17 && w > 0.0)
-        })
+        .position(|v| weighted(v).iter().all(|j| zeroed.contains(j)))
         .unwrap();
     assert!(first > 0);
     let past_first_dispatch = GpuSkinner::from_fast_in_chunks(&rig, first.div_ceil(2)).unwrap();
     for g in [&gpu, &past_first_dispatch] {
         assert!(matches!(
-            g.skin(&broken, Method::Lbs),
+            g.skin(&broken, Method::Dqs),
             Err(GpuError::NonFinite(v)) if v == first
         ));
     }
@@ -307,4 +321,67 @@ fn the_shader_takes_dib_constants_from_rust() {
         );
     }
     assert_eq!(chasles_skin::skinning::DIB_UPDATES, 8);
+}
+
+/// The reference, the fast path and the GPU keep one rule on what comes out: a vertex whose
+/// position or normal is not finite is an error, and all three give it on the same poses
+/// (scales at and past the edge of f32, scales of zero and below the smallest normal).
+#[test]
+fn cpu_and_gpu_reject_the_same_poses() {
+    use chasles::{Quat, Vec3};
+    let rig = cylinder::twisted_cylinder();
+    let Some(gpu) = gpu_for(&rig) else { return };
+    let fast = chasles_skin::fast::Skinner::new(&rig).unwrap();
+    let turn = Quat::from_axis_angle(Vec3::new(1.0f32, 1.0, 0.0), 1.0).unwrap();
+    let (mut ok, mut refused) = (0, 0);
+    for scale in [1.0f32, 1e19, 1e25, 1e38, 3e38, f32::MAX, 0.0, 1e-30, 1e-45] {
+        for shift in [0.0f32, 1e30, f32::MAX] {
+            let mut pose = Pose::rest(&rig);
+            let last = pose.local.len() - 1;
+            pose.local[last].scale = Vec3::new(scale, scale, scale);
+            pose.local[last].rotation = turn;
+            pose.local[last].translation = Vec3::new(shift, 0.0, 0.0);
+            let Ok(jt) = joint_transforms(&rig, &pose) else {
+                refused += 1;
+                continue;
+            };
+            for m in [Method::Lbs, Method::Dqs, Method::Dib] {
+                let r = chasles_skin::skin_joints(&rig, &jt, m);
+                let f = fast.skin(&rig, &jt, m);
+                let g = gpu.skin(&jt, m);
+                let what = format!("{} at scale {scale:e}, shift {shift:e}", m.name());
+                assert_eq!(
+                    r.is_ok(),
+                    f.is_ok(),
+                    "reference and fast path differ: {what}"
+                );
+                assert_eq!(
+                    r.is_ok(),
+                    g.is_ok(),
+                    "CPU and GPU differ: {what}: {:?}",
+                    g.err()
+                );
+                if let Err(e) = &r {
+                    assert!(
+                        matches!(
+                            e,
+                            chasles_skin::SkinError::OutOfReach { .. }
+                                | chasles_skin::SkinError::NotFinite { .. }
+                        ),
+                        "{what}: {e}"
+                    );
+                    refused += 1;
+                }
+                for s in [r.ok(), f.ok(), g.ok()].into_iter().flatten() {
+                    let mut all = s.positions.iter().chain(&s.normals);
+                    assert!(all.all(|v| v.is_finite()), "{what}: non-finite output");
+                    ok += 1;
+                }
+            }
+        }
+    }
+    assert!(
+        ok > 0 && refused > 0,
+        "both outcomes met: {ok} ok, {refused} refused"
+    );
 }

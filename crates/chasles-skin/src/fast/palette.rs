@@ -271,6 +271,7 @@ impl Palette {
         parallel: bool,
     ) -> Result<()> {
         check(rig, matrices.len())?;
+        crate::reach::check_joints(FAST_RIG, matrices, given)?;
         let centres = rig.centres();
         let dual = |i: usize| given.map_or_else(|| rigid_of(&matrices[i]).0, |d| d[i]);
         let n = matrices.len();

@@ -12,7 +12,7 @@ impl GpuSkinner {
     /// [`crate::fast::UnitDualQuat`] a joint: LBS, DQS and DIB have shaders), the shader run,
     /// and the skinned vertices read back into the caller's `output` (any layout). An error,
     /// before anything is uploaded, if the palette or the output does not fit the rig; a
-    /// non-finite position is [`GpuError::NonFinite`].
+    /// non-finite position or normal is [`GpuError::NonFinite`].
     pub fn run(&self, palette: &Palette, output: Output<'_>) -> Result<(), GpuError> {
         let n = output.vertices()?;
         let vertices: usize = self.chunks.iter().map(|c| c.vertices).sum();
