@@ -8,7 +8,8 @@
 //! `{"dq": [8 numbers]}` or any other object form of `chasles convert --jsonl`
 //! ([`crate::repr::MotionFields`]). Output: a JSON array, one object per case in order, with
 //! `rotation`, `translation`, `matrix`, `dq`, `rigid` and, for dec, log-iter and dib,
-//! `iterations`. `--plot`, `--render` and `--gif` draw the first case
+//! `iterations` (and `"capped": true`, with a note on stderr, when `max_iterations`
+//! stopped it before its stopping rule was met). `--plot`, `--render` and `--gif` draw the first case
 //! ([`crate::blend_pictures`]).
 //!
 //! The input is read by [`crate::blend_case`]; every output (the JSON and the pictures) is

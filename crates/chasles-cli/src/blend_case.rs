@@ -219,6 +219,16 @@ pub fn blend_all(method: Method, input: &str) -> Result<Blended> {
         });
         if let Some(it) = b.iterations {
             o["iterations"] = json!(it);
+            // Stopped by the cap, its stopping rule not met: said, in the output and on
+            // stderr.
+            if it == opt.max_iterations {
+                o["capped"] = json!(true);
+                notes.push(format!(
+                    "case {i}: {} stopped at max_iterations = {it} before its stopping rule (precision {:e}) was met",
+                    method.name(),
+                    opt.precision
+                ));
+            }
         }
         if let Some(at) = crate::repr::first_non_finite(&o, "") {
             bail!("case {i}: the blend's {at} is not a finite number: the input is beyond the range of f64");

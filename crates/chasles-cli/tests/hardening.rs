@@ -183,6 +183,22 @@ fn iterations_are_capped_and_stop_where_rounding_does() {
     let v: serde_json::Value = serde_json::from_str(&out).unwrap();
     let it = v[0]["iterations"].as_u64().unwrap();
     assert!(it < 100, "{it} iterations");
+    assert!(v[0].get("capped").is_none());
+    // Stopped by its cap, each iterative method says so, in the output and on stderr.
+    for m in ["dib", "dec", "log-iter"] {
+        let o = with_stdin(
+            &["blend", "--method", m, "--input", "-"],
+            case(r#", "precision": 1e-300, "max_iterations": 1"#).as_bytes(),
+        );
+        let v: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+        assert_eq!(v[0]["iterations"], 1, "{m}");
+        assert_eq!(v[0]["capped"], true, "{m}");
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(
+            err.contains(&format!("note: case 0: {m} stopped at max_iterations = 1 before its stopping rule (precision 1e-300) was met")),
+            "{err}"
+        );
+    }
 }
 
 #[test]
