@@ -3,7 +3,7 @@
 
 use crate::choice::InterpMethod;
 use crate::keyfile;
-use crate::output::{extension, num, parent_of, write_all};
+use crate::output::{check_frames_dir, extension, num, write_all, write_frames_dir};
 use crate::picture_args::{Pictures, MAX_GIF_FRAMES};
 use crate::spring_args::{configure, options, SpringArgs};
 use anyhow::{bail, Context, Result};
@@ -252,7 +252,7 @@ pub fn run(args: InterpArgs) -> Result<()> {
     }
     args.pictures.check(&["svg", "png"])?;
     if let Some(dir) = &args.frames_dir {
-        check_frames_dir(dir)?;
+        check_frames_dir("--frames-dir", dir)?;
     }
     let run = compute(&args)?;
     // Nothing silent: every frame and velocity finite, or the run fails naming the first.
@@ -339,62 +339,12 @@ pub fn run(args: InterpArgs) -> Result<()> {
     Ok(())
 }
 
-/// Refuses, before any work, a `--frames-dir` whose parent is not a folder, or that is a
-/// file or a folder with something in it (frames are never mixed with other files, nor
-/// written over).
-fn check_frames_dir(dir: &Path) -> Result<()> {
-    let parent = parent_of(dir);
-    if !parent.is_dir() {
-        bail!(
-            "--frames-dir {}: {} is not a folder",
-            dir.display(),
-            parent.display()
-        );
-    }
-    match std::fs::read_dir(dir) {
-        Ok(mut entries) => {
-            if entries.next().is_some() {
-                bail!("--frames-dir {} is not empty", dir.display());
-            }
-            Ok(())
-        }
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(()),
-        Err(e) => Err(e).with_context(|| format!("--frames-dir {}", dir.display())),
-    }
-}
-
 /// Every frame as `frame-NNNN.png` (the R turned by it, 240 pixels, its number in the
-/// corner), written into a new hidden folder beside `dir` (made as any folder is, so the
-/// umask decides its mode) and renamed onto `dir` whole — over `dir` when it is an empty
-/// folder — so that a failure leaves neither frames nor the hidden folder behind. Shows
-/// progress on a terminal.
+/// corner), written all or nothing into `dir` ([`write_frames_dir`]).
 fn write_frames(dir: &Path, turned: &[Quat<f64>]) -> Result<()> {
-    let parent = parent_of(dir);
-    let tmp = (0..1000)
-        .map(|k| parent.join(format!(".frames-{}-{k}", std::process::id())))
-        .find(|p| std::fs::create_dir(p).is_ok())
-        .ok_or_else(|| anyhow::anyhow!("cannot create a folder in {}", parent.display()))?;
-    let _live = crate::cleanup::Live::new(&tmp);
-    let written = (|| -> Result<()> {
-        let digits = turned.len().saturating_sub(1).to_string().len().max(4);
-        let bar = ProgressBar::new(turned.len() as u64);
-        bar.set_style(
-            ProgressStyle::with_template("frames [{bar:30}] {pos}/{len}")
-                .unwrap_or_else(|_| ProgressStyle::default_bar()),
-        );
-        for (i, q) in turned.iter().enumerate() {
-            let png = chasles_viz::letter::draw(*q, &i.to_string(), 240).png();
-            let path = tmp.join(format!("frame-{i:0digits$}.png"));
-            std::fs::write(&path, png)
-                .with_context(|| format!("cannot write {}", path.display()))?;
-            bar.inc(1);
-        }
-        bar.finish_and_clear();
-        std::fs::rename(&tmp, dir)
-            .with_context(|| format!("cannot move the frames to {}", dir.display()))
-    })();
-    if written.is_err() {
-        let _ = std::fs::remove_dir_all(&tmp);
-    }
-    written
+    let digits = turned.len().saturating_sub(1).to_string().len().max(4);
+    write_frames_dir(dir, turned.len(), "frames", |i| {
+        let png = chasles_viz::letter::draw(turned[i], &i.to_string(), 240).png();
+        Ok((format!("frame-{i:0digits$}.png"), png))
+    })
 }

@@ -4,7 +4,8 @@
 //! missing folder, bad input discovered late, Ctrl-C) never leaves a half-written file or
 //! half of a command's outputs behind.
 
-use anyhow::{Context, Result};
+use anyhow::{bail, Context, Result};
+use indicatif::{ProgressBar, ProgressStyle};
 use std::io::Write;
 use std::path::Path;
 
@@ -34,6 +35,70 @@ pub fn write_all(files: &[(&Path, &[u8])]) -> Result<()> {
             .with_context(|| format!("cannot write {}", path.display()))?;
     }
     Ok(())
+}
+
+/// Refuses, before any work, a folder for frames (given with `flag`) whose parent is not a
+/// folder, or that is a file or a folder with something in it (frames are never mixed with
+/// other files, nor written over).
+pub fn check_frames_dir(flag: &str, dir: &Path) -> Result<()> {
+    let parent = parent_of(dir);
+    if !parent.is_dir() {
+        bail!(
+            "{flag} {}: {} is not a folder",
+            dir.display(),
+            parent.display()
+        );
+    }
+    match std::fs::read_dir(dir) {
+        Ok(mut entries) => {
+            if entries.next().is_some() {
+                bail!("{flag} {} is not empty", dir.display());
+            }
+            Ok(())
+        }
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(()),
+        Err(e) => Err(e).with_context(|| format!("{flag} {}", dir.display())),
+    }
+}
+
+/// `count` files, the `i`-th named and made by `make(i)`, written into a new hidden folder
+/// beside `dir` (registered for removal on Ctrl-C, made as any folder is, so the umask
+/// decides its mode) and renamed onto `dir` whole — over `dir` when it is an empty folder
+/// ([`check_frames_dir`]) — so that a failure or an interruption leaves neither frames nor
+/// the hidden folder behind. Shows progress (`label`) on a terminal.
+pub fn write_frames_dir(
+    dir: &Path,
+    count: usize,
+    label: &str,
+    mut make: impl FnMut(usize) -> Result<(String, Vec<u8>)>,
+) -> Result<()> {
+    let parent = parent_of(dir);
+    let tmp = (0..1000)
+        .map(|k| parent.join(format!(".frames-{}-{k}", std::process::id())))
+        .find(|p| std::fs::create_dir(p).is_ok())
+        .ok_or_else(|| anyhow::anyhow!("cannot create a folder in {}", parent.display()))?;
+    let _live = crate::cleanup::Live::new(&tmp);
+    let written = (|| -> Result<()> {
+        let bar = ProgressBar::new(count as u64);
+        bar.set_style(
+            ProgressStyle::with_template(&format!("{label} [{{bar:30}}] {{pos}}/{{len}}"))
+                .unwrap_or_else(|_| ProgressStyle::default_bar()),
+        );
+        for i in 0..count {
+            let (name, bytes) = make(i)?;
+            let path = tmp.join(name);
+            std::fs::write(&path, bytes)
+                .with_context(|| format!("cannot write {}", path.display()))?;
+            bar.inc(1);
+        }
+        bar.finish_and_clear();
+        std::fs::rename(&tmp, dir)
+            .with_context(|| format!("cannot move the frames to {}", dir.display()))
+    })();
+    if written.is_err() {
+        let _ = std::fs::remove_dir_all(&tmp);
+    }
+    written
 }
 
 /// The folder `path` is in (`.` for a bare name).

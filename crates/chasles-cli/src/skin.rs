@@ -2,14 +2,13 @@
 //! or a whole clip, and the candy-wrapper table (`--artifacts`).
 
 use crate::choice::SkinMethod;
-use crate::output::{extension, write_all, write_atomic};
+use crate::output::{check_frames_dir, extension, write_all, write_frames_dir};
 use crate::picture_args::Pictures;
 use crate::picture_args::MAX_GIF_FRAMES;
 use crate::pictures;
 use anyhow::{anyhow, bail, Context, Result};
 use chasles_skin::cylinder::{self, Motion};
 use chasles_skin::{json_rig, writers, Method, Pose, Rig, Skinned};
-use indicatif::{ProgressBar, ProgressStyle};
 use std::path::{Path, PathBuf};
 
 /// Options of `chasles skin`.
@@ -364,6 +363,7 @@ pub fn run(a: SkinArgs) -> Result<()> {
         let c = clip(&rig, &a.anim)?;
         let duration = rig.animations[c].duration();
         let frames = frame_count(&rig, c, a.fps, a.max_frames, "--all-frames")?;
+        check_frames_dir("--all-frames --out", out)?;
         all_frames(&rig, &a, c, frames, out)?;
         pending.write()?;
         println!(
@@ -396,46 +396,21 @@ pub fn run(a: SkinArgs) -> Result<()> {
     Ok(())
 }
 
-/// Skins `frames` frames of clip `c` into the folder `out`, one OBJ each, all or nothing:
-/// a frame that fails takes the frames of this run with it (and the folder, when this run
-/// made it).
+/// Skins `frames` frames of clip `c` into the folder `out`, one OBJ each, all or nothing
+/// ([`write_frames_dir`]: a hidden folder renamed onto `out` at the end, removed on a
+/// failure or Ctrl-C).
 fn all_frames(rig: &Rig, a: &SkinArgs, c: usize, frames: usize, out: &Path) -> Result<()> {
     let m = a.method.0;
-    let created = !out.exists();
-    std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
     let engine = crate::device::Engine::new(a.device, rig, m)?;
-    let bar = ProgressBar::new(frames as u64);
-    bar.set_style(
-        ProgressStyle::with_template("skinning [{bar:30}] {pos}/{len} frames")
-            .unwrap_or_else(|_| ProgressStyle::default_bar()),
-    );
-    let mut written = Vec::with_capacity(frames);
-    let run = (|| -> Result<()> {
-        for f in 0..frames {
-            let t = f as f32 / a.fps;
-            let s = engine.skin(rig, &Pose::animated(rig, c, t)?, m)?;
-            let file = out.join(format!("frame_{f:05}.obj"));
-            let comment = format!("{} skinned with {} at t = {t} s", rig.name, m.name());
-            write_atomic(&file, &encode(rig, &s, &file, &comment)?)?;
-            written.push(file);
-            bar.inc(1);
-        }
-        Ok(())
-    })();
-    bar.finish_and_clear();
-    if let Err(e) = run {
-        for f in &written {
-            let _ = std::fs::remove_file(f);
-        }
-        if created {
-            let _ = std::fs::remove_dir(out);
-        }
-        return Err(e.context(format!(
-            "frame {} of {frames}; the frames written are removed",
-            written.len()
-        )));
-    }
-    Ok(())
+    write_frames_dir(out, frames, "skinning", |f| {
+        let t = f as f32 / a.fps;
+        let s = engine
+            .skin(rig, &Pose::animated(rig, c, t)?, m)
+            .with_context(|| format!("frame {f} of {frames}"))?;
+        let name = format!("frame_{f:05}.obj");
+        let comment = format!("{} skinned with {} at t = {t} s", rig.name, m.name());
+        Ok((name.clone(), encode(rig, &s, Path::new(&name), &comment)?))
+    })
 }
 
 /// The frames of clip `c` at `fps` (`duration · fps` + 1), checked against `max` (the

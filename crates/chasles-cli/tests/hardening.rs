@@ -159,6 +159,20 @@ fn values_past_the_range_of_f64_never_print_nan_or_inf() {
         &o,
         "case 0: the blend's translation[0] is not a finite number",
     );
+    // Translations of 1e155: every method gives a finite blend or says which part
+    // overflowed — the iterative ones once printed their start (the identity for log-iter)
+    // as if converged.
+    let case = r#"{"transforms": [{"rotation": [1,0,0,0], "translation": [1e155,0,0]}, {"rotation": [0.6,0.8,0,0], "translation": [0,1e155,0]}], "weights": [0.5, 0.5]}"#;
+    for m in ["lin", "dec", "log", "log-iter", "qlb", "dlb", "dib"] {
+        let o = with_stdin(&["blend", "--method", m, "--input", "-"], case.as_bytes());
+        if o.status.success() {
+            let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+            let t = v[0]["translation"][0].as_f64().unwrap();
+            assert!(t > 1e154, "{m}: translation {t} from translations of 1e155");
+        } else {
+            refused(&o, "(the inputs overflow its squares) is not finite");
+        }
+    }
 }
 
 #[test]
@@ -317,49 +331,78 @@ fn a_clip_of_a_week_is_refused_before_any_frame_is_written() {
 }
 
 /// A tour stopped by SIGINT half-way leaves no half report and no temporary file.
-#[test]
-fn an_interrupted_tour_leaves_nothing_behind() {
-    let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("report");
+/// `chasles ARGS`, stopped by `signal` (`-INT`, `-TERM`) once something appears in `dir`:
+/// it must exit 130 saying so and leave `dir` empty — or, had it finished first, hold only
+/// `done`.
+fn interrupted_leaves_nothing(args: &[&str], signal: &str, dir: &Path, done: &str) {
     let child = Command::new(env!("CARGO_BIN_EXE_chasles"))
-        .args(["tour", "--out", out.to_str().unwrap()])
+        .args(args)
         .stdout(Stdio::null())
         .stderr(Stdio::piped())
         .spawn()
         .unwrap();
-    // Once the report is being built (its hidden folder exists), stop the run.
+    // Once the run has started writing (its hidden folder exists), stop it.
     let start = std::time::Instant::now();
-    while std::fs::read_dir(dir.path()).unwrap().count() == 0 {
+    while std::fs::read_dir(dir).unwrap().count() == 0 {
         assert!(
             start.elapsed().as_secs() < 60,
-            "the tour never started its report"
+            "{args:?} never started writing"
         );
         std::thread::sleep(std::time::Duration::from_millis(20));
     }
     std::thread::sleep(std::time::Duration::from_millis(300));
     let killed = Command::new("kill")
-        .args(["-INT", &child.id().to_string()])
+        .args([signal, &child.id().to_string()])
         .status()
         .unwrap();
     assert!(killed.success());
     let o = child.wait_with_output().unwrap();
     let err = String::from_utf8_lossy(&o.stderr);
+    let left: Vec<_> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
     if o.status.success() {
-        // The tour finished before the signal arrived: then it left its report only.
-        let left: Vec<_> = std::fs::read_dir(dir.path())
-            .unwrap()
-            .map(|e| e.unwrap().file_name())
-            .collect();
-        assert_eq!(left, ["report"], "{left:?}");
+        assert_eq!(left, [done], "{args:?} finished first, leaving {left:?}");
         return;
     }
     assert_eq!(o.status.code(), Some(130), "{err}");
     assert!(err.contains("interrupted"), "{err}");
-    let left: Vec<_> = std::fs::read_dir(dir.path())
-        .unwrap()
-        .map(|e| e.unwrap().file_name())
-        .collect();
-    assert!(left.is_empty(), "{left:?}");
+    assert!(
+        left.is_empty(),
+        "{args:?} stopped by {signal} left {left:?}"
+    );
+}
+
+/// A tour stopped by SIGINT half-way leaves no half report and no temporary file; a
+/// `skin --all-frames` stopped by SIGTERM leaves no frames and no hidden folder.
+#[test]
+fn interrupted_runs_leave_nothing_behind() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("report");
+    interrupted_leaves_nothing(
+        &["tour", "--out", out.to_str().unwrap()],
+        "-INT",
+        dir.path(),
+        "report",
+    );
+
+    let rigs = tempfile::tempdir().unwrap();
+    let rig = rigs.path().join("CesiumMan.glb");
+    std::fs::write(&rig, chasles_models::CESIUM_MAN.bytes).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let frames = dir.path().join("frames");
+    let args = [
+        "skin",
+        "--rig",
+        rig.to_str().unwrap(),
+        "--all-frames",
+        "--fps",
+        "400",
+        "--out",
+        frames.to_str().unwrap(),
+    ];
+    interrupted_leaves_nothing(&args, "-TERM", dir.path(), "frames");
 }
 
 /// `interp --gif` draws every frame: a ceiling, checked before any picture is made or any

@@ -1,8 +1,9 @@
 //! Skinning speed (issue: vertices per second per method, one thread and all threads, on
-//! meshes of 10⁵ and 10⁶ vertices, 54 joints, 4 influences; in the same run: DQS written
-//! the obvious way with nalgebra's UnitDualQuaternion, a careful DQS on glam::Quat pairs,
-//! LBS with glam::Affine3A, and a memory copy of 72 bytes per vertex for the bandwidth
-//! bound).
+//! meshes of 10⁵ and 10⁶ vertices, 54 joints, 4 influences; in the same run the baselines
+//! of `peers` — glam LBS with `Mat3A` sums, normals by the blended matrix and by its
+//! cofactor, a careful glam DQS on `Vec4` pairs, nalgebra's DQS and LBS as its users call
+//! them, each checked against an f64 reference in `tests/peers.rs` — and a memory copy of
+//! 72 bytes per vertex for the bandwidth bound).
 //!
 //! `cargo bench -p chasles-skin --bench skin`
 
@@ -11,73 +12,21 @@ use chasles_skin::fast::{
 };
 use chasles_skin::synthetic;
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
-use glam::{Affine3A, Quat, Vec3, Vec3A};
+
+#[path = "peers/mod.rs"]
+mod peers;
 use rayon::prelude::*;
 use std::hint::black_box;
 
-fn careful_glam_dqs(v: &[chasles_skin::fast::Vertex<4>], d: &[(Quat, Quat)], out: &mut [Out]) {
-    for (o, v) in out.iter_mut().zip(v) {
-        let (p0, _) = d[usize::from(v.j[0])];
-        let (mut r, mut e) = (
-            Quat::from_xyzw(0.0, 0.0, 0.0, 0.0),
-            Quat::from_xyzw(0.0, 0.0, 0.0, 0.0),
-        );
-        for k in 0..4 {
-            let (qr, qe) = d[usize::from(v.j[k])];
-            let w = if qr.dot(p0) < 0.0 { -v.w[k] } else { v.w[k] };
-            r += qr * w;
-            e += qe * w;
-        }
-        let inv = 1.0 / r.length();
-        let (r, e) = (r * inv, e * inv);
-        let p = Vec3::from_array(v.p);
-        let t = (e * r.conjugate()) * 2.0;
-        let q = r * p + Vec3::new(t.x, t.y, t.z);
-        let n = r * Vec3::from_array(v.n);
-        *o = [q.x, q.y, q.z, n.x, n.y, n.z];
-    }
-}
-
-fn glam_lbs(v: &[chasles_skin::fast::Vertex<4>], m: &[Affine3A], out: &mut [Out]) {
-    for (o, v) in out.iter_mut().zip(v) {
-        let mut a = m[usize::from(v.j[0])].matrix3 * v.w[0];
-        let mut t = m[usize::from(v.j[0])].translation * v.w[0];
-        for k in 1..4 {
-            let mj = &m[usize::from(v.j[k])];
-            a += mj.matrix3 * v.w[k];
-            t += mj.translation * v.w[k];
-        }
-        let p = a * Vec3A::from_array(v.p) + t;
-        let n = (a.inverse().transpose() * Vec3A::from_array(v.n)).normalize_or_zero();
-        *o = [p.x, p.y, p.z, n.x, n.y, n.z];
-    }
-}
-
-fn nalgebra_dqs(
+/// `f` over `out` on all threads, in the fast paths' chunks of 4096 vertices.
+fn all_threads(
     v: &[chasles_skin::fast::Vertex<4>],
-    d: &[nalgebra::UnitDualQuaternion<f32>],
     out: &mut [Out],
+    f: impl Fn(&[chasles_skin::fast::Vertex<4>], &mut [Out]) + Sync,
 ) {
-    for (o, v) in out.iter_mut().zip(v) {
-        let pivot = d[usize::from(v.j[0])];
-        let mut sum = nalgebra::DualQuaternion::from_real_and_dual(
-            nalgebra::Quaternion::new(0.0, 0.0, 0.0, 0.0),
-            nalgebra::Quaternion::new(0.0, 0.0, 0.0, 0.0),
-        );
-        for k in 0..4 {
-            let q = d[usize::from(v.j[k])];
-            let w = if q.as_ref().real.dot(&pivot.as_ref().real) < 0.0 {
-                -v.w[k]
-            } else {
-                v.w[k]
-            };
-            sum += q.into_inner() * w;
-        }
-        let b = nalgebra::UnitDualQuaternion::new_normalize(sum);
-        let p = b.transform_point(&nalgebra::Point3::new(v.p[0], v.p[1], v.p[2]));
-        let n = b.transform_vector(&nalgebra::Vector3::new(v.n[0], v.n[1], v.n[2]));
-        *o = [p.x, p.y, p.z, n.x, n.y, n.z];
-    }
+    out.par_chunks_mut(4096)
+        .zip(v.par_chunks(4096))
+        .for_each(|(o, v)| f(v, o));
 }
 
 fn bench(c: &mut Criterion) {
@@ -85,38 +34,11 @@ fn bench(c: &mut Criterion) {
         let rig = synthetic::rig(n, 54, 7);
         let jt = synthetic::joints(54, 7);
         let (m12, d8) = (matrices12(&jt), dual_quats8(&jt));
-        let aff: Vec<Affine3A> = jt
-            .matrices
-            .iter()
-            .map(|m| {
-                Affine3A::from_cols_array(&[
-                    m.m[0][0], m.m[1][0], m.m[2][0], m.m[0][1], m.m[1][1], m.m[2][1], m.m[0][2],
-                    m.m[1][2], m.m[2][2], m.m[0][3], m.m[1][3], m.m[2][3],
-                ])
-            })
-            .collect();
-        let gq: Vec<(Quat, Quat)> = jt
-            .dual_quats
-            .iter()
-            .map(|d| {
-                (
-                    Quat::from_xyzw(d.real.x, d.real.y, d.real.z, d.real.w),
-                    Quat::from_xyzw(d.dual.x, d.dual.y, d.dual.z, d.dual.w),
-                )
-            })
-            .collect();
-        let na: Vec<nalgebra::UnitDualQuaternion<f32>> = jt
-            .dual_quats
-            .iter()
-            .map(|d| {
-                nalgebra::UnitDualQuaternion::new_unchecked(
-                    nalgebra::DualQuaternion::from_real_and_dual(
-                        nalgebra::Quaternion::new(d.real.w, d.real.x, d.real.y, d.real.z),
-                        nalgebra::Quaternion::new(d.dual.w, d.dual.x, d.dual.y, d.dual.z),
-                    ),
-                )
-            })
-            .collect();
+        let (gj, gd) = (peers::glam_joints(&jt), peers::glam_dual_quats(&jt));
+        let (nm, nd) = (
+            peers::nalgebra_matrices(&jt),
+            peers::nalgebra_dual_quats(&jt),
+        );
         let tw = twists(&jt).unwrap();
         let cl = clusters(&rig);
         let mut out = vec![[0f32; 6]; n];
@@ -147,14 +69,35 @@ fn bench(c: &mut Criterion) {
                 b.iter(|| dib(&rig, &jt.dual_quats, black_box(&mut out), parallel).unwrap())
             });
         }
-        g.bench_function("glam lbs (Affine3A), 1 thread", |b| {
-            b.iter(|| glam_lbs(rig.vertices(), &aff, black_box(&mut out)))
+        let v = rig.vertices();
+        for parallel in [false, true] {
+            let th = if parallel { "all threads" } else { "1 thread" };
+            let run = |out: &mut [Out], f: &(dyn Fn(&[_], &mut [Out]) + Sync)| {
+                if parallel {
+                    all_threads(v, out, f)
+                } else {
+                    f(v, out)
+                }
+            };
+            g.bench_function(format!("glam lbs (Mat3A, normals by M), {th}"), |b| {
+                b.iter(|| run(black_box(&mut out), &|v, o| peers::glam_lbs_by_m(v, &gj, o)))
+            });
+            g.bench_function(format!("glam lbs (Mat3A, cofactor normals), {th}"), |b| {
+                b.iter(|| {
+                    run(black_box(&mut out), &|v, o| {
+                        peers::glam_lbs_cofactor(v, &gj, o)
+                    })
+                })
+            });
+            g.bench_function(format!("glam dqs (Vec4, careful), {th}"), |b| {
+                b.iter(|| run(black_box(&mut out), &|v, o| peers::glam_dqs(v, &gd, o)))
+            });
+        }
+        g.bench_function("nalgebra lbs (as users call it), 1 thread", |b| {
+            b.iter(|| peers::nalgebra_lbs(v, &nm, black_box(&mut out)))
         });
-        g.bench_function("glam dqs (careful), 1 thread", |b| {
-            b.iter(|| careful_glam_dqs(rig.vertices(), &gq, black_box(&mut out)))
-        });
-        g.bench_function("nalgebra dqs (obvious), 1 thread", |b| {
-            b.iter(|| nalgebra_dqs(rig.vertices(), &na, black_box(&mut out)))
+        g.bench_function("nalgebra dqs (as users call it), 1 thread", |b| {
+            b.iter(|| peers::nalgebra_dqs(v, &nd, black_box(&mut out)))
         });
         // Bandwidth bound: memcpy of 36 bytes per vertex reads 36 and writes 36 — the 72
         // bytes each skinned vertex must move (48 read, 24 written).

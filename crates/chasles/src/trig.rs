@@ -177,6 +177,19 @@ pub fn sin_cos_reduced<L: Lanes>(x: L) -> (L, L) {
     (s, c)
 }
 
+/// `(sin x / x, cos x)` from `z = x²`, for `|x| ≤` [`SIN_COS_REDUCED_MAX`]: the same
+/// polynomials as [`sin_cos_reduced`], with no division by `x` (1 and 1 at `z = 0`).
+#[inline(always)]
+pub fn sinc_cos_reduced<L: Lanes>(z: L) -> (L, L) {
+    let s = Lanes::madd(z, poly(z, &SIN), L::splat(1.0));
+    let c = Lanes::madd(
+        z * z,
+        poly(z, &COS),
+        Lanes::madd(z, L::splat(-0.5), L::splat(1.0)),
+    );
+    (s, c)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -482,6 +482,39 @@ fn bad_keys_get_typed_errors() {
 }
 
 #[test]
+fn reduced_weights_match_trigonometry_to_f64_rounding() {
+    // The weights Slerp uses up to a quarter turn, against sin(hΩ)/sin Ω in f64 (sinc form
+    // at small Ω), from Ω = 1e-9 to π/2; exact at h = 0 and h = 1, and 1 − h, h at Ω = 0.
+    use chasles::interp::slerp::slerp_weights_reduced;
+    let p = Quat::new(0.5, -0.5, 0.5, 0.5);
+    let perp = Quat::new(0.5, 0.5, 0.5, -0.5); // p·perp = 0
+    let mut worst = 0.0f64;
+    let omegas = (0..=400)
+        .map(|i| i as f64 / 400.0 * std::f64::consts::FRAC_PI_2)
+        .chain([1e-9, 1e-6, 1e-4, 1e-2]);
+    for omega in omegas {
+        let q = p * omega.cos() + perp * omega.sin();
+        for k in 0..=100 {
+            let h = k as f64 / 100.0;
+            let (a, b) = slerp_weights_reduced(p, q, h);
+            let w = |t: f64| {
+                if omega < 1e-3 {
+                    let sinc = |x: f64| if x == 0.0 { 1.0 } else { x.sin() / x };
+                    t * sinc(t * omega) / sinc(omega)
+                } else {
+                    (t * omega).sin() / omega.sin()
+                }
+            };
+            worst = worst.max((a - w(1.0 - h)).abs()).max((b - w(h)).abs());
+        }
+        assert_eq!(slerp_weights_reduced(p, q, 0.0), (1.0, 0.0), "Ω = {omega}");
+        assert_eq!(slerp_weights_reduced(p, q, 1.0), (0.0, 1.0), "Ω = {omega}");
+    }
+    assert!(worst < 2e-15, "reduced weights off by {worst:e}");
+    assert_eq!(slerp_weights_reduced(p, p, 0.25), (0.75, 0.25));
+}
+
+#[test]
 fn eberly_series_weights_match_trigonometry() {
     use chasles::interp::slerp::slerp_weights_series;
     let mut worst = 0.0f64;

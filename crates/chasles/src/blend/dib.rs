@@ -60,6 +60,7 @@ pub fn dib_convex_observed<T: Real>(
             x = x + (bc * *qi).to_positive_hemisphere().log()? * *wi;
         }
         let norm = (x.real.norm_squared() + x.dual.norm_squared()).sqrt();
+        let norm = super::finite_update(norm, "the DIB update (the inputs overflow its squares)")?;
         if !super::keep_going(norm, last, precision) {
             break;
         }

@@ -168,6 +168,10 @@ pub fn log_blend_iterative_from<T: Real>(
             x.v += l.v * *wi;
         }
         let norm = x.norm();
+        let norm = super::finite_update(
+            norm,
+            "the log-iter update (the inputs overflow its squares)",
+        )?;
         if !super::keep_going(norm, last, precision) {
             break;
         }

@@ -28,6 +28,10 @@ pub fn spherical_average<T: Real>(
         }
         u.w = T::ZERO;
         let norm = u.norm();
+        let norm = super::finite_update(
+            norm,
+            "the spherical-average update (the inputs overflow its squares)",
+        )?;
         if !super::keep_going(norm, last, precision) {
             break;
         }

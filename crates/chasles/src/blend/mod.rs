@@ -91,6 +91,17 @@ pub struct Options<T> {
 /// shader (as a WGSL override constant) read this one value.
 pub const STALL_FACTOR: f64 = 100.0;
 
+/// `norm`, the size of an iteration's update, if it is finite; else the error naming the
+/// update (`what`): an update that overflowed (inputs near the top of T's range, whose
+/// squares are not finite) is an error, never a silent stop at the start value.
+pub(crate) fn finite_update<T: Real>(norm: T, what: &'static str) -> Result<T> {
+    if norm.is_finite() {
+        Ok(norm)
+    } else {
+        Err(Error::NonFinite { what })
+    }
+}
+
 /// Whether an iteration should go on: the update `norm` is still above `precision`, and
 /// not stuck near it (no smaller than the `last` while within [`STALL_FACTOR`] × the
 /// precision, or within 16 ε, where rounding sets every update: a precision asked for

@@ -6,8 +6,11 @@
 //!   computed as `2 atan2(‖p − q‖, ‖p + q‖)`, which is accurate at every angle (unlike
 //!   `acos(p·q)` near 0), and for small Ω `sin(hΩ)/sin Ω` is evaluated as
 //!   `h · sinc(hΩ)/sinc(Ω)`, so Ω → 0 has no 0/0 (the report's patch `Slerp(q, q, h) ≡ q`
-//!   is the limit, not a special case). In f32 the weights come from Eberly's trig-free
-//!   series ([`slerp_weights_series`]), as accurate as f32 and faster.
+//!   is the limit, not a special case). Up to a quarter turn (`p·q ≥ 0`) the weights come
+//!   from the reduced polynomial kernels of [`crate::trig`] (the ones ScLERP uses), in f64
+//!   for f32 and f64 alike ([`slerp_weights_reduced`]): no `acos`, `sin`, square root or
+//!   0/0, within a few ulp of f64. Eberly's trig-free series ([`slerp_weights_series`])
+//!   remains as an all-`T` alternative, accurate to 3e-8.
 //!
 //! Both follow the great arc between p and q *as given* (Proposition 29: the shorter arc
 //! between the two 4D points). Footnote 7: q and −q are the same rotation, so the shorter
@@ -25,16 +28,15 @@ pub fn slerp_pow<T: Real>(p: Quat<T>, q: Quat<T>, h: T) -> Result<Quat<T>> {
 
 /// Eq. 6.13 for unit p and q, exact for Ω → 0 and defined for q = −p (see module docs).
 ///
-/// In f32 (any `Real` with ε > 1e-10) and for `p·q ≥ 0` the weights `sin(hΩ)/sin Ω` come
-/// from a trig-free series (see [`slerp_weights_series`]), accurate to 3e-8 — below f32's
-/// own rounding — and faster than the trigonometric form. Everywhere else the
+/// For `p·q ≥ 0` (Ω ≤ π/2, every shorter-arc Slerp) the weights `sin(hΩ)/sin Ω` come from
+/// the reduced polynomial kernels in f64 ([`slerp_weights_reduced`]: no `acos`, `sin` or
+/// square root, within a few ulp of f64), in f32 and f64 alike; beyond a quarter turn the
 /// trigonometric form, [`slerp_trig`].
 #[inline]
 pub fn slerp<T: Real>(p: Quat<T>, q: Quat<T>, h: T) -> Quat<T> {
-    let x = p.dot(q);
-    if T::EPSILON > T::from_f64(1e-10) && x >= T::ZERO {
-        let (a, b) = slerp_weights_series(x, h);
-        return p * a + q * b;
+    if p.dot(q) >= T::ZERO {
+        let (a, b) = slerp_weights_reduced(p.cast(), q.cast(), h.to_f64());
+        return p * T::from_f64(a) + q * T::from_f64(b);
     }
     slerp_trig(p, q, h)
 }
@@ -79,6 +81,29 @@ pub fn slerp_trig<T: Real>(p: Quat<T>, q: Quat<T>, h: T) -> Quat<T> {
     }
     let sin_omega = d * s * T::HALF;
     p * ((g * omega).sin() / sin_omega) + q * ((h * omega).sin() / sin_omega)
+}
+
+/// The Slerp weights `(sin((1 − h)Ω)/sin Ω, sin(hΩ)/sin Ω)` for unit `p`, `q` with
+/// `p·q ≥ 0` (Ω ≤ π/2), from the reduced kernels of [`crate::trig`] — no `acos`, `sin` or
+/// square root: with `y = ‖p − q‖²/2 = 1 − cos Ω` the half angle is `(Ω/2)² = y A(y)²/2`
+/// ([`crate::trig::acos_over_chord`]), and by `sin 2u = 2 sin u cos u`
+/// `sin(hΩ)/sin Ω = h · sinc(hΩ/2) cos(hΩ/2) / (sinc(Ω/2) cos(Ω/2))`, every argument
+/// within π/4 ([`crate::trig::sinc_cos_reduced`]). Smooth at Ω = 0 (no 0/0), exact at
+/// h = 0 and h = 1.
+#[inline]
+pub fn slerp_weights_reduced(p: Quat<f64>, q: Quat<f64>, h: f64) -> (f64, f64) {
+    use crate::trig::{acos_over_chord, sinc_cos_reduced};
+    use wide::f64x2;
+    let y = (p - q).norm_squared() * 0.5;
+    let a = acos_over_chord(y);
+    let z0 = y * a * a * 0.5;
+    let g = 1.0 - h;
+    // (1 − h, h) in two lanes: one evaluation of the polynomials for both weights.
+    let t = f64x2::new([g, h]);
+    let (s, c) = sinc_cos_reduced(t * t * f64x2::splat(z0));
+    let (s0, c0) = sinc_cos_reduced(z0);
+    let [wp, wq] = (t * s * c / f64x2::splat(s0 * c0)).to_array();
+    (wp, wq)
 }
 
 /// The Slerp weights `(sin((1 − h)Ω)/sin Ω, sin(hΩ)/sin Ω)` for `x = cos Ω ∈ [0, 1]`

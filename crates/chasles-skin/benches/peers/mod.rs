@@ -1,0 +1,185 @@
+//! Skinning as careful users of glam and nalgebra write it (issue 18): the baselines our
+//! fast paths are measured against, in one place for the benchmarks and for the test that
+//! checks each against an f64 reference (`tests/peers.rs`, on a single-influence mesh).
+//!
+//! * LBS with glam: the weighted sum of the joints' `Mat3A` blocks and `Vec3A`
+//!   translations (SIMD columns), the point by the blended matrix; the normal either by the
+//!   blended matrix itself (what most engines ship: exact for rotations and uniform scale)
+//!   or by its cofactor matrix (the inverse transpose up to a positive factor, exact under
+//!   any scale), then normalized.
+//! * DQS with glam: the joints' dual quaternions as pairs of `Vec4`, blended with the sign
+//!   fix against the first joint (Kavan et al. 2006, §5.1), one reciprocal of ‖real‖ for
+//!   both parts, and the standard fast transform `p + 2 r⃗ × (r⃗ × p + w p) + 2 (w t⃗ − t_w r⃗ +
+//!   r⃗ × t⃗)` with `(w, r⃗)` the real part and `(t_w, t⃗)` the dual part.
+//! * DQS and LBS with nalgebra as its documentation has users call it:
+//!   `UnitDualQuaternion::new_normalize` of the sum and `transform_point` /
+//!   `transform_vector`; `Matrix4` sums, `transform_point`, normals by
+//!   `try_inverse().transpose()`.
+#![allow(dead_code)] // the test and the benchmarks each use their part
+
+use chasles_skin::fast::{Out, Vertex};
+use glam::{Mat3A, Vec3A, Vec4};
+
+/// A joint for the glam LBS baselines: the 3×3 block as SIMD columns and the translation.
+#[derive(Clone, Copy)]
+pub struct GlamJoint {
+    /// The 3×3 block.
+    pub m: Mat3A,
+    /// The translation.
+    pub t: Vec3A,
+}
+
+/// The joints of `jt` for glam's LBS.
+pub fn glam_joints(jt: &chasles_skin::JointTransforms) -> Vec<GlamJoint> {
+    jt.matrices
+        .iter()
+        .map(|m| GlamJoint {
+            m: Mat3A::from_cols(
+                Vec3A::new(m.m[0][0], m.m[1][0], m.m[2][0]),
+                Vec3A::new(m.m[0][1], m.m[1][1], m.m[2][1]),
+                Vec3A::new(m.m[0][2], m.m[1][2], m.m[2][2]),
+            ),
+            t: Vec3A::new(m.m[0][3], m.m[1][3], m.m[2][3]),
+        })
+        .collect()
+}
+
+/// The blended block and translation of `v`.
+#[inline(always)]
+fn glam_blend(v: &Vertex<4>, m: &[GlamJoint]) -> (Mat3A, Vec3A) {
+    let j0 = &m[usize::from(v.j[0])];
+    let (mut a, mut t) = (j0.m * v.w[0], j0.t * v.w[0]);
+    for k in 1..4 {
+        let j = &m[usize::from(v.j[k])];
+        a += j.m * v.w[k];
+        t += j.t * v.w[k];
+    }
+    (a, t)
+}
+
+/// LBS with glam, normals by the blended matrix.
+pub fn glam_lbs_by_m(v: &[Vertex<4>], m: &[GlamJoint], out: &mut [Out]) {
+    for (o, v) in out.iter_mut().zip(v) {
+        let (a, t) = glam_blend(v, m);
+        let p = a * Vec3A::from_array(v.p) + t;
+        let n = (a * Vec3A::from_array(v.n)).normalize_or_zero();
+        *o = [p.x, p.y, p.z, n.x, n.y, n.z];
+    }
+}
+
+/// LBS with glam, normals by the blended matrix's cofactor matrix (columns `c₁ × c₂`,
+/// `c₂ × c₀`, `c₀ × c₁`).
+pub fn glam_lbs_cofactor(v: &[Vertex<4>], m: &[GlamJoint], out: &mut [Out]) {
+    for (o, v) in out.iter_mut().zip(v) {
+        let (a, t) = glam_blend(v, m);
+        let p = a * Vec3A::from_array(v.p) + t;
+        let cof = Mat3A::from_cols(
+            a.y_axis.cross(a.z_axis),
+            a.z_axis.cross(a.x_axis),
+            a.x_axis.cross(a.y_axis),
+        );
+        let n = (cof * Vec3A::from_array(v.n)).normalize_or_zero();
+        *o = [p.x, p.y, p.z, n.x, n.y, n.z];
+    }
+}
+
+/// The joints of `jt` for glam's DQS: (real, dual) as `Vec4` (x, y, z, w).
+pub fn glam_dual_quats(jt: &chasles_skin::JointTransforms) -> Vec<(Vec4, Vec4)> {
+    jt.dual_quats
+        .iter()
+        .map(|d| {
+            (
+                Vec4::new(d.real.x, d.real.y, d.real.z, d.real.w),
+                Vec4::new(d.dual.x, d.dual.y, d.dual.z, d.dual.w),
+            )
+        })
+        .collect()
+}
+
+/// DQS with glam: `Vec4` sums with the sign fix, one reciprocal, the fast transform.
+pub fn glam_dqs(v: &[Vertex<4>], d: &[(Vec4, Vec4)], out: &mut [Out]) {
+    for (o, v) in out.iter_mut().zip(v) {
+        let (pivot, _) = d[usize::from(v.j[0])];
+        let (mut r, mut e) = (Vec4::ZERO, Vec4::ZERO);
+        for k in 0..4 {
+            let (qr, qe) = d[usize::from(v.j[k])];
+            let w = if qr.dot(pivot) < 0.0 { -v.w[k] } else { v.w[k] };
+            r += qr * w;
+            e += qe * w;
+        }
+        let inv = r.length_recip();
+        let (r, e) = (r * inv, e * inv);
+        let (rv, rw) = (Vec3A::from_vec4(r), r.w);
+        let (ev, ew) = (Vec3A::from_vec4(e), e.w);
+        let turn = |x: Vec3A| x + 2.0 * rv.cross(rv.cross(x) + rw * x);
+        let p = turn(Vec3A::from_array(v.p)) + 2.0 * (rw * ev - ew * rv + rv.cross(ev));
+        let n = turn(Vec3A::from_array(v.n));
+        *o = [p.x, p.y, p.z, n.x, n.y, n.z];
+    }
+}
+
+/// The joints of `jt` as nalgebra's unit dual quaternions.
+pub fn nalgebra_dual_quats(
+    jt: &chasles_skin::JointTransforms,
+) -> Vec<nalgebra::UnitDualQuaternion<f32>> {
+    jt.dual_quats
+        .iter()
+        .map(|d| {
+            nalgebra::UnitDualQuaternion::new_unchecked(
+                nalgebra::DualQuaternion::from_real_and_dual(
+                    nalgebra::Quaternion::new(d.real.w, d.real.x, d.real.y, d.real.z),
+                    nalgebra::Quaternion::new(d.dual.w, d.dual.x, d.dual.y, d.dual.z),
+                ),
+            )
+        })
+        .collect()
+}
+
+/// DQS with nalgebra as users call it.
+pub fn nalgebra_dqs(v: &[Vertex<4>], d: &[nalgebra::UnitDualQuaternion<f32>], out: &mut [Out]) {
+    for (o, v) in out.iter_mut().zip(v) {
+        let pivot = d[usize::from(v.j[0])];
+        let mut sum = nalgebra::DualQuaternion::from_real_and_dual(
+            nalgebra::Quaternion::new(0.0, 0.0, 0.0, 0.0),
+            nalgebra::Quaternion::new(0.0, 0.0, 0.0, 0.0),
+        );
+        for k in 0..4 {
+            let q = d[usize::from(v.j[k])];
+            let w = if q.as_ref().real.dot(&pivot.as_ref().real) < 0.0 {
+                -v.w[k]
+            } else {
+                v.w[k]
+            };
+            sum += q.into_inner() * w;
+        }
+        let b = nalgebra::UnitDualQuaternion::new_normalize(sum);
+        let p = b.transform_point(&nalgebra::Point3::new(v.p[0], v.p[1], v.p[2]));
+        let n = b.transform_vector(&nalgebra::Vector3::new(v.n[0], v.n[1], v.n[2]));
+        *o = [p.x, p.y, p.z, n.x, n.y, n.z];
+    }
+}
+
+/// The joints of `jt` as nalgebra's 4×4 matrices.
+pub fn nalgebra_matrices(jt: &chasles_skin::JointTransforms) -> Vec<nalgebra::Matrix4<f32>> {
+    jt.matrices
+        .iter()
+        .map(|m| nalgebra::Matrix4::from_fn(|r, c| m.m[r][c]))
+        .collect()
+}
+
+/// LBS with nalgebra as users call it: `Matrix4` sums, `transform_point`, normals by the
+/// inverse transpose of the blended 3×3 block.
+pub fn nalgebra_lbs(v: &[Vertex<4>], m: &[nalgebra::Matrix4<f32>], out: &mut [Out]) {
+    for (o, v) in out.iter_mut().zip(v) {
+        let mut a = m[usize::from(v.j[0])] * v.w[0];
+        for k in 1..4 {
+            a += m[usize::from(v.j[k])] * v.w[k];
+        }
+        let p = a.transform_point(&nalgebra::Point3::new(v.p[0], v.p[1], v.p[2]));
+        let block = a.fixed_view::<3, 3>(0, 0).into_owned();
+        let nt = block.try_inverse().map_or(block, |i| i.transpose())
+            * nalgebra::Vector3::new(v.n[0], v.n[1], v.n[2]);
+        let n = nt.try_normalize(0.0).unwrap_or(nt);
+        *o = [p.x, p.y, p.z, n.x, n.y, n.z];
+    }
+}

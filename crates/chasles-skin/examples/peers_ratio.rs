@@ -1,0 +1,112 @@
+//! Our fast LBS and DQS beside the careful glam and nalgebra baselines of `benches/peers`
+//! (each checked against an f64 reference in `tests/peers.rs`), in interleaved rounds on
+//! one thread and on all threads: the median time of each per round and the ratio of the
+//! peer's median to ours, with the spread over rounds. 54 joints, 4 random influences.
+//!
+//! `cargo run --release -p chasles-skin --example peers_ratio [VERTICES] [ROUNDS]`
+
+#[path = "../benches/peers/mod.rs"]
+mod peers;
+
+use chasles_skin::fast::{dqs, dual_quats8, lbs, matrices12, Out, Vertex};
+use chasles_skin::synthetic;
+use rayon::prelude::*;
+use std::hint::black_box;
+use std::time::Instant;
+
+/// A kernel: the name and what it does to the whole mesh on one or all threads.
+type Kernel<'a> = (&'static str, Box<dyn Fn(&mut [Out], bool) + 'a>);
+
+/// `f` over the mesh on one thread, or on all in chunks of 4096 vertices.
+fn run(
+    v: &[Vertex<4>],
+    out: &mut [Out],
+    parallel: bool,
+    f: &(dyn Fn(&[Vertex<4>], &mut [Out]) + Sync),
+) {
+    if parallel {
+        out.par_chunks_mut(4096)
+            .zip(v.par_chunks(4096))
+            .for_each(|(o, v)| f(v, o));
+    } else {
+        f(v, out)
+    }
+}
+
+fn main() {
+    let mut args = std::env::args().skip(1);
+    let n: usize = args.next().and_then(|a| a.parse().ok()).unwrap_or(100_000);
+    let rounds: usize = args.next().and_then(|a| a.parse().ok()).unwrap_or(21);
+    let rig = synthetic::rig(n, 54, 7);
+    let jt = synthetic::joints(54, 7);
+    let (m12, d8) = (matrices12(&jt), dual_quats8(&jt));
+    let (gj, gd) = (peers::glam_joints(&jt), peers::glam_dual_quats(&jt));
+    let (nm, nd) = (
+        peers::nalgebra_matrices(&jt),
+        peers::nalgebra_dual_quats(&jt),
+    );
+    let v = rig.vertices();
+    let kernels: Vec<Kernel> = vec![
+        (
+            "chasles lbs",
+            Box::new(|o, par| lbs(&rig, &m12, o, par).expect("lbs")),
+        ),
+        (
+            "glam lbs by M",
+            Box::new(|o, par| run(v, o, par, &|v, o| peers::glam_lbs_by_m(v, &gj, o))),
+        ),
+        (
+            "glam lbs cofactor",
+            Box::new(|o, par| run(v, o, par, &|v, o| peers::glam_lbs_cofactor(v, &gj, o))),
+        ),
+        (
+            "nalgebra lbs",
+            Box::new(|o, par| run(v, o, par, &|v, o| peers::nalgebra_lbs(v, &nm, o))),
+        ),
+        (
+            "chasles dqs",
+            Box::new(|o, par| dqs(&rig, &d8, o, par).expect("dqs")),
+        ),
+        (
+            "glam dqs",
+            Box::new(|o, par| run(v, o, par, &|v, o| peers::glam_dqs(v, &gd, o))),
+        ),
+        (
+            "nalgebra dqs",
+            Box::new(|o, par| run(v, o, par, &|v, o| peers::nalgebra_dqs(v, &nd, o))),
+        ),
+    ];
+    let mut out = vec![[0f32; 6]; n];
+    for parallel in [false, true] {
+        let mut secs = vec![Vec::new(); kernels.len()];
+        for _ in 0..rounds {
+            for (k, (_, f)) in kernels.iter().enumerate() {
+                let t = Instant::now();
+                f(black_box(&mut out), parallel);
+                secs[k].push(t.elapsed().as_secs_f64());
+            }
+        }
+        for s in &mut secs {
+            s.sort_by(f64::total_cmp);
+        }
+        let med = |k: usize| secs[k][rounds / 2];
+        let threads = if parallel {
+            rayon::current_num_threads()
+        } else {
+            1
+        };
+        println!("{n} vertices, {threads} thread(s), {rounds} interleaved rounds");
+        println!("| kernel | M vertices/s (median) | spread over rounds | our speed / its |");
+        println!("|---|---|---|---|");
+        for (k, (name, _)) in kernels.iter().enumerate() {
+            let ours = if name.contains("lbs") { 0 } else { 4 };
+            println!(
+                "| {name} | {:.1} | {:.1}–{:.1} | {:.2}× |",
+                n as f64 / med(k) / 1e6,
+                n as f64 / secs[k][rounds - 1] / 1e6,
+                n as f64 / secs[k][0] / 1e6,
+                med(k) / med(ours)
+            );
+        }
+    }
+}

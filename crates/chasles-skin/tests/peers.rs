@@ -1,0 +1,128 @@
+//! The benchmarks' glam and nalgebra baselines (`benches/peers`) are right before they are
+//! fast: on a mesh of one influence per vertex every skinning method is the joint's own
+//! transform, so each baseline — and our fast LBS and DQS beside them — must give the
+//! f64 transform of every vertex to f32 accuracy. Under a non-uniformly scaled joint the
+//! cofactor normals (glam cofactor, nalgebra's inverse transpose) stay exact and normals by
+//! the blended matrix do not, which is why the benchmarks time both.
+
+#[path = "../benches/peers/mod.rs"]
+mod peers;
+
+use chasles::{Mat4, Vec3};
+use chasles_skin::fast::{dqs, dual_quats8, lbs, matrices12, FastRig, Out, Vertex};
+use chasles_skin::{synthetic, JointTransforms};
+
+/// `base`'s vertices with all their weight on their first joint.
+fn single_influence(base: &FastRig<4>) -> FastRig<4> {
+    let v: Vec<Vertex<4>> = base
+        .vertices()
+        .iter()
+        .map(|v| Vertex {
+            w: [1.0, 0.0, 0.0, 0.0],
+            ..*v
+        })
+        .collect();
+    FastRig::from_vertices(v, base.centres().to_vec()).unwrap()
+}
+
+/// Each vertex moved by its joint's matrix in f64: the point by the matrix, the normal by
+/// the inverse transpose of its 3×3 block, normalized.
+fn reference(rig: &FastRig<4>, jt: &JointTransforms) -> Vec<[f64; 6]> {
+    rig.vertices()
+        .iter()
+        .map(|v| {
+            let m = Mat4::<f64>::from_row_major(
+                jt.matrices[usize::from(v.j[0])]
+                    .to_row_major()
+                    .map(f64::from),
+            );
+            let p = m.transform_point(Vec3::from_array(v.p.map(f64::from)));
+            let n = m
+                .linear_part()
+                .inverse()
+                .unwrap()
+                .transpose()
+                .mul_vec(Vec3::from_array(v.n.map(f64::from)))
+                .normalize()
+                .unwrap();
+            [p.x, p.y, p.z, n.x, n.y, n.z]
+        })
+        .collect()
+}
+
+/// The largest difference between `got` and `want`.
+fn worst(got: &[Out], want: &[[f64; 6]]) -> f64 {
+    got.iter()
+        .zip(want)
+        .flat_map(|(g, w)| (0..6).map(move |k| (f64::from(g[k]) - w[k]).abs()))
+        .fold(0.0, f64::max)
+}
+
+#[test]
+fn every_baseline_matches_an_f64_reference_on_a_single_influence_mesh() {
+    let rig = single_influence(&synthetic::rig(3000, 54, 11));
+    let jt = synthetic::joints(54, 11);
+    let want = reference(&rig, &jt);
+    let v = rig.vertices();
+    let mut out = vec![[0f32; 6]; v.len()];
+    let (gj, gd) = (peers::glam_joints(&jt), peers::glam_dual_quats(&jt));
+    let (nm, nd) = (
+        peers::nalgebra_matrices(&jt),
+        peers::nalgebra_dual_quats(&jt),
+    );
+    let mut check = |name: &str, want: &[[f64; 6]], run: &mut dyn FnMut(&mut [Out])| {
+        out.iter_mut().for_each(|o| *o = [f32::NAN; 6]);
+        run(&mut out);
+        let e = worst(&out, want);
+        assert!(e < 4e-6, "{name}: off the f64 reference by {e:e}");
+    };
+    check("glam lbs by M", &want, &mut |o| {
+        peers::glam_lbs_by_m(v, &gj, o)
+    });
+    check("glam lbs cofactor", &want, &mut |o| {
+        peers::glam_lbs_cofactor(v, &gj, o)
+    });
+    check("glam dqs", &want, &mut |o| peers::glam_dqs(v, &gd, o));
+    check("nalgebra lbs", &want, &mut |o| {
+        peers::nalgebra_lbs(v, &nm, o)
+    });
+    check("nalgebra dqs", &want, &mut |o| {
+        peers::nalgebra_dqs(v, &nd, o)
+    });
+    let (m12, d8) = (matrices12(&jt), dual_quats8(&jt));
+    check("chasles lbs", &want, &mut |o| {
+        lbs(&rig, &m12, o, false).unwrap()
+    });
+    check("chasles dqs", &want, &mut |o| {
+        dqs(&rig, &d8, o, false).unwrap()
+    });
+
+    // A non-uniform scale on every joint: cofactor normals stay exact, normals by M not.
+    let mut scaled = jt.clone();
+    for m in &mut scaled.matrices {
+        for row in &mut m.m[..3] {
+            for (x, s) in row[..3].iter_mut().zip([2.0, 0.5, 1.0]) {
+                *x *= s;
+            }
+        }
+    }
+    let want = reference(&rig, &scaled);
+    let gj = peers::glam_joints(&scaled);
+    let nm = peers::nalgebra_matrices(&scaled);
+    check("glam lbs cofactor, scaled", &want, &mut |o| {
+        peers::glam_lbs_cofactor(v, &gj, o)
+    });
+    check("nalgebra lbs, scaled", &want, &mut |o| {
+        peers::nalgebra_lbs(v, &nm, o)
+    });
+    let m12 = matrices12(&scaled);
+    check("chasles lbs, scaled", &want, &mut |o| {
+        lbs(&rig, &m12, o, false).unwrap()
+    });
+    let mut by_m = vec![[0f32; 6]; v.len()];
+    peers::glam_lbs_by_m(v, &gj, &mut by_m);
+    assert!(
+        worst(&by_m, &want) > 0.1,
+        "normals by M are wrong under non-uniform scale"
+    );
+}

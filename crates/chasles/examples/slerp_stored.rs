@@ -1,0 +1,222 @@
+//! Slerp over a million stored random pairs with random t, beside glam and nalgebra in one
+//! interleaved run (issue 18): every library takes the shorter arc (glam and nalgebra flip
+//! internally; ours is `slerp_shortest`), every result is written out whole, and each
+//! library's largest error against an f64 reference on the same pairs is printed beside
+//! its speed, so a faster Slerp is never a less accurate one.
+//!
+//! `cargo run --release -p chasles --example slerp_stored [PAIRS] [ROUNDS]`
+//!
+//! Why this differs from criterion's loop (`cargo bench -p chasles --bench interp`): there
+//! 4096 pairs stay in L1/L2, t is one constant and only `w` is summed, so the compiler
+//! drops three quarters of the final blend and the out-of-order core overlaps calls; here
+//! 10⁶ pairs stream from memory (36 MB in f32), t varies per call and all four components
+//! are stored.
+
+use chasles::interp::slerp::{slerp_pow, slerp_shortest, slerp_weights_reduced};
+use chasles::Quat;
+use rand::rngs::StdRng;
+use rand::{Rng, SeedableRng};
+use std::time::Instant;
+
+/// Random unit pairs (no hemisphere fix: shortest arc is each library's job) and t.
+fn pairs(n: usize, seed: u64) -> Vec<([f64; 4], [f64; 4], f64)> {
+    let mut rng = StdRng::seed_from_u64(seed);
+    let unit = |rng: &mut StdRng| loop {
+        let q: [f64; 4] = std::array::from_fn(|_| rng.random_range(-1.0..1.0));
+        let n = q.iter().map(|v| v * v).sum::<f64>().sqrt();
+        if n > 1e-3 && n <= 1.0 {
+            return q.map(|v| v / n);
+        }
+    };
+    (0..n)
+        .map(|i| {
+            let a = unit(&mut rng);
+            // A quarter of the pairs close together (the small-angle regime every
+            // library special-cases), the rest anywhere.
+            let b = if i % 4 == 0 {
+                let d: [f64; 4] = std::array::from_fn(|_| rng.random_range(-1e-3..1e-3));
+                let b: [f64; 4] = std::array::from_fn(|k| a[k] + d[k]);
+                let n = b.iter().map(|v| v * v).sum::<f64>().sqrt();
+                b.map(|v| v / n)
+            } else {
+                unit(&mut rng)
+            };
+            (a, b, rng.random_range(0.0..1.0))
+        })
+        .collect()
+}
+
+/// The reference: eq. 6.4, `p (p* q)^h`, in f64 along the shorter arc — through the
+/// quaternion logarithm and exponential, a formula none of the timed ones uses.
+fn reference(a: [f64; 4], b: [f64; 4], t: f64) -> [f64; 4] {
+    let (p, mut q) = (Quat::from_array(a), Quat::from_array(b));
+    if p.dot(q) < 0.0 {
+        q = -q;
+    }
+    slerp_pow(p, q, t).expect("unit pairs").to_array()
+}
+
+/// Largest component error of `got` against the reference, sign-insensitive (q ≡ −q).
+fn error(got: [f64; 4], want: [f64; 4]) -> f64 {
+    let d = |s: f64| {
+        (0..4)
+            .map(|k| (got[k] - s * want[k]).abs())
+            .fold(0.0, f64::max)
+    };
+    d(1.0).min(d(-1.0))
+}
+
+/// Median, lowest and highest of `v`.
+fn spread(v: &mut [f64]) -> (f64, f64, f64) {
+    v.sort_by(f64::total_cmp);
+    (v[v.len() / 2], v[0], v[v.len() - 1])
+}
+
+fn main() {
+    let mut args = std::env::args().skip(1);
+    let n: usize = args
+        .next()
+        .and_then(|a| a.parse().ok())
+        .unwrap_or(1_000_000);
+    let rounds: usize = args.next().and_then(|a| a.parse().ok()).unwrap_or(15);
+    let p = pairs(n, 7);
+    let want: Vec<[f64; 4]> = p.iter().map(|(a, b, t)| reference(*a, *b, *t)).collect();
+    let f32s = |a: [f64; 4]| a.map(|v| v as f32);
+
+    let ours32: Vec<(Quat<f32>, Quat<f32>, f32)> = p
+        .iter()
+        .map(|(a, b, t)| {
+            (
+                Quat::from_array(f32s(*a)),
+                Quat::from_array(f32s(*b)),
+                *t as f32,
+            )
+        })
+        .collect();
+    let ours64: Vec<(Quat<f64>, Quat<f64>, f64)> = p
+        .iter()
+        .map(|(a, b, t)| (Quat::from_array(*a), Quat::from_array(*b), *t))
+        .collect();
+    let g32 =
+        |a: [f64; 4]| glam::Quat::from_xyzw(a[1] as f32, a[2] as f32, a[3] as f32, a[0] as f32);
+    let glam32: Vec<(glam::Quat, glam::Quat, f32)> = p
+        .iter()
+        .map(|(a, b, t)| (g32(*a), g32(*b), *t as f32))
+        .collect();
+    let g64 = |a: [f64; 4]| glam::DQuat::from_xyzw(a[1], a[2], a[3], a[0]);
+    let glam64: Vec<(glam::DQuat, glam::DQuat, f64)> =
+        p.iter().map(|(a, b, t)| (g64(*a), g64(*b), *t)).collect();
+    let na = |a: [f64; 4]| {
+        nalgebra::UnitQuaternion::new_unchecked(nalgebra::Quaternion::new(a[0], a[1], a[2], a[3]))
+    };
+    let na64: Vec<_> = p.iter().map(|(a, b, t)| (na(*a), na(*b), *t)).collect();
+
+    let mut out32 = vec![[0f32; 4]; n];
+    let mut out64 = vec![[0f64; 4]; n];
+    // Each closure times nothing itself: it fills its output and returns it as f64 for the
+    // error check (outside the timed part, see below).
+    let o32 = std::cell::RefCell::new(&mut out32);
+    let o64 = std::cell::RefCell::new(&mut out64);
+    let time32 = |f: &dyn Fn(usize) -> [f32; 4]| {
+        let mut o = o32.borrow_mut();
+        let start = Instant::now();
+        for (i, slot) in o.iter_mut().enumerate() {
+            *slot = f(i);
+        }
+        let s = start.elapsed().as_secs_f64();
+        (s, o.iter().map(|q| q.map(f64::from)).collect::<Vec<_>>())
+    };
+    let time64 = |f: &dyn Fn(usize) -> [f64; 4]| {
+        let mut o = o64.borrow_mut();
+        let start = Instant::now();
+        for (i, slot) in o.iter_mut().enumerate() {
+            *slot = f(i);
+        }
+        let s = start.elapsed().as_secs_f64();
+        (s, o.to_vec())
+    };
+    let names = [
+        "chasles f32",
+        "glam f32",
+        "chasles f64",
+        "glam f64",
+        "nalgebra f64",
+        "reduced f32",
+        "reduced f64",
+    ];
+    let mut secs: Vec<Vec<f64>> = vec![Vec::new(); names.len()];
+    let mut worst = vec![0f64; names.len()];
+    for round in 0..rounds {
+        for (k, name) in names.iter().enumerate() {
+            let (s, got) = match *name {
+                "chasles f32" => time32(&|i| {
+                    let (a, b, t) = ours32[i];
+                    slerp_shortest(a, b, t).to_array()
+                }),
+                "glam f32" => time32(&|i| {
+                    let (a, b, t) = glam32[i];
+                    let q = a.slerp(b, t);
+                    [q.w, q.x, q.y, q.z]
+                }),
+                "chasles f64" => time64(&|i| {
+                    let (a, b, t) = ours64[i];
+                    slerp_shortest(a, b, t).to_array()
+                }),
+                "glam f64" => time64(&|i| {
+                    let (a, b, t) = glam64[i];
+                    let q = a.slerp(b, t);
+                    [q.w, q.x, q.y, q.z]
+                }),
+                "reduced f32" => time32(&|i| {
+                    let (a, b, t) = ours32[i];
+                    let b = if a.dot(b) < 0.0 { -b } else { b };
+                    let (wa, wb) = slerp_weights_reduced(a.cast(), b.cast(), f64::from(t));
+                    (a * wa as f32 + b * wb as f32).to_array()
+                }),
+                "reduced f64" => time64(&|i| {
+                    let (a, mut b, t) = ours64[i];
+                    if a.dot(b) < 0.0 {
+                        b = -b;
+                    }
+                    let (wa, wb) = slerp_weights_reduced(a, b, t);
+                    (a * wa + b * wb).to_array()
+                }),
+                _ => time64(&|i| {
+                    let (a, b, t) = &na64[i];
+                    let q = a.slerp(b, *t);
+                    [q.w, q.i, q.j, q.k]
+                }),
+            };
+            secs[k].push(s);
+            if round == 0 {
+                worst[k] = got
+                    .iter()
+                    .zip(&want)
+                    .map(|(g, w)| error(*g, *w))
+                    .fold(0.0, f64::max);
+            }
+        }
+    }
+    println!("{n} stored pairs, random t, shorter arc everywhere, all four components stored; {rounds} interleaved rounds");
+    println!("| library | ns per Slerp (median) | spread | largest error vs f64 reference |");
+    println!("|---|---|---|---|");
+    let mut med = Vec::new();
+    for (k, name) in names.iter().enumerate() {
+        let (m, lo, hi) = spread(&mut secs[k]);
+        med.push(m);
+        let ns = |s: f64| s * 1e9 / n as f64;
+        println!(
+            "| {name} | {:.2} | {:.2}–{:.2} | {:.2e} |",
+            ns(m),
+            ns(lo),
+            ns(hi),
+            worst[k]
+        );
+    }
+    println!(
+        "ratios (median time of the peer / ours): f32 vs glam {:.2}×, f64 vs nalgebra {:.2}×, f64 vs glam {:.2}×",
+        med[1] / med[0],
+        med[4] / med[2],
+        med[3] / med[2]
+    );
+}
