@@ -113,7 +113,7 @@ fn case(
         if !(n >= 0.0 && n.fract() == 0.0 && n <= 1e4) {
             return Err(FieldError::new(
                 "max_iterations",
-                format!("must be a whole number up to 10000 (DIB converges in a few; a cap, not a goal), got {n}"),
+                format!("must be a whole number up to 10000 (the iterative methods converge in tens; a cap, not a goal), got {n}"),
             ));
         }
         opt.max_iterations = n as usize;

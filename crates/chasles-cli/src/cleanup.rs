@@ -15,10 +15,18 @@ pub fn install() {
     let _ = ctrlc::set_handler(|| {
         if let Ok(paths) = LIVE.lock() {
             for p in paths.iter() {
-                if p.is_dir() {
-                    let _ = std::fs::remove_dir_all(p);
-                } else {
-                    let _ = std::fs::remove_file(p);
+                // The run goes on while this thread removes its temporaries: a folder may
+                // gain a file between `remove_dir_all`'s listing and its last `rmdir`, so
+                // try again until it is gone.
+                for _ in 0..1000 {
+                    let gone = if p.is_dir() {
+                        std::fs::remove_dir_all(p)
+                    } else {
+                        std::fs::remove_file(p)
+                    };
+                    if gone.is_ok() || !p.exists() {
+                        break;
+                    }
                 }
             }
         }

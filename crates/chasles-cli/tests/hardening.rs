@@ -249,9 +249,24 @@ fn a_malformed_gltf_is_one_line_and_exit_2() {
                 "--out",
                 out.to_str().unwrap(),
             ]),
-            "not a regular file",
+            "buffer 0: refers to /dev/zero, which cannot be read: /dev/zero: not a regular file",
         );
     }
+    // A buffer file that does not exist: named, its cause said once.
+    let mut doc: serde_json::Value =
+        serde_json::from_slice(chasles_models::SIMPLE_SKIN.bytes).unwrap();
+    doc["buffers"][0]["uri"] = serde_json::json!("no-such.bin");
+    std::fs::write(&f, serde_json::to_vec(&doc).unwrap()).unwrap();
+    let o = chasles(&[
+        "skin",
+        "--rig",
+        f.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    refused(&o, "buffer 0: refers to no-such.bin, which cannot be read");
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(err.matches("No such file").count(), 1, "{err}");
 }
 
 /// SimpleSkin with its clip's last key moved to `t` seconds (the sampler input, accessor 5,
@@ -581,4 +596,27 @@ fn positions_and_joints_past_the_reach_of_f32_are_named() {
         "joint 0's matrix entry (0, 0) is 1e10, past ±1.0737418e9",
     );
     assert!(!out.exists());
+}
+
+/// A tour given a folder of models (`$CHASLES_DATA`) with a broken one leaves that model
+/// out, says why, and still writes its whole report.
+#[test]
+fn a_tour_with_a_broken_model_leaves_it_out() {
+    let data = tempfile::tempdir().unwrap();
+    std::fs::write(data.path().join("junk.glb"), b"glTF\x02\x00\x00\x00junk").unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("report");
+    let o = Command::new(env!("CARGO_BIN_EXE_chasles"))
+        .args(["tour", "--samples", "10", "--out", out.to_str().unwrap()])
+        .env("CHASLES_DATA", data.path())
+        .output()
+        .unwrap();
+    let text = stdout(&o);
+    assert!(text.contains("junk.glb does not load, left out"), "{text}");
+    assert!(out.join("index.html").is_file());
+    let left: Vec<_> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
+    assert_eq!(left, ["report"]);
 }

@@ -15,9 +15,9 @@ pub const MAX_TEXT_BYTES: u64 = 64 << 20;
 /// The regular file `path`, opened, and its length; a device, folder or pipe is refused.
 fn open_regular(path: &Path) -> Result<(std::fs::File, u64)> {
     let name = || path.display().to_string();
-    let io = |source| SkinError::Io {
+    let io = |cause| SkinError::Io {
         path: name(),
-        source,
+        cause,
     };
     let meta = std::fs::metadata(path).map_err(io)?;
     if !meta.is_file() {
@@ -61,9 +61,9 @@ pub fn read_capped(reader: impl Read, limit: u64, name: &str) -> Result<Vec<u8>>
     reader
         .take(limit.saturating_add(1))
         .read_to_end(&mut out)
-        .map_err(|source| SkinError::Io {
+        .map_err(|cause| SkinError::Io {
             path: name.to_string(),
-            source,
+            cause,
         })?;
     if out.len() as u64 > limit {
         return Err(SkinError::TooLarge {
@@ -79,7 +79,7 @@ pub fn read_capped(reader: impl Read, limit: u64, name: &str) -> Result<Vec<u8>>
 pub fn read_text(path: &Path, limit: u64) -> Result<String> {
     String::from_utf8(read_file(path, limit)?).map_err(|e| SkinError::Io {
         path: path.display().to_string(),
-        source: std::io::Error::new(
+        cause: std::io::Error::new(
             std::io::ErrorKind::InvalidData,
             format!("not UTF-8 text ({e})"),
         ),

@@ -6,13 +6,12 @@ use thiserror::Error;
 #[derive(Debug, Error)]
 pub enum SkinError {
     /// A file could not be read or written.
-    #[error("{path}: {source}")]
+    #[error("{path}: {cause}")]
     Io {
         /// The file.
         path: String,
-        /// The cause.
-        #[source]
-        source: std::io::Error,
+        /// The cause (in the message, not also a `source`: printed once).
+        cause: std::io::Error,
     },
     /// A path that is not a regular file (a device, a folder, a pipe).
     #[error("{path}: not a regular file")]

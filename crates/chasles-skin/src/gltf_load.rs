@@ -62,7 +62,14 @@ fn load_buffers(
                             &base.join(uri),
                             b.length() as u64,
                             crate::bounded::MAX_MODEL_BYTES,
-                        )?
+                        )
+                        .map_err(|e| {
+                            gltf_content(
+                                name,
+                                format!("buffer {}", b.index()),
+                                format!("refers to {uri}, which cannot be read: {e}"),
+                            )
+                        })?
                     } else {
                         return Err(gltf_content(
                             name,
