@@ -7,10 +7,10 @@
 //!   `acos(p·q)` near 0), and for small Ω `sin(hΩ)/sin Ω` is evaluated as
 //!   `h · sinc(hΩ)/sinc(Ω)`, so Ω → 0 has no 0/0 (the report's patch `Slerp(q, q, h) ≡ q`
 //!   is the limit, not a special case). Up to a quarter turn (`p·q ≥ 0`) the weights come
-//!   from the reduced polynomial kernels of [`crate::trig`] (the ones ScLERP uses), in f64
-//!   for f32 and f64 alike ([`slerp_weights_reduced`]): no `acos`, `sin`, square root or
-//!   0/0, within a few ulp of f64. Eberly's trig-free series ([`slerp_weights_series`])
-//!   remains as an all-`T` alternative, accurate to 3e-8.
+//!   in f32 from Eberly's trig-free series ([`slerp_weights_series`], as accurate as f32)
+//!   and in f64 from the reduced polynomial kernels of [`crate::trig`] (the ones ScLERP
+//!   uses; [`slerp_weights_reduced`]): no `acos`, `sin`, square root or 0/0, within a few
+//!   ulp of f64.
 //!
 //! Both follow the great arc between p and q *as given* (Proposition 29: the shorter arc
 //! between the two 4D points). Footnote 7: q and −q are the same rotation, so the shorter
@@ -28,24 +28,39 @@ pub fn slerp_pow<T: Real>(p: Quat<T>, q: Quat<T>, h: T) -> Result<Quat<T>> {
 
 /// Eq. 6.13 for unit p and q, exact for Ω → 0 and defined for q = −p (see module docs).
 ///
-/// For `p·q ≥ 0` (Ω ≤ π/2, every shorter-arc Slerp) the weights `sin(hΩ)/sin Ω` come from
-/// the reduced polynomial kernels in f64 ([`slerp_weights_reduced`]: no `acos`, `sin` or
-/// square root, within a few ulp of f64), in f32 and f64 alike; beyond a quarter turn the
-/// trigonometric form, [`slerp_trig`].
-#[inline]
+/// For `p·q ≥ 0` (Ω ≤ π/2, every shorter-arc Slerp) the weights `sin(hΩ)/sin Ω` come, in
+/// f32 (any `Real` with ε > 1e-10), from Eberly's trig-free series
+/// ([`slerp_weights_series`], within 3e-8: below f32's rounding), and in f64 from the
+/// reduced polynomial kernels ([`slerp_weights_reduced`]: no `acos`, `sin` or square root,
+/// within a few ulp); beyond a quarter turn the trigonometric form, [`slerp_trig`], kept
+/// out of line so that the common path inlines small.
+#[inline(always)]
 pub fn slerp<T: Real>(p: Quat<T>, q: Quat<T>, h: T) -> Quat<T> {
-    if p.dot(q) >= T::ZERO {
-        let (a, b) = slerp_weights_reduced(p.cast(), q.cast(), h.to_f64());
-        return p * T::from_f64(a) + q * T::from_f64(b);
+    let x = p.dot(q);
+    if x >= T::ZERO {
+        return within_quarter_turn(p, q, x, h);
     }
     slerp_trig(p, q, h)
+}
+
+/// Slerp for `x = p·q ≥ 0` with no branch and no call: the series in f32 (below f32's
+/// rounding), the reduced kernels in f64 — so that a loop of such Slerps can vectorize.
+#[inline(always)]
+fn within_quarter_turn<T: Real>(p: Quat<T>, q: Quat<T>, x: T, h: T) -> Quat<T> {
+    if T::EPSILON > T::from_f64(1e-10) {
+        let (a, b) = slerp_weights_series(x, h);
+        p * a + q * b
+    } else {
+        let (a, b) = slerp_weights_reduced(p.cast(), q.cast(), h.to_f64());
+        p * T::from_f64(a) + q * T::from_f64(b)
+    }
 }
 
 /// Eq. 6.13 by trigonometry: `Ω = acos(p·q)` where that is well conditioned
 /// (`|p·q| < ½`, with `sin Ω = √(1 − (p·q)²)`), else `Ω = 2 atan2(‖p − q‖, ‖p + q‖)` and
 /// `sin Ω = ‖p − q‖ ‖p + q‖ / 2`, with the sinc form below Ω = 1e-3 so that Ω → 0 has no
 /// 0/0. h = 0 and h = 1 give p and q exactly.
-#[inline]
+#[inline(never)]
 pub fn slerp_trig<T: Real>(p: Quat<T>, q: Quat<T>, h: T) -> Quat<T> {
     if h == T::ZERO {
         return p;
@@ -90,20 +105,20 @@ pub fn slerp_trig<T: Real>(p: Quat<T>, q: Quat<T>, h: T) -> Quat<T> {
 /// `sin(hΩ)/sin Ω = h · sinc(hΩ/2) cos(hΩ/2) / (sinc(Ω/2) cos(Ω/2))`, every argument
 /// within π/4 ([`crate::trig::sinc_cos_reduced`]). Smooth at Ω = 0 (no 0/0), exact at
 /// h = 0 and h = 1.
-#[inline]
+#[inline(always)]
 pub fn slerp_weights_reduced(p: Quat<f64>, q: Quat<f64>, h: f64) -> (f64, f64) {
     use crate::trig::{acos_over_chord, sinc_cos_reduced};
-    use wide::f64x2;
     let y = (p - q).norm_squared() * 0.5;
     let a = acos_over_chord(y);
     let z0 = y * a * a * 0.5;
     let g = 1.0 - h;
-    // (1 − h, h) in two lanes: one evaluation of the polynomials for both weights.
-    let t = f64x2::new([g, h]);
-    let (s, c) = sinc_cos_reduced(t * t * f64x2::splat(z0));
+    // Scalar: two lanes of f64x2 for (1 − h, h) measured slower (the shuffles and the
+    // vector division cost more than the second scalar polynomial saves).
     let (s0, c0) = sinc_cos_reduced(z0);
-    let [wp, wq] = (t * s * c / f64x2::splat(s0 * c0)).to_array();
-    (wp, wq)
+    let (sg, cg) = sinc_cos_reduced(g * g * z0);
+    let (sh, ch) = sinc_cos_reduced(h * h * z0);
+    let den = s0 * c0;
+    ((g * sg * cg) / den, (h * sh * ch) / den)
 }
 
 /// The Slerp weights `(sin((1 − h)Ω)/sin Ω, sin(hΩ)/sin Ω)` for `x = cos Ω ∈ [0, 1]`
@@ -114,7 +129,7 @@ pub fn slerp_weights_reduced(p: Quat<f64>, q: Quat<f64>, h: f64) -> (f64, f64) {
 /// stand for the tail; μ was fitted here by minimax over x ∈ [0, 1], t ∈ [0, 1], where
 /// the maximum error is 3.1e-8 (eight terms, as in Eberly's float version, reach only
 /// 1.9e-5 with the best μ — too coarse for f32). Exact at h = 0 and h = 1.
-#[inline]
+#[inline(always)]
 pub fn slerp_weights_series<T: Real>(x: T, h: T) -> (T, T) {
     let xm1 = x - T::ONE;
     let g = T::ONE - h;
@@ -154,8 +169,11 @@ const fn series_coefficients() -> ([f64; SERIES_TERMS], [f64; SERIES_TERMS]) {
 }
 
 /// Slerp along the shorter rotation (footnote 7): uses −q when `p·q < 0`.
-#[inline]
+#[inline(always)]
 pub fn slerp_shortest<T: Real>(p: Quat<T>, q: Quat<T>, h: T) -> Quat<T> {
-    let q = if p.dot(q) < T::ZERO { -q } else { q };
-    slerp(p, q, h)
+    // After the flip p·q ≥ 0: never the trigonometric form, no branch, no call (a loop of
+    // shorter-arc Slerps can vectorize).
+    let x = p.dot(q);
+    let s = if x < T::ZERO { -T::ONE } else { T::ONE };
+    within_quarter_turn(p, q * s, x * s, h)
 }
