@@ -1,7 +1,8 @@
 //! Our fast LBS and DQS beside the careful glam and nalgebra baselines of `benches/peers`
 //! (each checked against an f64 reference in `tests/peers.rs`), in interleaved rounds on
 //! one thread and on all threads: the median time of each per round and the ratio of the
-//! peer's median to ours, with the spread over rounds. 54 joints, 4 random influences.
+//! peer's median to ours, with the spread over rounds; and a memory copy of the 72 bytes a
+//! skinned vertex moves, the bandwidth bound. 54 joints, 4 random influences.
 //!
 //! `cargo run --release -p chasles-skin --example peers_ratio [VERTICES] [ROUNDS]`
 
@@ -46,6 +47,11 @@ fn main() {
         peers::nalgebra_dual_quats(&jt),
     );
     let v = rig.vertices();
+    // The bandwidth bound: a copy of 36 bytes a vertex reads 36 and writes 36, the 72
+    // bytes each skinned vertex moves (48 read, 24 written); on all threads in the
+    // kernels' chunks of 4096 vertices.
+    let src = vec![1u8; n * 36];
+    let dst = std::cell::RefCell::new(vec![0u8; n * 36]);
     let kernels: Vec<Kernel> = vec![
         (
             "chasles lbs",
@@ -75,6 +81,20 @@ fn main() {
             "nalgebra dqs",
             Box::new(|o, par| run(v, o, par, &|v, o| peers::nalgebra_dqs(v, &nd, o))),
         ),
+        (
+            "memcpy 72 B a vertex",
+            Box::new(|_, par| {
+                let mut d = dst.borrow_mut();
+                if par {
+                    d.par_chunks_mut(4096 * 36)
+                        .zip(src.par_chunks(4096 * 36))
+                        .for_each(|(d, s)| d.copy_from_slice(s));
+                } else {
+                    d.copy_from_slice(&src);
+                }
+                black_box(d[n]);
+            }),
+        ),
     ];
     let mut out = vec![[0f32; 6]; n];
     for parallel in [false, true] {
@@ -96,7 +116,7 @@ fn main() {
             1
         };
         println!("{n} vertices, {threads} thread(s), {rounds} interleaved rounds");
-        println!("| kernel | M vertices/s (median) | spread over rounds | our speed / its |");
+        println!("| kernel | M vertices/s (median) | spread over rounds | our speed / its (memcpy: our DQS's share of the bound) |");
         println!("|---|---|---|---|");
         for (k, (name, _)) in kernels.iter().enumerate() {
             let ours = if name.contains("lbs") { 0 } else { 4 };

@@ -1,10 +1,11 @@
-//! Slerp over a million stored random pairs with random t, beside glam and nalgebra in one
-//! interleaved run (issue 18): every library takes the shorter arc (glam and nalgebra flip
-//! internally; ours is `slerp_shortest`), every result is written out whole, and each
-//! library's largest error against an f64 reference on the same pairs is printed beside
-//! its speed, so a faster Slerp is never a less accurate one.
+//! Slerp and ScLERP over a million stored random pairs with random t, beside glam and
+//! nalgebra in one interleaved run (issue 18): every library takes the shorter arc (glam
+//! and nalgebra flip internally; ours is `slerp_shortest`, and ScLERP takes it by
+//! definition), every result is written out whole, and each library's largest error
+//! against an f64 reference on the same pairs is printed beside its speed, so a faster
+//! Slerp is never a less accurate one.
 //!
-//! `cargo run --release -p chasles --example slerp_stored [PAIRS] [ROUNDS]`
+//! `cargo run --release -p chasles --example stored_pairs [PAIRS] [ROUNDS]`
 //!
 //! Why this differs from criterion's loop (`cargo bench -p chasles --bench interp`): there
 //! 4096 pairs stay in L1/L2, t is one constant and only `w` is summed, so the compiler
@@ -12,8 +13,9 @@
 //! 10⁶ pairs stream from memory (36 MB in f32), t varies per call and all four components
 //! are stored.
 
+use chasles::blend::sclerp::{sclerp, sclerp_pow};
 use chasles::interp::slerp::{slerp_pow, slerp_shortest, slerp_weights_series};
-use chasles::Quat;
+use chasles::{DualQuat, Quat, Vec3};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 use std::time::Instant;
@@ -209,5 +211,83 @@ fn main() {
         med[1] / med[0],
         med[4] / med[2],
         med[3] / med[2]
+    );
+
+    // ScLERP: random unit dual quaternions (rotation anywhere, translation in a unit cube),
+    // f64, against eq. 6.4's form p̂ (p̂* q̂)^t as the reference.
+    let dq = |a: [f64; 4], t: [f64; 4]| {
+        DualQuat::from_rotation_translation(Quat::from_array(a), Vec3::new(t[1], t[2], t[3]))
+    };
+    let dpairs: Vec<(DualQuat<f64>, DualQuat<f64>, f64)> = p
+        .iter()
+        .zip(p.iter().rev())
+        .map(|((a, b, t), (c, d, _))| (dq(*a, *c), dq(*b, *d), *t))
+        .collect();
+    let dwant: Vec<[f64; 8]> = dpairs
+        .iter()
+        .map(|(a, b, t)| sclerp_pow(*a, *b, *t).expect("unit pairs").to_array())
+        .collect();
+    let na_dq = |d: &DualQuat<f64>| {
+        let q = |q: Quat<f64>| nalgebra::Quaternion::new(q.w, q.x, q.y, q.z);
+        nalgebra::UnitDualQuaternion::new_unchecked(nalgebra::DualQuaternion::from_real_and_dual(
+            q(d.real),
+            q(d.dual),
+        ))
+    };
+    let nad: Vec<_> = dpairs
+        .iter()
+        .map(|(a, b, t)| (na_dq(a), na_dq(b), *t))
+        .collect();
+    let mut dout = vec![[0f64; 8]; n];
+    let mut dsecs = [Vec::new(), Vec::new()];
+    let mut dworst = [0f64; 2];
+    for round in 0..rounds {
+        for k in 0..2 {
+            let start = Instant::now();
+            if k == 0 {
+                for (o, (a, b, t)) in dout.iter_mut().zip(&dpairs) {
+                    *o = sclerp(*a, *b, *t).expect("unit pairs").to_array();
+                }
+            } else {
+                for (o, (a, b, t)) in dout.iter_mut().zip(&nad) {
+                    let d = a.sclerp(b, *t).into_inner();
+                    *o = [
+                        d.real.w, d.real.i, d.real.j, d.real.k, d.dual.w, d.dual.i, d.dual.j,
+                        d.dual.k,
+                    ];
+                }
+            }
+            dsecs[k].push(start.elapsed().as_secs_f64());
+            if round == 0 {
+                dworst[k] = dout
+                    .iter()
+                    .zip(&dwant)
+                    .map(|(g, w)| {
+                        let d =
+                            |s: f64| (0..8).map(|i| (g[i] - s * w[i]).abs()).fold(0.0, f64::max);
+                        d(1.0).min(d(-1.0))
+                    })
+                    .fold(0.0, f64::max);
+            }
+        }
+    }
+    println!("| library | ns per ScLERP (median) | spread | largest error vs f64 reference |");
+    println!("|---|---|---|---|");
+    let mut dmed = [0.0; 2];
+    for (k, name) in ["chasles f64", "nalgebra f64"].iter().enumerate() {
+        let (m, lo, hi) = spread(&mut dsecs[k]);
+        dmed[k] = m;
+        let ns = |s: f64| s * 1e9 / n as f64;
+        println!(
+            "| {name} | {:.2} | {:.2}–{:.2} | {:.2e} |",
+            ns(m),
+            ns(lo),
+            ns(hi),
+            dworst[k]
+        );
+    }
+    println!(
+        "ScLERP ratio (nalgebra's median time / ours): {:.2}×",
+        dmed[1] / dmed[0]
     );
 }
