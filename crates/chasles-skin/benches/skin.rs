@@ -18,27 +18,13 @@ mod peers;
 use rayon::prelude::*;
 use std::hint::black_box;
 
-/// `f` over `out` on all threads, in the fast paths' chunks of 4096 vertices.
-fn all_threads(
-    v: &[chasles_skin::fast::Vertex<4>],
-    out: &mut [Out],
-    f: impl Fn(&[chasles_skin::fast::Vertex<4>], &mut [Out]) + Sync,
-) {
-    out.par_chunks_mut(4096)
-        .zip(v.par_chunks(4096))
-        .for_each(|(o, v)| f(v, o));
-}
-
 fn bench(c: &mut Criterion) {
     for n in [100_000usize, 1_000_000] {
         let rig = synthetic::rig(n, 54, 7);
         let jt = synthetic::joints(54, 7);
         let (m12, d8) = (matrices12(&jt), dual_quats8(&jt));
-        let (gj, gd) = (peers::glam_joints(&jt), peers::glam_dual_quats(&jt));
-        let (nm, nd) = (
-            peers::nalgebra_matrices(&jt),
-            peers::nalgebra_dual_quats(&jt),
-        );
+        let pj = peers::Joints::of(&jt);
+        let (gj, gd, nm, nd) = (&pj.glam, &pj.glam_dq, &pj.nalgebra, &pj.nalgebra_dq);
         let tw = twists(&jt).unwrap();
         let cl = clusters(&rig);
         let mut out = vec![[0f32; 6]; n];
@@ -73,11 +59,7 @@ fn bench(c: &mut Criterion) {
         for parallel in [false, true] {
             let th = if parallel { "all threads" } else { "1 thread" };
             let run = |out: &mut [Out], f: &(dyn Fn(&[_], &mut [Out]) + Sync)| {
-                if parallel {
-                    all_threads(v, out, f)
-                } else {
-                    f(v, out)
-                }
+                peers::run(v, out, parallel, f)
             };
             g.bench_function(format!("glam lbs (Mat3A, normals by M), {th}"), |b| {
                 b.iter(|| run(black_box(&mut out), &|v, o| peers::glam_lbs_by_m(v, &gj, o)))

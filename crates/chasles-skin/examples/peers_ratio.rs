@@ -9,7 +9,7 @@
 #[path = "../benches/peers/mod.rs"]
 mod peers;
 
-use chasles_skin::fast::{dqs, dual_quats8, lbs, matrices12, Out, Vertex};
+use chasles_skin::fast::{dqs, dual_quats8, lbs, matrices12, Out};
 use chasles_skin::synthetic;
 use rayon::prelude::*;
 use std::hint::black_box;
@@ -18,22 +18,6 @@ use std::time::Instant;
 /// A kernel: the name and what it does to the whole mesh on one or all threads.
 type Kernel<'a> = (&'static str, Box<dyn Fn(&mut [Out], bool) + 'a>);
 
-/// `f` over the mesh on one thread, or on all in chunks of 4096 vertices.
-fn run(
-    v: &[Vertex<4>],
-    out: &mut [Out],
-    parallel: bool,
-    f: &(dyn Fn(&[Vertex<4>], &mut [Out]) + Sync),
-) {
-    if parallel {
-        out.par_chunks_mut(4096)
-            .zip(v.par_chunks(4096))
-            .for_each(|(o, v)| f(v, o));
-    } else {
-        f(v, out)
-    }
-}
-
 fn main() {
     let mut args = std::env::args().skip(1);
     let n: usize = args.next().and_then(|a| a.parse().ok()).unwrap_or(100_000);
@@ -41,11 +25,8 @@ fn main() {
     let rig = synthetic::rig(n, 54, 7);
     let jt = synthetic::joints(54, 7);
     let (m12, d8) = (matrices12(&jt), dual_quats8(&jt));
-    let (gj, gd) = (peers::glam_joints(&jt), peers::glam_dual_quats(&jt));
-    let (nm, nd) = (
-        peers::nalgebra_matrices(&jt),
-        peers::nalgebra_dual_quats(&jt),
-    );
+    let pj = peers::Joints::of(&jt);
+    let (gj, gd, nm, nd) = (&pj.glam, &pj.glam_dq, &pj.nalgebra, &pj.nalgebra_dq);
     let v = rig.vertices();
     // The bandwidth bound: a copy of 36 bytes a vertex reads 36 and writes 36, the 72
     // bytes each skinned vertex moves (48 read, 24 written); on all threads in the
@@ -59,15 +40,15 @@ fn main() {
         ),
         (
             "glam lbs by M",
-            Box::new(|o, par| run(v, o, par, &|v, o| peers::glam_lbs_by_m(v, &gj, o))),
+            Box::new(|o, par| peers::run(v, o, par, &|v, o| peers::glam_lbs_by_m(v, &gj, o))),
         ),
         (
             "glam lbs cofactor",
-            Box::new(|o, par| run(v, o, par, &|v, o| peers::glam_lbs_cofactor(v, &gj, o))),
+            Box::new(|o, par| peers::run(v, o, par, &|v, o| peers::glam_lbs_cofactor(v, &gj, o))),
         ),
         (
             "nalgebra lbs",
-            Box::new(|o, par| run(v, o, par, &|v, o| peers::nalgebra_lbs(v, &nm, o))),
+            Box::new(|o, par| peers::run(v, o, par, &|v, o| peers::nalgebra_lbs(v, &nm, o))),
         ),
         (
             "chasles dqs",
@@ -75,11 +56,11 @@ fn main() {
         ),
         (
             "glam dqs",
-            Box::new(|o, par| run(v, o, par, &|v, o| peers::glam_dqs(v, &gd, o))),
+            Box::new(|o, par| peers::run(v, o, par, &|v, o| peers::glam_dqs(v, &gd, o))),
         ),
         (
             "nalgebra dqs",
-            Box::new(|o, par| run(v, o, par, &|v, o| peers::nalgebra_dqs(v, &nd, o))),
+            Box::new(|o, par| peers::run(v, o, par, &|v, o| peers::nalgebra_dqs(v, &nd, o))),
         ),
         (
             "memcpy 72 B a vertex",

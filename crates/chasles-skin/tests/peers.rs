@@ -65,11 +65,8 @@ fn every_baseline_matches_an_f64_reference_on_a_single_influence_mesh() {
     let want = reference(&rig, &jt);
     let v = rig.vertices();
     let mut out = vec![[0f32; 6]; v.len()];
-    let (gj, gd) = (peers::glam_joints(&jt), peers::glam_dual_quats(&jt));
-    let (nm, nd) = (
-        peers::nalgebra_matrices(&jt),
-        peers::nalgebra_dual_quats(&jt),
-    );
+    let pj = peers::Joints::of(&jt);
+    let (gj, gd, nm, nd) = (&pj.glam, &pj.glam_dq, &pj.nalgebra, &pj.nalgebra_dq);
     let mut check = |name: &str, want: &[[f64; 6]], run: &mut dyn FnMut(&mut [Out])| {
         out.iter_mut().for_each(|o| *o = [f32::NAN; 6]);
         run(&mut out);

@@ -20,6 +20,48 @@
 use chasles_skin::fast::{Out, Vertex};
 use glam::{Mat3A, Vec3A, Vec4};
 
+/// Every baseline's joints for one pose.
+pub struct Joints {
+    /// glam LBS's.
+    pub glam: Vec<GlamJoint>,
+    /// glam DQS's.
+    pub glam_dq: Vec<(Vec4, Vec4)>,
+    /// nalgebra LBS's.
+    pub nalgebra: Vec<nalgebra::Matrix4<f32>>,
+    /// nalgebra DQS's.
+    pub nalgebra_dq: Vec<nalgebra::UnitDualQuaternion<f32>>,
+}
+
+impl Joints {
+    /// The joints of `jt` in every baseline's form.
+    pub fn of(jt: &chasles_skin::JointTransforms) -> Self {
+        Joints {
+            glam: glam_joints(jt),
+            glam_dq: glam_dual_quats(jt),
+            nalgebra: nalgebra_matrices(jt),
+            nalgebra_dq: nalgebra_dual_quats(jt),
+        }
+    }
+}
+
+/// `f` over the mesh `v` and its output on one thread, or on all in the fast paths' chunks
+/// of 4096 vertices.
+pub fn run(
+    v: &[Vertex<4>],
+    out: &mut [Out],
+    parallel: bool,
+    f: &(dyn Fn(&[Vertex<4>], &mut [Out]) + Sync),
+) {
+    use rayon::prelude::*;
+    if parallel {
+        out.par_chunks_mut(4096)
+            .zip(v.par_chunks(4096))
+            .for_each(|(o, v)| f(v, o));
+    } else {
+        f(v, out)
+    }
+}
+
 /// A joint for the glam LBS baselines: the 3×3 block as SIMD columns and the translation.
 #[derive(Clone, Copy)]
 pub struct GlamJoint {
