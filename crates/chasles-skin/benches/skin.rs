@@ -62,24 +62,24 @@ fn bench(c: &mut Criterion) {
                 peers::run(v, out, parallel, f)
             };
             g.bench_function(format!("glam lbs (Mat3A, normals by M), {th}"), |b| {
-                b.iter(|| run(black_box(&mut out), &|v, o| peers::glam_lbs_by_m(v, &gj, o)))
+                b.iter(|| run(black_box(&mut out), &|v, o| peers::glam_lbs_by_m(v, gj, o)))
             });
             g.bench_function(format!("glam lbs (Mat3A, cofactor normals), {th}"), |b| {
                 b.iter(|| {
                     run(black_box(&mut out), &|v, o| {
-                        peers::glam_lbs_cofactor(v, &gj, o)
+                        peers::glam_lbs_cofactor(v, gj, o)
                     })
                 })
             });
             g.bench_function(format!("glam dqs (Vec4, careful), {th}"), |b| {
-                b.iter(|| run(black_box(&mut out), &|v, o| peers::glam_dqs(v, &gd, o)))
+                b.iter(|| run(black_box(&mut out), &|v, o| peers::glam_dqs(v, gd, o)))
             });
         }
         g.bench_function("nalgebra lbs (as users call it), 1 thread", |b| {
-            b.iter(|| peers::nalgebra_lbs(v, &nm, black_box(&mut out)))
+            b.iter(|| peers::nalgebra_lbs(v, nm, black_box(&mut out)))
         });
         g.bench_function("nalgebra dqs (as users call it), 1 thread", |b| {
-            b.iter(|| peers::nalgebra_dqs(v, &nd, black_box(&mut out)))
+            b.iter(|| peers::nalgebra_dqs(v, nd, black_box(&mut out)))
         });
         // Bandwidth bound: memcpy of 36 bytes per vertex reads 36 and writes 36 — the 72
         // bytes each skinned vertex must move (48 read, 24 written).

@@ -40,15 +40,15 @@ fn main() {
         ),
         (
             "glam lbs by M",
-            Box::new(|o, par| peers::run(v, o, par, &|v, o| peers::glam_lbs_by_m(v, &gj, o))),
+            Box::new(|o, par| peers::run(v, o, par, &|v, o| peers::glam_lbs_by_m(v, gj, o))),
         ),
         (
             "glam lbs cofactor",
-            Box::new(|o, par| peers::run(v, o, par, &|v, o| peers::glam_lbs_cofactor(v, &gj, o))),
+            Box::new(|o, par| peers::run(v, o, par, &|v, o| peers::glam_lbs_cofactor(v, gj, o))),
         ),
         (
             "nalgebra lbs",
-            Box::new(|o, par| peers::run(v, o, par, &|v, o| peers::nalgebra_lbs(v, &nm, o))),
+            Box::new(|o, par| peers::run(v, o, par, &|v, o| peers::nalgebra_lbs(v, nm, o))),
         ),
         (
             "chasles dqs",
@@ -56,11 +56,11 @@ fn main() {
         ),
         (
             "glam dqs",
-            Box::new(|o, par| peers::run(v, o, par, &|v, o| peers::glam_dqs(v, &gd, o))),
+            Box::new(|o, par| peers::run(v, o, par, &|v, o| peers::glam_dqs(v, gd, o))),
         ),
         (
             "nalgebra dqs",
-            Box::new(|o, par| peers::run(v, o, par, &|v, o| peers::nalgebra_dqs(v, &nd, o))),
+            Box::new(|o, par| peers::run(v, o, par, &|v, o| peers::nalgebra_dqs(v, nd, o))),
         ),
         (
             "memcpy 72 B a vertex",

@@ -74,17 +74,17 @@ fn every_baseline_matches_an_f64_reference_on_a_single_influence_mesh() {
         assert!(e < 4e-6, "{name}: off the f64 reference by {e:e}");
     };
     check("glam lbs by M", &want, &mut |o| {
-        peers::glam_lbs_by_m(v, &gj, o)
+        peers::glam_lbs_by_m(v, gj, o)
     });
     check("glam lbs cofactor", &want, &mut |o| {
-        peers::glam_lbs_cofactor(v, &gj, o)
+        peers::glam_lbs_cofactor(v, gj, o)
     });
-    check("glam dqs", &want, &mut |o| peers::glam_dqs(v, &gd, o));
+    check("glam dqs", &want, &mut |o| peers::glam_dqs(v, gd, o));
     check("nalgebra lbs", &want, &mut |o| {
-        peers::nalgebra_lbs(v, &nm, o)
+        peers::nalgebra_lbs(v, nm, o)
     });
     check("nalgebra dqs", &want, &mut |o| {
-        peers::nalgebra_dqs(v, &nd, o)
+        peers::nalgebra_dqs(v, nd, o)
     });
     let (m12, d8) = (matrices12(&jt), dual_quats8(&jt));
     check("chasles lbs", &want, &mut |o| {
@@ -104,20 +104,20 @@ fn every_baseline_matches_an_f64_reference_on_a_single_influence_mesh() {
         }
     }
     let want = reference(&rig, &scaled);
-    let gj = peers::glam_joints(&scaled);
-    let nm = peers::nalgebra_matrices(&scaled);
+    let scaled_joints = peers::Joints::of(&scaled);
+    let (gj, nm) = (&scaled_joints.glam, &scaled_joints.nalgebra);
     check("glam lbs cofactor, scaled", &want, &mut |o| {
-        peers::glam_lbs_cofactor(v, &gj, o)
+        peers::glam_lbs_cofactor(v, gj, o)
     });
     check("nalgebra lbs, scaled", &want, &mut |o| {
-        peers::nalgebra_lbs(v, &nm, o)
+        peers::nalgebra_lbs(v, nm, o)
     });
     let m12 = matrices12(&scaled);
     check("chasles lbs, scaled", &want, &mut |o| {
         lbs(&rig, &m12, o, false).unwrap()
     });
     let mut by_m = vec![[0f32; 6]; v.len()];
-    peers::glam_lbs_by_m(v, &gj, &mut by_m);
+    peers::glam_lbs_by_m(v, gj, &mut by_m);
     assert!(
         worst(&by_m, &want) > 0.1,
         "normals by M are wrong under non-uniform scale"
