@@ -8,8 +8,8 @@
 //! `{"dq": [8 numbers]}` or any other object form of `chasles convert --jsonl`
 //! ([`crate::repr::MotionFields`]). Output: a JSON array, one object per case in order, with
 //! `rotation`, `translation`, `matrix`, `dq`, `rigid` and, for dec, log-iter and dib,
-//! `iterations` (and `"capped": true`, with a note on stderr, when `max_iterations`
-//! stopped it before its stopping rule was met). `--plot`, `--render` and `--gif` draw the first case
+//! `iterations` (and `"capped": true`, with a note on stderr, when it ran all
+//! `max_iterations` updates without its stopping rule stopping it). `--plot`, `--render` and `--gif` draw the first case
 //! ([`crate::blend_pictures`]).
 //!
 //! The input is read by [`crate::blend_case`]; every output (the JSON and the pictures) is
@@ -65,12 +65,12 @@ pub fn run(m: Method, input: &str, pictures: &Pictures) -> Result<()> {
             files.push((p, blend_pictures::sphere(&c, m)?.png()));
         }
     }
+    let all: Vec<(&std::path::Path, &[u8])> = files.iter().map(|(p, b)| (*p, &b[..])).collect();
+    write_all(&all)?;
     for n in &b.notes {
         eprintln!("note: {n}");
     }
     println!("{json}");
-    let all: Vec<(&std::path::Path, &[u8])> = files.iter().map(|(p, b)| (*p, &b[..])).collect();
-    write_all(&all)?;
     for (p, _) in &files {
         eprintln!("wrote {}", p.display());
     }

@@ -219,12 +219,13 @@ pub fn blend_all(method: Method, input: &str) -> Result<Blended> {
         });
         if let Some(it) = b.iterations {
             o["iterations"] = json!(it);
-            // Stopped by the cap, its stopping rule not met: said, in the output and on
+            // Stopped by the cap (the stopping rule, tested before each update, had not
+            // stopped it; it is not tested after the last): said, in the output and on
             // stderr.
             if it == opt.max_iterations {
                 o["capped"] = json!(true);
                 notes.push(format!(
-                    "case {i}: {} stopped at max_iterations = {it} before its stopping rule (precision {:e}) was met",
+                    "case {i}: {} ran all max_iterations = {it} updates; its stopping rule (precision {:e}) had not stopped it",
                     method.name(),
                     opt.precision
                 ));

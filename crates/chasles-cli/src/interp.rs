@@ -318,12 +318,16 @@ pub fn run(args: InterpArgs) -> Result<()> {
         };
         files.push((out, text.into_bytes(), String::new()));
     }
-    if let Some(dir) = &args.frames_dir {
-        write_frames(dir, &turned)?;
-        eprintln!("wrote {} ({} frames)", dir.display(), turned.len());
-    }
+    // The other outputs are written all or none, after the frames are made and before
+    // they are moved into place: one failure leaves nothing.
     let all: Vec<(&Path, &[u8])> = files.iter().map(|(p, b, _)| (*p, &b[..])).collect();
-    write_all(&all)?;
+    match &args.frames_dir {
+        Some(dir) => {
+            write_frames(dir, &turned, || write_all(&all))?;
+            eprintln!("wrote {} ({} frames)", dir.display(), turned.len());
+        }
+        None => write_all(&all)?,
+    }
     for (_, _, said) in files.iter().filter(|f| !f.2.is_empty()) {
         eprintln!("{said}");
     }
@@ -340,11 +344,18 @@ pub fn run(args: InterpArgs) -> Result<()> {
 }
 
 /// Every frame as `frame-NNNN.png` (the R turned by it, 240 pixels, its number in the
-/// corner), written all or nothing into `dir` ([`write_frames_dir`]).
-fn write_frames(dir: &Path, turned: &[Quat<f64>]) -> Result<()> {
+/// corner), written all or nothing into `dir` ([`write_frames_dir`]), `then` before the
+/// frames are moved into place.
+fn write_frames(dir: &Path, turned: &[Quat<f64>], then: impl FnOnce() -> Result<()>) -> Result<()> {
     let digits = turned.len().saturating_sub(1).to_string().len().max(4);
-    write_frames_dir(dir, turned.len(), "frames", |i| {
-        let png = chasles_viz::letter::draw(turned[i], &i.to_string(), 240).png();
-        Ok((format!("frame-{i:0digits$}.png"), png))
-    })
+    write_frames_dir(
+        dir,
+        turned.len(),
+        "frames",
+        |i| {
+            let png = chasles_viz::letter::draw(turned[i], &i.to_string(), 240).png();
+            Ok((format!("frame-{i:0digits$}.png"), png))
+        },
+        then,
+    )
 }

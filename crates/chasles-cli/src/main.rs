@@ -122,7 +122,7 @@ enum Command {
     /// {"matrix": [[...4 rows...]]} (row-major) or {"dq": [8 numbers]}. Weights must be
     /// non-negative with a positive sum; they are scaled to sum to 1. Output: a JSON array,
     /// per case rotation, translation, matrix, dq, rigid (and iterations where the method
-    /// iterates, with capped: true when max_iterations stopped it).
+    /// iterates, with capped: true when it ran all max_iterations updates).
     #[command(verbatim_doc_comment)]
     Blend {
         /// The blending method.

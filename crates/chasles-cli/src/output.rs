@@ -16,9 +16,15 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
 
 /// Writes every `(path, bytes)` whole or none of them: each goes to a temporary file beside
 /// its target first, and only when all are written are they renamed over their targets. A
-/// folder that does not exist, a full disk or Ctrl-C before the renames leaves every
-/// target as it was.
+/// folder that does not exist, a target that is a folder, a full disk or Ctrl-C before the
+/// renames leaves every target as it was.
 pub fn write_all(files: &[(&Path, &[u8])]) -> Result<()> {
+    // What would make a rename fail, checked before anything is written: a target that is
+    // a folder. (A folder made unwritable between the two phases can still fail a later
+    // rename after an earlier one.)
+    if let Some((p, _)) = files.iter().find(|(p, _)| p.is_dir()) {
+        bail!("cannot write {}: it is a folder", p.display());
+    }
     let mut ready = Vec::with_capacity(files.len());
     for (path, bytes) in files {
         let dir = parent_of(path);
@@ -65,12 +71,15 @@ pub fn check_frames_dir(flag: &str, dir: &Path) -> Result<()> {
 /// beside `dir` (registered for removal on Ctrl-C, made as any folder is, so the umask
 /// decides its mode) and renamed onto `dir` whole — over `dir` when it is an empty folder
 /// ([`check_frames_dir`]) — so that a failure or an interruption leaves neither frames nor
-/// the hidden folder behind. Shows progress (`label`) on a terminal.
+/// the hidden folder behind. `before_rename` (the command's other outputs, written all or
+/// none) runs once every frame is made and before the rename: when it fails, the frames go
+/// too. Shows progress (`label`) on a terminal.
 pub fn write_frames_dir(
     dir: &Path,
     count: usize,
     label: &str,
     mut make: impl FnMut(usize) -> Result<(String, Vec<u8>)>,
+    before_rename: impl FnOnce() -> Result<()>,
 ) -> Result<()> {
     let parent = parent_of(dir);
     let tmp = (0..1000)
@@ -92,6 +101,7 @@ pub fn write_frames_dir(
             bar.inc(1);
         }
         bar.finish_and_clear();
+        before_rename()?;
         std::fs::rename(&tmp, dir)
             .with_context(|| format!("cannot move the frames to {}", dir.display()))
     })();

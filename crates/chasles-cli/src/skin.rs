@@ -303,8 +303,9 @@ pub fn run(a: SkinArgs) -> Result<()> {
             let svg = pictures::twist_plot()?.into_bytes();
             pending.add(p, svg, "middle radius against twist, every method".into());
         }
+        pending.write()?;
         print!("{table}");
-        return pending.write();
+        return Ok(());
     }
     let m = a.method.0;
     let rig_path = a
@@ -356,6 +357,9 @@ pub fn run(a: SkinArgs) -> Result<()> {
         .out
         .as_ref()
         .ok_or_else(|| anyhow!("--out is required (or --render/--gif)"))?;
+    if a.all_frames && a.pictures.render.is_some() {
+        bail!("--render draws one pose (--pose, --anim/--time or the rest pose), not --all-frames");
+    }
     if a.all_frames {
         if !(a.fps > 0.0 && a.fps.is_finite() && a.fps <= 1000.0) {
             bail!("--fps must be in (0, 1000], got {}", a.fps);
@@ -364,8 +368,7 @@ pub fn run(a: SkinArgs) -> Result<()> {
         let duration = rig.animations[c].duration();
         let frames = frame_count(&rig, c, a.fps, a.max_frames, "--all-frames")?;
         check_frames_dir("--all-frames --out", out)?;
-        all_frames(&rig, &a, c, frames, out)?;
-        pending.write()?;
+        all_frames(&rig, &a, c, frames, out, || pending.write())?;
         println!(
             "wrote {frames} frames of {:.3} s at {} fps to {}",
             duration,
@@ -398,11 +401,18 @@ pub fn run(a: SkinArgs) -> Result<()> {
 
 /// Skins `frames` frames of clip `c` into the folder `out`, one OBJ each, all or nothing
 /// ([`write_frames_dir`]: a hidden folder renamed onto `out` at the end, removed on a
-/// failure or Ctrl-C).
-fn all_frames(rig: &Rig, a: &SkinArgs, c: usize, frames: usize, out: &Path) -> Result<()> {
+/// failure or Ctrl-C), `then` (the other outputs) written before the rename.
+fn all_frames(
+    rig: &Rig,
+    a: &SkinArgs,
+    c: usize,
+    frames: usize,
+    out: &Path,
+    then: impl FnOnce() -> Result<()>,
+) -> Result<()> {
     let m = a.method.0;
     let engine = crate::device::Engine::new(a.device, rig, m)?;
-    write_frames_dir(out, frames, "skinning", |f| {
+    let frame = |f: usize| {
         let t = f as f32 / a.fps;
         let s = engine
             .skin(rig, &Pose::animated(rig, c, t)?, m)
@@ -410,7 +420,8 @@ fn all_frames(rig: &Rig, a: &SkinArgs, c: usize, frames: usize, out: &Path) -> R
         let name = format!("frame_{f:05}.obj");
         let comment = format!("{} skinned with {} at t = {t} s", rig.name, m.name());
         Ok((name.clone(), encode(rig, &s, Path::new(&name), &comment)?))
-    })
+    };
+    write_frames_dir(out, frames, "skinning", frame, then)
 }
 
 /// The frames of clip `c` at `fps` (`duration · fps` + 1), checked against `max` (the

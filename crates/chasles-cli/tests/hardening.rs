@@ -209,7 +209,7 @@ fn iterations_are_capped_and_stop_where_rounding_does() {
         assert_eq!(v[0]["capped"], true, "{m}");
         let err = String::from_utf8_lossy(&o.stderr);
         assert!(
-            err.contains(&format!("note: case 0: {m} stopped at max_iterations = 1 before its stopping rule (precision 1e-300) was met")),
+            err.contains(&format!("note: case 0: {m} ran all max_iterations = 1 updates; its stopping rule (precision 1e-300) had not stopped it")),
             "{err}"
         );
     }
@@ -491,6 +491,20 @@ fn skin_and_blend_write_all_their_outputs_or_none() {
         "--out must end in .obj, .ply, .glb or .json",
     );
     assert_eq!(before(), n, "the GIF was written before --out failed");
+    refused(
+        &chasles(&[
+            "skin",
+            "--rig",
+            rig,
+            "--all-frames",
+            "--render",
+            &at("r.png"),
+            "--out",
+            &at("frames"),
+        ]),
+        "--render draws one pose",
+    );
+    assert_eq!(before(), n);
     let missing = dir.path().join("no-such-folder").join("mesh.obj");
     let o = chasles(&[
         "skin",

@@ -141,6 +141,8 @@ impl<const K: usize> FastRig<K> {
                 joints,
             });
         }
+        let positions: Vec<Vec3<f32>> = vertices.iter().map(|v| Vec3::from_array(v.p)).collect();
+        crate::reach::check_positions(crate::error::FAST_RIG, &positions)?;
         Ok(FastRig {
             vertices,
             centres,

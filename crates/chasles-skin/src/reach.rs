@@ -88,6 +88,30 @@ pub fn check_joints(
     Ok(())
 }
 
+/// Checks a fast-path palette's floats as laid out (`per` floats a joint): those at the
+/// offsets in `linear` (a 3×4 matrix's 3×3 block) within [`MAX_LINEAR`], the others within
+/// [`MAX_REACH`]; `what` names the joint data (`LBS joint`).
+pub fn check_laid_out(
+    rig: &str,
+    what: &str,
+    floats: &[f32],
+    per: usize,
+    linear: &[usize],
+) -> Result<()> {
+    for (i, &x) in floats.iter().enumerate() {
+        let (j, k) = (i / per.max(1), i % per.max(1));
+        let limit = if linear.contains(&k) {
+            MAX_LINEAR
+        } else {
+            MAX_REACH
+        };
+        if x.is_nan() || x.abs() > limit {
+            return Err(past(rig, format!("{what} {j}'s float {k}"), x, limit));
+        }
+    }
+    Ok(())
+}
+
 /// Checks bind positions against [`MAX_REACH`].
 pub fn check_positions(rig: &str, positions: &[Vec3<f32>]) -> Result<()> {
     for (i, p) in positions.iter().enumerate() {

@@ -50,12 +50,19 @@ fn reference(rig: &FastRig<4>, jt: &JointTransforms) -> Vec<[f64; 6]> {
         .collect()
 }
 
-/// The largest difference between `got` and `want`.
+/// The largest difference between `got` and `want`; NaN if any output is NaN (an output
+/// left unwritten is: the outputs start as NaN).
 fn worst(got: &[Out], want: &[[f64; 6]]) -> f64 {
     got.iter()
         .zip(want)
         .flat_map(|(g, w)| (0..6).map(move |k| (f64::from(g[k]) - w[k]).abs()))
-        .fold(0.0, f64::max)
+        .fold(0.0, |m: f64, e| {
+            if e.is_nan() || m.is_nan() {
+                f64::NAN
+            } else {
+                m.max(e)
+            }
+        })
 }
 
 #[test]

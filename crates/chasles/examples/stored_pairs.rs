@@ -14,7 +14,9 @@
 //! are stored.
 
 use chasles::blend::sclerp::{sclerp, sclerp_pow};
-use chasles::interp::slerp::{slerp_pow, slerp_shortest, slerp_weights_series};
+use chasles::interp::slerp::{
+    slerp_pow, slerp_shortest, slerp_shortest_batch, slerp_weights_series,
+};
 use chasles::{DualQuat, Quat, Vec3};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
@@ -144,7 +146,30 @@ fn main() {
         "glam f64",
         "nalgebra f64",
         "Eberly series f32",
+        "chasles f32 batch",
+        "chasles f64 batch",
     ];
+    // The batch form's inputs, as a user with arrays holds them.
+    let (bp32, bq32, bh32): (Vec<_>, Vec<_>, Vec<_>) = ours32
+        .iter()
+        .map(|&(a, b, t)| (a, b, t))
+        .fold((Vec::new(), Vec::new(), Vec::new()), |mut v, (a, b, t)| {
+            v.0.push(a);
+            v.1.push(b);
+            v.2.push(t);
+            v
+        });
+    let (bp64, bq64, bh64): (Vec<_>, Vec<_>, Vec<_>) =
+        ours64
+            .iter()
+            .fold((Vec::new(), Vec::new(), Vec::new()), |mut v, &(a, b, t)| {
+                v.0.push(a);
+                v.1.push(b);
+                v.2.push(t);
+                v
+            });
+    let mut bo32 = vec![Quat::<f32>::identity(); n];
+    let mut bo64 = vec![Quat::<f64>::identity(); n];
     let mut secs: Vec<Vec<f64>> = vec![Vec::new(); names.len()];
     let mut worst = vec![0f64; names.len()];
     for round in 0..rounds {
@@ -168,6 +193,21 @@ fn main() {
                     let q = a.slerp(b, t);
                     [q.w, q.x, q.y, q.z]
                 }),
+                "chasles f32 batch" => {
+                    let start = Instant::now();
+                    slerp_shortest_batch(&bp32, &bq32, &bh32, &mut bo32).expect("same lengths");
+                    let s = start.elapsed().as_secs_f64();
+                    (
+                        s,
+                        bo32.iter().map(|q| q.to_array().map(f64::from)).collect(),
+                    )
+                }
+                "chasles f64 batch" => {
+                    let start = Instant::now();
+                    slerp_shortest_batch(&bp64, &bq64, &bh64, &mut bo64).expect("same lengths");
+                    let s = start.elapsed().as_secs_f64();
+                    (s, bo64.iter().map(|q| q.to_array()).collect())
+                }
                 "Eberly series f32" => time32(&|i| {
                     let (a, b, t) = ours32[i];
                     let b = if a.dot(b) < 0.0 { -b } else { b };
@@ -207,9 +247,11 @@ fn main() {
         );
     }
     println!(
-        "ratios (median time of the peer / ours): f32 vs glam {:.2}×, f64 vs nalgebra {:.2}×, f64 vs glam {:.2}×",
+        "ratios (median time of the peer / ours): f32 vs glam {:.2}× (batch {:.2}×), f64 vs nalgebra {:.2}× (batch {:.2}×), f64 vs glam {:.2}×",
         med[1] / med[0],
+        med[1] / med[6],
         med[4] / med[2],
+        med[4] / med[7],
         med[3] / med[2]
     );
 

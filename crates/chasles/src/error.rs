@@ -156,6 +156,16 @@ pub enum Error {
         /// How many were given.
         got: usize,
     },
+    /// Batch inputs of different lengths.
+    #[error("{what}: {a} and {b} values, which must be as many")]
+    BatchLengths {
+        /// Which batch.
+        what: &'static str,
+        /// The first input's length.
+        a: usize,
+        /// The other's.
+        b: usize,
+    },
     /// Unknown name for an Euler-angle order.
     #[error("unknown Euler order {0:?}: use three of x, y, z with no two neighbours equal, lower case for extrinsic (fixed axes, e.g. \"xyz\"), upper case for intrinsic (e.g. \"XYZ\")")]
     UnknownEulerOrder(String),

@@ -505,6 +505,7 @@ fn reduced_weights_match_trigonometry_to_f64_rounding() {
                     (t * omega).sin() / omega.sin()
                 }
             };
+            assert!(a.is_finite() && b.is_finite(), "Ω = {omega}, h = {h}");
             worst = worst.max((a - w(1.0 - h)).abs()).max((b - w(h)).abs());
         }
         assert_eq!(slerp_weights_reduced(p, q, 0.0), (1.0, 0.0), "Ω = {omega}");
@@ -537,4 +538,45 @@ fn eberly_series_weights_match_trigonometry() {
     assert!(worst < 4e-8, "series weights off by {worst}");
     assert_eq!(slerp_weights_series(0.3f32, 0.0), (1.0, 0.0));
     assert_eq!(slerp_weights_series(0.3f32, 1.0), (0.0, 1.0));
+}
+
+#[test]
+fn shortest_slerp_batch_is_the_per_pair_slerp_and_extrapolates_by_trigonometry() {
+    use chasles::interp::slerp::{slerp_shortest, slerp_shortest_batch, slerp_trig};
+    let p: Vec<Quat<f64>> = (0..50)
+        .map(|i| Quat::from_axis_angle(Vec3::new(1.0, i as f64, 2.0), 0.1 * i as f64).unwrap())
+        .collect();
+    let q: Vec<Quat<f64>> = (0..50)
+        .map(|i| {
+            let r = Quat::from_axis_angle(Vec3::new(-1.0, 0.5, i as f64), 0.07 * i as f64);
+            // Every other one on the far hemisphere: the batch takes the shorter arc.
+            r.unwrap() * if i % 2 == 0 { 1.0 } else { -1.0 }
+        })
+        .collect();
+    let h: Vec<f64> = (0..50).map(|i| i as f64 / 49.0).collect();
+    let mut out = vec![Quat::identity(); 50];
+    slerp_shortest_batch(&p, &q, &h, &mut out).unwrap();
+    for i in 0..50 {
+        assert_eq!(out[i], slerp_shortest(p[i], q[i], h[i]), "pair {i}");
+    }
+    // Outside [0, 1]: extrapolation along the same great circle, by trigonometry, in the
+    // batch as per pair.
+    let far: Vec<f64> = (0..50).map(|i| -1.0 + 4.0 * i as f64 / 49.0).collect();
+    slerp_shortest_batch(&p, &q, &far, &mut out).unwrap();
+    for i in 0..50 {
+        let qi = if p[i].dot(q[i]) < 0.0 { -q[i] } else { q[i] };
+        let want = slerp_trig(p[i], qi, far[i]);
+        assert!((out[i] - want).norm() < 1e-12, "pair {i} at h = {}", far[i]);
+        assert!((out[i].norm() - 1.0).abs() < 1e-12);
+    }
+    // h = 2 is the rotation p (p* q)²: twice the way.
+    let (a, b) = (p[7], q[8]);
+    let b = if a.dot(b) < 0.0 { -b } else { b };
+    let twice = a * (a.conjugate() * b) * (a.conjugate() * b);
+    assert!((slerp_shortest(a, b, 2.0) - twice).norm() < 1e-12);
+    let e = slerp_shortest_batch(&p, &q[..3], &h, &mut out).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "slerp_shortest_batch: p and q: 50 and 3 values, which must be as many"
+    );
 }

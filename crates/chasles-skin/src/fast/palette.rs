@@ -169,6 +169,47 @@ impl Palette {
     /// quaternions): checked against `rig`'s joint count (and, for SBS, its cluster count).
     pub fn from_joints<const K: usize>(rig: &FastRig<K>, joints: Joints) -> Result<Self> {
         check(rig, joints.len())?;
+        // The range every path keeps finite (crate::reach), on the data as laid out.
+        let laid_out = |what: &str, floats: &[f32], per: usize, linear: &[usize]| {
+            crate::reach::check_laid_out(FAST_RIG, what, floats, per, linear)
+        };
+        match &joints {
+            Joints::Lbs(j) => laid_out(
+                "LBS joint",
+                bytemuck::cast_slice(j),
+                12,
+                &[0, 1, 2, 4, 5, 6, 8, 9, 10],
+            )?,
+            Joints::Dqs(j) | Joints::Dib(j) => {
+                laid_out("dual-quaternion joint", bytemuck::cast_slice(j), 8, &[])?
+            }
+            Joints::Log(j) => laid_out(
+                "twist",
+                bytemuck::cast_slice(j),
+                std::mem::size_of::<Twist>() / 4,
+                &[],
+            )?,
+            Joints::Qlb(j) => laid_out(
+                "QLB joint",
+                bytemuck::cast_slice(j),
+                std::mem::size_of::<QlbJoint>() / 4,
+                &[],
+            )?,
+            Joints::Sbs { joints, centres } => {
+                laid_out(
+                    "SBS joint",
+                    bytemuck::cast_slice(joints),
+                    std::mem::size_of::<QlbJoint>() / 4,
+                    &[],
+                )?;
+                laid_out(
+                    "rotation centre",
+                    bytemuck::cast_slice(centres),
+                    std::mem::size_of::<RotationCentre>() / 4,
+                    &[],
+                )?;
+            }
+        }
         if let Joints::Sbs { centres, .. } = &joints {
             same_count(
                 FAST_RIG,

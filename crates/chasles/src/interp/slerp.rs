@@ -37,14 +37,15 @@ pub fn slerp_pow<T: Real>(p: Quat<T>, q: Quat<T>, h: T) -> Result<Quat<T>> {
 #[inline(always)]
 pub fn slerp<T: Real>(p: Quat<T>, q: Quat<T>, h: T) -> Quat<T> {
     let x = p.dot(q);
-    if x >= T::ZERO {
+    if x >= T::ZERO && (T::ZERO..=T::ONE).contains(&h) {
         return within_quarter_turn(p, q, x, h);
     }
     slerp_trig(p, q, h)
 }
 
-/// Slerp for `x = p·q ≥ 0` with no branch and no call: the series in f32 (below f32's
-/// rounding), the reduced kernels in f64 — so that a loop of such Slerps can vectorize.
+/// Slerp for `x = p·q ≥ 0` and `0 ≤ h ≤ 1` (the ranges the series and the kernels are
+/// fitted on) with no branch and no call: the series in f32 (below f32's rounding), the
+/// reduced kernels in f64.
 #[inline(always)]
 fn within_quarter_turn<T: Real>(p: Quat<T>, q: Quat<T>, x: T, h: T) -> Quat<T> {
     if T::EPSILON > T::from_f64(1e-10) {
@@ -171,9 +172,51 @@ const fn series_coefficients() -> ([f64; SERIES_TERMS], [f64; SERIES_TERMS]) {
 /// Slerp along the shorter rotation (footnote 7): uses −q when `p·q < 0`.
 #[inline(always)]
 pub fn slerp_shortest<T: Real>(p: Quat<T>, q: Quat<T>, h: T) -> Quat<T> {
-    // After the flip p·q ≥ 0: never the trigonometric form, no branch, no call (a loop of
-    // shorter-arc Slerps can vectorize).
+    // After the flip p·q ≥ 0: the trigonometric form only to extrapolate (h outside
+    // [0, 1]).
     let x = p.dot(q);
     let s = if x < T::ZERO { -T::ONE } else { T::ONE };
+    if !(T::ZERO..=T::ONE).contains(&h) {
+        // Extrapolation: past the kernels' fitted range (h Ω/2 ≤ π/4).
+        return slerp_trig(p, q * s, h);
+    }
     within_quarter_turn(p, q * s, x * s, h)
+}
+
+/// [`slerp_shortest`] of every `(p[i], q[i], h[i])` into `out[i]`. When every `h` is in
+/// [0, 1] (checked first, in one pass) the loop has no branch and no call, so the compiler
+/// can vectorize it: over 10⁶ stored pairs about twice glam's per-call Slerp in f32
+/// (`examples/stored_pairs`); otherwise each pair goes through [`slerp_shortest`].
+/// Errors: inputs of different lengths.
+pub fn slerp_shortest_batch<T: Real>(
+    p: &[Quat<T>],
+    q: &[Quat<T>],
+    h: &[T],
+    out: &mut [Quat<T>],
+) -> Result<()> {
+    for (len, what) in [
+        (q.len(), "slerp_shortest_batch: p and q"),
+        (h.len(), "slerp_shortest_batch: p and h"),
+        (out.len(), "slerp_shortest_batch: p and out"),
+    ] {
+        if len != p.len() {
+            return Err(crate::Error::BatchLengths {
+                what,
+                a: p.len(),
+                b: len,
+            });
+        }
+    }
+    if h.iter().all(|h| (T::ZERO..=T::ONE).contains(h)) {
+        for (((o, p), q), h) in out.iter_mut().zip(p).zip(q).zip(h) {
+            let x = p.dot(*q);
+            let s = if x < T::ZERO { -T::ONE } else { T::ONE };
+            *o = within_quarter_turn(*p, *q * s, x * s, *h);
+        }
+    } else {
+        for (((o, p), q), h) in out.iter_mut().zip(p).zip(q).zip(h) {
+            *o = slerp_shortest(*p, *q, *h);
+        }
+    }
+    Ok(())
 }
