@@ -9,11 +9,14 @@
 //!
 //! - every entry of a joint matrix's 3×3 block at most [`MAX_LINEAR`] = 2³⁰ (a joint scaled
 //!   by 10⁹) in magnitude, every translation component and every dual-quaternion component
-//!   at most [`MAX_REACH`] = 2⁶⁴ (1.8·10¹⁹), and every bind position at most [`MAX_REACH`].
+//!   at most [`MAX_REACH`] = 2⁶⁰ (1.2·10¹⁸), and every bind position at most [`MAX_REACH`].
 //!
 //! Inside it nothing overflows in any order: a skinned coordinate is at most
-//! 3·2³⁰·2⁶⁴ + 2⁶⁴ < 2⁹⁷; a cofactor entry at most 2·2⁶⁰, a normal component before
-//! normalization at most 3·2⁶¹, and the sum of their squares at most 27·2¹²² < 2¹²⁷. A pose
+//! 3·2³⁰·2⁶⁰ + 2⁶⁰ < 2⁹³; a cofactor entry at most 2·2⁶⁰, a normal component before
+//! normalization at most 3·2⁶¹, and the sum of their squares at most 27·2¹²² < 2¹²⁷ (unit
+//! bind normals and convex weights, which the rig's checks give); DIB's update, whose dual
+//! part is of the order of the joints' translations, squares to well under 2¹²⁸ (that is
+//! why the reach is 2⁶⁰ and not 2⁶⁴: the f32 lanes square it). A pose
 //! or a rig outside it is [`SkinError::OutOfReach`] (a NaN or an infinity
 //! [`SkinError::NotFinite`]), named, on every path alike.
 
@@ -24,8 +27,8 @@ use chasles::{DualQuat, Mat4, Vec3};
 pub const MAX_LINEAR: f32 = 1_073_741_824.0;
 
 /// The largest magnitude of a joint translation, a dual-quaternion component or a bind
-/// position's coordinate: 2⁶⁴.
-pub const MAX_REACH: f32 = 18_446_744_073_709_551_616.0;
+/// position's coordinate: 2⁶⁰.
+pub const MAX_REACH: f32 = 1_152_921_504_606_846_976.0;
 
 /// The first entry of `values` not within `±limit` (NaN included), with its index.
 fn first_past(values: impl IntoIterator<Item = f32>, limit: f32) -> Option<(usize, f32)> {

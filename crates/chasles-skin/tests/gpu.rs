@@ -335,7 +335,7 @@ fn cpu_and_gpu_reject_the_same_poses() {
     let turn = Quat::from_axis_angle(Vec3::new(1.0f32, 1.0, 0.0), 1.0).unwrap();
     let (mut ok, mut refused) = (0, 0);
     for scale in [1.0f32, 1e19, 1e25, 1e38, 3e38, f32::MAX, 0.0, 1e-30, 1e-45] {
-        for shift in [0.0f32, 1e30, f32::MAX] {
+        for shift in [0.0f32, 1e18, 1.1e18, 1e30, f32::MAX] {
             let mut pose = Pose::rest(&rig);
             let last = pose.local.len() - 1;
             pose.local[last].scale = Vec3::new(scale, scale, scale);
