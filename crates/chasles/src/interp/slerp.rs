@@ -8,7 +8,7 @@
 //!   `h · sinc(hΩ)/sinc(Ω)`, so Ω → 0 has no 0/0 (the report's patch `Slerp(q, q, h) ≡ q`
 //!   is the limit, not a special case). Up to a quarter turn (`p·q ≥ 0`) the weights come
 //!   in f32 from Eberly's trig-free series ([`slerp_weights_series`], as accurate as f32)
-//!   and in f64 from the reduced polynomial kernels of [`crate::trig`] (the ones ScLERP
+//!   and in f64 from the reduced polynomial kernels of `trig.rs` (the ones ScLERP
 //!   uses; [`slerp_weights_reduced`]): no `acos`, `sin`, square root or 0/0, within a few
 //!   ulp of f64.
 //!
@@ -100,11 +100,11 @@ pub fn slerp_trig<T: Real>(p: Quat<T>, q: Quat<T>, h: T) -> Quat<T> {
 }
 
 /// The Slerp weights `(sin((1 − h)Ω)/sin Ω, sin(hΩ)/sin Ω)` for unit `p`, `q` with
-/// `p·q ≥ 0` (Ω ≤ π/2), from the reduced kernels of [`crate::trig`] — no `acos`, `sin` or
+/// `p·q ≥ 0` (Ω ≤ π/2), from the reduced kernels of `trig.rs` — no `acos`, `sin` or
 /// square root: with `y = ‖p − q‖²/2 = 1 − cos Ω` the half angle is `(Ω/2)² = y A(y)²/2`
-/// ([`crate::trig::acos_over_chord`]), and by `sin 2u = 2 sin u cos u`
+/// (`acos_over_chord`), and by `sin 2u = 2 sin u cos u`
 /// `sin(hΩ)/sin Ω = h · sinc(hΩ/2) cos(hΩ/2) / (sinc(Ω/2) cos(Ω/2))`, every argument
-/// within π/4 ([`crate::trig::sinc_cos_reduced`]). Smooth at Ω = 0 (no 0/0), exact at
+/// within π/4 (`sinc_cos_reduced`). Smooth at Ω = 0 (no 0/0), exact at
 /// h = 0 and h = 1.
 #[inline(always)]
 pub fn slerp_weights_reduced(p: Quat<f64>, q: Quat<f64>, h: f64) -> (f64, f64) {
