@@ -45,7 +45,8 @@ pub struct SkinArgs {
     /// Print the candy-wrapper table (twist and bend of a two-bone cylinder, every method).
     #[arg(long)]
     pub artifacts: bool,
-    /// Measure every method's speed on synthetic meshes of 10^5 and 10^6 vertices.
+    /// Measure every method on synthetic meshes of 10^5 and 10^6 vertices beside the glam
+    /// and nalgebra baselines and a copy of the bytes moved (interleaved rounds).
     #[arg(long)]
     pub bench: bool,
     #[command(flatten)]
@@ -157,25 +158,50 @@ pub(crate) fn median_secs(runs: usize, mut f: impl FnMut() -> Result<()>) -> Res
     Ok(t[runs / 2])
 }
 
-/// `chasles skin --bench`: vertices per second of every method's fast path on synthetic
-/// meshes (54 joints, 4 influences; the pose's joint data made in each run), one thread and
-/// all threads, each against a memory copy of the 72 bytes each vertex must move on as many
-/// threads (the bandwidth bound); medians of 31 runs (5 for a method slower than 50 ms a
-/// run). The random joints make nearly every
-/// vertex its own SBS cluster: SBS's worst case, a rotation centre solved per vertex.
+/// CPU time since boot: (all CPUs' busy jiffies, this process's jiffies), from
+/// `/proc/stat` and `/proc/self/stat`; `None` where those do not exist (not Linux).
+fn cpu_jiffies() -> Option<(u64, u64)> {
+    let stat = std::fs::read_to_string("/proc/stat").ok()?;
+    let cpu: Vec<u64> = stat
+        .lines()
+        .next()?
+        .split_whitespace()
+        .skip(1)
+        .filter_map(|x| x.parse().ok())
+        .collect();
+    // user nice system idle iowait irq softirq steal …: busy is all but idle and iowait.
+    let busy = cpu.iter().sum::<u64>() - cpu.get(3)? - cpu.get(4).copied().unwrap_or(0);
+    let own = std::fs::read_to_string("/proc/self/stat").ok()?;
+    // After the command name's closing parenthesis: utime and stime are fields 14 and 15.
+    let rest: Vec<&str> = own.rsplit_once(')')?.1.split_whitespace().collect();
+    let mine = rest.get(11)?.parse::<u64>().ok()? + rest.get(12)?.parse::<u64>().ok()?;
+    Some((busy, mine))
+}
+
+/// `chasles skin --bench`: on synthetic meshes of 10⁵ and 10⁶ vertices (54 joints, 4
+/// influences; the pose's joint data made in each run), one thread and all threads, every
+/// method's fast path beside the careful glam and nalgebra baselines of
+/// [`chasles_skin::peers`] and a memory copy of the 72 bytes each vertex moves (the
+/// bandwidth bound), timed in interleaved rounds (each round runs every kernel once, so a
+/// slow spell of a shared machine hits all alike): the median of each with its spread
+/// (lowest–highest rate), our speed over each baseline's (LBS over the LBS baselines, DQS
+/// over the DQS ones) and each method's share of the bound. A run during which other
+/// processes kept more than a quarter of the CPUs busy is flagged. The random joints make
+/// nearly every vertex its own SBS cluster: SBS's worst case, a rotation centre solved per
+/// vertex.
 pub fn bench() -> Result<()> {
     use chasles_skin::fast::skin_pose;
-    use chasles_skin::synthetic;
+    use chasles_skin::{peers, synthetic};
     use rayon::prelude::*;
-    // Runs per median: this many keeps a shared machine's hiccups out of 10⁵-vertex runs
-    // of under a millisecond.
-    const RUNS: usize = 31;
-    println!("| vertices | method | threads | M vertices/s | share of the bandwidth bound |");
-    println!("|---|---|---|---|---|");
+    let started = (std::time::Instant::now(), cpu_jiffies());
+    println!("| vertices | threads | kernel | M vertices/s (median) | spread | ours / it | share of the bound |");
+    println!("|---|---|---|---|---|---|---|");
     let mut ratios = Vec::new();
-    for n in [100_000usize, 1_000_000] {
+    for (n, rounds) in [(100_000usize, 21), (1_000_000, 7)] {
         let rig = synthetic::rig(n, 54, 7);
         let jt = synthetic::joints(54, 7);
+        let pj = peers::Joints::of(&jt);
+        let v = rig.vertices();
         let mut out = vec![[0f32; 6]; n];
         let src = vec![1u8; n * 36];
         let mut dst = vec![0u8; n * 36];
@@ -185,59 +211,130 @@ pub fn bench() -> Result<()> {
             } else {
                 1
             };
-            // The copy in the skinning kernels' chunks of 4096 vertices, on as many threads.
-            let copy = median_secs(RUNS, || {
-                let src = std::hint::black_box(&src);
-                if parallel {
-                    dst.par_chunks_mut(4096 * 36)
-                        .zip(src.par_chunks(4096 * 36))
-                        .for_each(|(d, s)| d.copy_from_slice(s));
-                } else {
-                    dst.copy_from_slice(src);
-                }
-                Ok(())
-            })?;
-            let bound = n as f64 / copy;
-            println!(
-                "| {n} | memcpy (72 B moved per vertex) | {threads} | {:.1} | 1 |",
-                bound / 1e6
-            );
-            let mut rate = |m: Method| -> Result<f64> {
-                let mut once =
-                    || -> Result<()> { Ok(skin_pose(&rig, &jt, m, &mut out, parallel)?) };
-                // DIB takes a second a run at 10⁶ vertices: fewer runs for slow methods.
-                let start = std::time::Instant::now();
-                once()?;
-                let runs = if start.elapsed().as_secs_f64() > 0.05 {
-                    5
-                } else {
-                    RUNS
-                };
-                Ok(n as f64 / median_secs(runs, once)?)
-            };
-            let mut rates = std::collections::HashMap::new();
+            type Run<'a> = Box<dyn FnMut(&mut [chasles_skin::fast::Out]) -> Result<()> + 'a>;
+            let mut kernels: Vec<(String, Run)> = Vec::new();
             for m in Method::ALL {
-                let r = rate(m)?;
+                let (rig, jt) = (&rig, &jt);
+                kernels.push((
+                    m.name().to_string(),
+                    Box::new(move |o| Ok(skin_pose(rig, jt, m, o, parallel)?)),
+                ));
+            }
+            let peer = |f: fn(
+                &[chasles_skin::fast::Vertex<4>],
+                &peers::Joints,
+                &mut [chasles_skin::fast::Out],
+            )|
+             -> Run {
+                let pj = &pj;
+                Box::new(move |o| {
+                    peers::run(v, o, parallel, &|v, o| f(v, pj, o));
+                    Ok(())
+                })
+            };
+            kernels.push((
+                "glam lbs, normals by M".into(),
+                peer(|v, j, o| peers::glam_lbs_by_m(v, &j.glam, o)),
+            ));
+            kernels.push((
+                "glam lbs, cofactor normals".into(),
+                peer(|v, j, o| peers::glam_lbs_cofactor(v, &j.glam, o)),
+            ));
+            kernels.push((
+                "nalgebra lbs".into(),
+                peer(|v, j, o| peers::nalgebra_lbs(v, &j.nalgebra, o)),
+            ));
+            kernels.push((
+                "glam dqs (Vec4, careful)".into(),
+                peer(|v, j, o| peers::glam_dqs(v, &j.glam_dq, o)),
+            ));
+            kernels.push((
+                "nalgebra dqs".into(),
+                peer(|v, j, o| peers::nalgebra_dqs(v, &j.nalgebra_dq, o)),
+            ));
+            let (src, dst) = (&src, &mut dst);
+            kernels.push((
+                "memcpy, 72 B a vertex".into(),
+                Box::new(move |_| {
+                    let src = std::hint::black_box(src);
+                    if parallel {
+                        dst.par_chunks_mut(4096 * 36)
+                            .zip(src.par_chunks(4096 * 36))
+                            .for_each(|(d, s)| d.copy_from_slice(s));
+                    } else {
+                        dst.copy_from_slice(src);
+                    }
+                    Ok(())
+                }),
+            ));
+            // One untimed round, then the interleaved ones.
+            let mut secs = vec![Vec::with_capacity(rounds); kernels.len()];
+            for round in 0..=rounds {
+                for (k, (_, f)) in kernels.iter_mut().enumerate() {
+                    let start = std::time::Instant::now();
+                    f(&mut out)?;
+                    if round > 0 {
+                        secs[k].push(start.elapsed().as_secs_f64());
+                    }
+                }
+            }
+            let rate: Vec<(f64, f64, f64)> = secs
+                .iter_mut()
+                .map(|s| {
+                    s.sort_by(f64::total_cmp);
+                    let r = |t: f64| n as f64 / t;
+                    (r(s[s.len() / 2]), r(s[s.len() - 1]), r(s[0]))
+                })
+                .collect();
+            let index = |name: &str| kernels.iter().position(|(k, _)| k == name);
+            let bound = rate[kernels.len() - 1].0;
+            let (lbs, dqs) = (
+                index("lbs").map_or(f64::NAN, |i| rate[i].0),
+                index("dqs").map_or(f64::NAN, |i| rate[i].0),
+            );
+            let mut rates = std::collections::HashMap::new();
+            for (k, (name, _)) in kernels.iter().enumerate() {
+                let (med, lo, hi) = rate[k];
+                let ours_over = if name.starts_with("glam lbs") || name == "nalgebra lbs" {
+                    format!("{:.2}×", lbs / med)
+                } else if name.contains(" dqs") {
+                    format!("{:.2}×", dqs / med)
+                } else {
+                    String::new()
+                };
                 println!(
-                    "| {n} | {} | {threads} | {:.1} | {:.2} |",
-                    m.name(),
-                    r / 1e6,
-                    r / bound
+                    "| {n} | {threads} | {name} | {:.1} | {:.1}–{:.1} | {ours_over} | {:.2} |",
+                    med / 1e6,
+                    lo / 1e6,
+                    hi / 1e6,
+                    med / bound
                 );
-                rates.insert(m, r);
+                rates.insert(name.clone(), med);
             }
             ratios.push((n, threads, rig.clusters().len(), rates));
         }
     }
     println!();
     for (n, threads, centres, r) in ratios {
-        let dqs = r[&Method::Dqs];
+        let dqs = r["dqs"];
         println!(
             "{n} vertices, {threads} thread(s): DQS costs {:.2}× LBS; DQS is {:.1}× Log and {:.1}× SBS (Figure 1: 2.3× and 2.2×; SBS solved {centres} rotation centres a pose here, real rigs far fewer)",
-            r[&Method::Lbs] / dqs,
-            dqs / r[&Method::Log],
-            dqs / r[&Method::Sbs]
+            r["lbs"] / dqs,
+            dqs / r["log"],
+            dqs / r["sbs"]
         );
+    }
+    if let ((t0, Some((busy0, mine0))), Some((busy1, mine1))) = (started, cpu_jiffies()) {
+        // Jiffies are 1/100 s on Linux.
+        let wall = t0.elapsed().as_secs_f64() * 100.0 * rayon::current_num_threads().max(1) as f64;
+        let others = (busy1 - busy0).saturating_sub(mine1 - mine0) as f64 / wall.max(1.0);
+        println!(
+            "other processes kept {:.0}% of the CPUs busy during the run",
+            others * 100.0
+        );
+        if others > 0.25 {
+            println!("warning: that is more than a quarter: these figures are not to be trusted; run again on a quieter machine");
+        }
     }
     Ok(())
 }

@@ -13,8 +13,7 @@ use chasles_skin::fast::{
 use chasles_skin::synthetic;
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 
-#[path = "peers/mod.rs"]
-mod peers;
+use chasles_skin::peers;
 use rayon::prelude::*;
 use std::hint::black_box;
 

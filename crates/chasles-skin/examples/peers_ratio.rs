@@ -6,8 +6,7 @@
 //!
 //! `cargo run --release -p chasles-skin --example peers_ratio [VERTICES] [ROUNDS]`
 
-#[path = "../benches/peers/mod.rs"]
-mod peers;
+use chasles_skin::peers;
 
 use chasles_skin::fast::{dqs, dual_quats8, lbs, matrices12, Out};
 use chasles_skin::synthetic;

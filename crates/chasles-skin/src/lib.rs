@@ -32,6 +32,7 @@ pub mod gltf_load;
 #[cfg(feature = "gpu")]
 pub mod gpu;
 pub mod json_rig;
+pub mod peers;
 pub mod pose;
 pub mod reach;
 pub mod rig;

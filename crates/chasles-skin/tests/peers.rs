@@ -5,8 +5,7 @@
 //! cofactor normals (glam cofactor, nalgebra's inverse transpose) stay exact and normals by
 //! the blended matrix do not, which is why the benchmarks time both.
 
-#[path = "../benches/peers/mod.rs"]
-mod peers;
+use chasles_skin::peers;
 
 use chasles::{Mat4, Vec3};
 use chasles_skin::fast::{dqs, dual_quats8, lbs, matrices12, FastRig, Out, Vertex};

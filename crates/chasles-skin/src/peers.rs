@@ -1,6 +1,7 @@
-//! Skinning as careful users of glam and nalgebra write it (issue 18): the baselines our
-//! fast paths are measured against, in one place for the benchmarks and for the test that
-//! checks each against an f64 reference (`tests/peers.rs`, on a single-influence mesh).
+//! Skinning as careful users of glam and nalgebra write it: the baselines our fast paths
+//! ([`crate::fast`], Kavan et al. 2006 §6) are measured against, in one place for the
+//! benchmarks, `chasles skin --bench` and the test that checks each against an f64
+//! reference (`tests/peers.rs`, on a single-influence mesh).
 //!
 //! * LBS with glam: the weighted sum of the joints' `Mat3A` blocks and `Vec3A`
 //!   translations (SIMD columns), the point by the blended matrix; the normal either by the
@@ -15,9 +16,7 @@
 //!   `UnitDualQuaternion::new_normalize` of the sum and `transform_point` /
 //!   `transform_vector`; `Matrix4` sums, `transform_point`, normals by
 //!   `try_inverse().transpose()`.
-#![allow(dead_code)] // the test and the benchmarks each use their part
-
-use chasles_skin::fast::{Out, Vertex};
+use crate::fast::{Out, Vertex};
 use glam::{Mat3A, Vec3A, Vec4};
 
 /// Every baseline's joints for one pose.
@@ -34,7 +33,7 @@ pub struct Joints {
 
 impl Joints {
     /// The joints of `jt` in every baseline's form.
-    pub fn of(jt: &chasles_skin::JointTransforms) -> Self {
+    pub fn of(jt: &crate::JointTransforms) -> Self {
         Joints {
             glam: glam_joints(jt),
             glam_dq: glam_dual_quats(jt),
@@ -72,7 +71,7 @@ pub struct GlamJoint {
 }
 
 /// The joints of `jt` for glam's LBS.
-pub fn glam_joints(jt: &chasles_skin::JointTransforms) -> Vec<GlamJoint> {
+pub fn glam_joints(jt: &crate::JointTransforms) -> Vec<GlamJoint> {
     jt.matrices
         .iter()
         .map(|m| GlamJoint {
@@ -126,7 +125,7 @@ pub fn glam_lbs_cofactor(v: &[Vertex<4>], m: &[GlamJoint], out: &mut [Out]) {
 }
 
 /// The joints of `jt` for glam's DQS: (real, dual) as `Vec4` (x, y, z, w).
-pub fn glam_dual_quats(jt: &chasles_skin::JointTransforms) -> Vec<(Vec4, Vec4)> {
+pub fn glam_dual_quats(jt: &crate::JointTransforms) -> Vec<(Vec4, Vec4)> {
     jt.dual_quats
         .iter()
         .map(|d| {
@@ -161,9 +160,7 @@ pub fn glam_dqs(v: &[Vertex<4>], d: &[(Vec4, Vec4)], out: &mut [Out]) {
 }
 
 /// The joints of `jt` as nalgebra's unit dual quaternions.
-pub fn nalgebra_dual_quats(
-    jt: &chasles_skin::JointTransforms,
-) -> Vec<nalgebra::UnitDualQuaternion<f32>> {
+pub fn nalgebra_dual_quats(jt: &crate::JointTransforms) -> Vec<nalgebra::UnitDualQuaternion<f32>> {
     jt.dual_quats
         .iter()
         .map(|d| {
@@ -202,7 +199,7 @@ pub fn nalgebra_dqs(v: &[Vertex<4>], d: &[nalgebra::UnitDualQuaternion<f32>], ou
 }
 
 /// The joints of `jt` as nalgebra's 4×4 matrices.
-pub fn nalgebra_matrices(jt: &chasles_skin::JointTransforms) -> Vec<nalgebra::Matrix4<f32>> {
+pub fn nalgebra_matrices(jt: &crate::JointTransforms) -> Vec<nalgebra::Matrix4<f32>> {
     jt.matrices
         .iter()
         .map(|m| nalgebra::Matrix4::from_fn(|r, c| m.m[r][c]))
