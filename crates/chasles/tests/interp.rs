@@ -580,3 +580,25 @@ fn shortest_slerp_batch_is_the_per_pair_slerp_and_extrapolates_by_trigonometry()
         "slerp_shortest_batch: p and q: 50 and 3 values, which must be as many"
     );
 }
+
+#[test]
+fn lineuler_on_angles_at_the_top_of_f64_gives_unit_frames() {
+    // (1 − h) a + h b never rounds past f64's largest value, and the sine and cosine of any
+    // finite angle are finite: every frame is a unit quaternion (interpolate would refuse a
+    // frame that is not finite rather than return it).
+    use chasles::EulerOrder;
+    let m = f64::MAX;
+    let triples = [[m, -m, m], [-m, m, 0.0], [m, m, -m]];
+    let keys = KeyFrames::from_euler(EulerOrder::DAM, &triples, None, Hemisphere::Chain).unwrap();
+    let frames = interpolate(
+        Method::LinEuler(EulerOrder::DAM),
+        &keys,
+        101,
+        Timing::Uniform,
+    )
+    .unwrap();
+    assert!(
+        frames.iter().all(|f| (f.q.norm() - 1.0).abs() < 1e-12),
+        "a frame that is not unit"
+    );
+}

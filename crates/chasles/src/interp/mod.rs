@@ -55,7 +55,8 @@ pub enum Method {
 }
 
 /// Samples `frames` frames of a piecewise curve through the keys. Errors: fewer frames
-/// than keys; LinMat through keys 180° apart (singular matrix).
+/// than keys; LinMat through keys 180° apart (singular matrix); a frame that comes out not
+/// finite (LinEuler on angles near the top of T's range).
 pub fn interpolate<T: Real>(
     method: Method,
     keys: &KeyFrames<T>,
@@ -117,6 +118,13 @@ pub fn interpolate<T: Real>(
                 t: keys.parameter(s.interval, s.h),
                 key: s.key,
             }
+        });
+    }
+    // Finite keys can still give a frame that is not (LinEuler's weighted sum of angles
+    // near the top of T's range rounds past it): an error, never a NaN frame.
+    if out.iter().any(|f| !f.q.is_finite() || !f.t.is_finite()) {
+        return Err(Error::NonFinite {
+            what: "an interpolated frame (the keys are too large to interpolate in this precision)",
         });
     }
     Ok(out)
