@@ -17,7 +17,7 @@
 
 use crate::blend_case::blend_all;
 use crate::blend_pictures;
-use crate::output::write_all;
+use crate::output::Pending;
 use crate::picture_args::Pictures;
 use anyhow::{anyhow, Context, Result};
 use chasles::blend::Method;
@@ -38,7 +38,7 @@ pub fn run(m: Method, input: &str, pictures: &Pictures) -> Result<()> {
     let b = blend_all(m, &text)?;
     // Every output made and checked before any is written: the JSON, then each picture.
     let json = serde_json::to_string_pretty(&b.out)?;
-    let mut files: Vec<(&std::path::Path, Vec<u8>)> = Vec::new();
+    let mut files = Pending::default();
     if pictures.any() {
         let (x, w, opt) = b
             .first
@@ -52,27 +52,30 @@ pub fn run(m: Method, input: &str, pictures: &Pictures) -> Result<()> {
             sphere,
         } = pictures;
         if let Some(p) = plot {
-            files.push((p, blend_pictures::plot(&c)?.into_bytes()));
+            files.add(
+                p,
+                blend_pictures::plot(&c)?.into_bytes(),
+                Some(String::new()),
+            );
         }
         if let Some(p) = render {
-            files.push((p, blend_pictures::render(&c)?.png()));
+            files.add(p, blend_pictures::render(&c)?.png(), Some(String::new()));
         }
         if let Some(p) = gif {
             let frames = blend_pictures::animate(&c, m, 40)?;
-            files.push((p, chasles_viz::gif(&frames, 5)?));
+            files.add(p, chasles_viz::gif(&frames, 5)?, Some(String::new()));
         }
         if let Some(p) = sphere {
-            files.push((p, blend_pictures::sphere(&c, m)?.png()));
+            files.add(p, blend_pictures::sphere(&c, m)?.png(), Some(String::new()));
         }
     }
-    let all: Vec<(&std::path::Path, &[u8])> = files.iter().map(|(p, b)| (*p, &b[..])).collect();
-    write_all(&all)?;
+    let said = files.write()?;
     for n in &b.notes {
         eprintln!("note: {n}");
     }
     println!("{json}");
-    for (p, _) in &files {
-        eprintln!("wrote {}", p.display());
+    for line in said {
+        eprintln!("{line}");
     }
     Ok(())
 }

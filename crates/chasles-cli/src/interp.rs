@@ -3,7 +3,7 @@
 
 use crate::choice::InterpMethod;
 use crate::keyfile;
-use crate::output::{check_frames_dir, extension, num, write_all, write_frames_dir};
+use crate::output::{check_frames_dir, extension, num, write_frames_dir, Pending};
 use crate::picture_args::{Pictures, MAX_GIF_FRAMES};
 use crate::spring_args::{configure, options, SpringArgs};
 use anyhow::{bail, Context, Result};
@@ -272,7 +272,7 @@ pub fn run(args: InterpArgs) -> Result<()> {
         );
     }
     // Every picture made before any is written: a failure leaves none behind.
-    let mut files: Vec<(&Path, Vec<u8>, String)> = Vec::new();
+    let mut files = Pending::default();
     if let Some(p) = &args.pictures.plot {
         let keys = chasles_viz::graph::key_indices(&run.frames);
         let title = format!(
@@ -285,11 +285,11 @@ pub fn run(args: InterpArgs) -> Result<()> {
         } else {
             chasles_viz::graph::velocity_svg(&run.velocity, &keys, &title).into_bytes()
         };
-        files.push((p, bytes, format!("wrote {}", p.display())));
+        files.add(p, bytes, Some(String::new()));
     }
     if let Some(p) = &args.pictures.sphere {
         let img = chasles_viz::sphere::render_frames(&run.frames, 600);
-        files.push((p, img.png(), format!("wrote {}", p.display())));
+        files.add(p, img.png(), Some(String::new()));
     }
     // The frames as rotations: a non-unit frame (raw Lerp) is shown by its rotation.
     let turned: Vec<Quat<f64>> = run
@@ -300,15 +300,15 @@ pub fn run(args: InterpArgs) -> Result<()> {
     if let Some(p) = &args.pictures.gif {
         let frames = chasles_viz::letter::animate(&turned, 240);
         let n = frames.len();
-        files.push((
+        files.add(
             p,
             chasles_viz::gif(&frames, 4)?,
-            format!("wrote {} ({n} frames)", p.display()),
-        ));
+            Some(format!("{n} frames")),
+        );
     }
     if let Some(p) = &args.pictures.render {
         let png = chasles_viz::letter::strip(&turned, 8, 180).png();
-        files.push((p, png, format!("wrote {}", p.display())));
+        files.add(p, png, Some(String::new()));
     }
     if let Some(out) = &args.out {
         let text = if extension(out) == "json" {
@@ -316,20 +316,23 @@ pub fn run(args: InterpArgs) -> Result<()> {
         } else {
             to_csv(&run)
         };
-        files.push((out, text.into_bytes(), String::new()));
+        files.add(out, text.into_bytes(), None);
     }
     // The other outputs are written all or none, after the frames are made and before
     // they are moved into place: one failure leaves nothing.
-    let all: Vec<(&Path, &[u8])> = files.iter().map(|(p, b, _)| (*p, &b[..])).collect();
+    let mut said = Vec::new();
     match &args.frames_dir {
         Some(dir) => {
-            write_frames(dir, &turned, || write_all(&all))?;
+            write_frames(dir, &turned, || {
+                said = files.write()?;
+                Ok(())
+            })?;
             eprintln!("wrote {} ({} frames)", dir.display(), turned.len());
         }
-        None => write_all(&all)?,
+        None => said = files.write()?,
     }
-    for (_, _, said) in files.iter().filter(|f| !f.2.is_empty()) {
-        eprintln!("{said}");
+    for line in said {
+        eprintln!("{line}");
     }
     match &args.out {
         Some(out) => {

@@ -7,7 +7,7 @@
 use anyhow::{bail, Context, Result};
 use indicatif::{ProgressBar, ProgressStyle};
 use std::io::Write;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// Writes `bytes` to `path` atomically.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
@@ -41,6 +41,38 @@ pub fn write_all(files: &[(&Path, &[u8])]) -> Result<()> {
             .with_context(|| format!("cannot write {}", path.display()))?;
     }
     Ok(())
+}
+
+/// A command's output files, made and checked, not yet written: each path, its bytes and
+/// what to say once it is written (`None`: nothing; `Some("")`: `wrote PATH`;
+/// `Some(detail)`: `wrote PATH (detail)`). Written all or none ([`write_all`]) once
+/// everything the command was asked for is made.
+#[derive(Default)]
+pub struct Pending(Vec<(PathBuf, Vec<u8>, Option<String>)>);
+
+impl Pending {
+    /// Adds `bytes` for `path`, with what to say once it is written.
+    pub fn add(&mut self, path: &Path, bytes: Vec<u8>, said: Option<String>) {
+        self.0.push((path.to_path_buf(), bytes, said));
+    }
+
+    /// Writes every file, all or none, and returns the lines to say.
+    pub fn write(&self) -> Result<Vec<String>> {
+        let all: Vec<(&Path, &[u8])> = self
+            .0
+            .iter()
+            .map(|(p, b, _)| (p.as_path(), &b[..]))
+            .collect();
+        write_all(&all)?;
+        Ok(self
+            .0
+            .iter()
+            .filter_map(|(p, _, said)| match said.as_deref()? {
+                "" => Some(format!("wrote {}", p.display())),
+                detail => Some(format!("wrote {} ({detail})", p.display())),
+            })
+            .collect())
+    }
 }
 
 /// Refuses, before any work, a folder for frames (given with `flag`) whose parent is not a

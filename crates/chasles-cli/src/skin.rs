@@ -2,7 +2,7 @@
 //! or a whole clip, and the candy-wrapper table (`--artifacts`).
 
 use crate::choice::SkinMethod;
-use crate::output::{check_frames_dir, extension, write_all, write_frames_dir};
+use crate::output::{check_frames_dir, extension, write_frames_dir, Pending};
 use crate::picture_args::Pictures;
 use crate::picture_args::MAX_GIF_FRAMES;
 use crate::pictures;
@@ -49,6 +49,14 @@ pub struct SkinArgs {
     /// and nalgebra baselines and a copy of the bytes moved (interleaved rounds).
     #[arg(long)]
     pub bench: bool,
+    /// --bench: the mesh sizes, e.g. 100000,4000000 (each at most 10^8).
+    #[arg(
+        long,
+        value_delimiter = ',',
+        value_name = "N,N,…",
+        default_value = "100000,1000000"
+    )]
+    pub bench_vertices: Vec<usize>,
     #[command(flatten)]
     pub pictures: Pictures,
     /// Where to skin: cpu, gpu (any adapter, lavapipe included) or auto (a hardware GPU for lbs/dqs/dib when there is one).
@@ -178,7 +186,7 @@ fn cpu_jiffies() -> Option<(u64, u64)> {
     Some((busy, mine))
 }
 
-/// `chasles skin --bench`: on synthetic meshes of 10⁵ and 10⁶ vertices (54 joints, 4
+/// `chasles skin --bench`: on synthetic meshes of `sizes` vertices (54 joints, 4
 /// influences; the pose's joint data made in each run), one thread and all threads, every
 /// method's fast path beside the careful glam and nalgebra baselines of
 /// [`chasles_skin::peers`] and a memory copy of the 72 bytes each vertex moves (the
@@ -189,15 +197,19 @@ fn cpu_jiffies() -> Option<(u64, u64)> {
 /// processes kept more than a quarter of the CPUs busy is flagged. The random joints make
 /// nearly every vertex its own SBS cluster: SBS's worst case, a rotation centre solved per
 /// vertex.
-pub fn bench() -> Result<()> {
+pub fn bench(sizes: &[usize]) -> Result<()> {
     use chasles_skin::fast::skin_pose;
     use chasles_skin::{peers, synthetic};
-    use rayon::prelude::*;
     let started = (std::time::Instant::now(), cpu_jiffies());
     println!("| vertices | threads | kernel | M vertices/s (median) | spread | ours / it | share of the bound |");
     println!("|---|---|---|---|---|---|---|");
     let mut ratios = Vec::new();
-    for (n, rounds) in [(100_000usize, 21), (1_000_000, 7)] {
+    if let Some(n) = sizes.iter().find(|n| **n == 0 || **n > 100_000_000) {
+        bail!("--bench-vertices: {n} is not between 1 and 10^8");
+    }
+    for &n in sizes {
+        // Fewer rounds for big meshes: a round of every kernel takes about a second at 10⁶.
+        let rounds = if n <= 200_000 { 21 } else { 7 };
         let rig = synthetic::rig(n, 54, 7);
         let jt = synthetic::joints(54, 7);
         let pj = peers::Joints::of(&jt);
@@ -220,50 +232,21 @@ pub fn bench() -> Result<()> {
                     Box::new(move |o| Ok(skin_pose(rig, jt, m, o, parallel)?)),
                 ));
             }
-            let peer = |f: fn(
-                &[chasles_skin::fast::Vertex<4>],
-                &peers::Joints,
-                &mut [chasles_skin::fast::Out],
-            )|
-             -> Run {
+            for (name, f) in peers::BASELINES {
                 let pj = &pj;
-                Box::new(move |o| {
-                    peers::run(v, o, parallel, &|v, o| f(v, pj, o));
-                    Ok(())
-                })
-            };
-            kernels.push((
-                "glam lbs, normals by M".into(),
-                peer(|v, j, o| peers::glam_lbs_by_m(v, &j.glam, o)),
-            ));
-            kernels.push((
-                "glam lbs, cofactor normals".into(),
-                peer(|v, j, o| peers::glam_lbs_cofactor(v, &j.glam, o)),
-            ));
-            kernels.push((
-                "nalgebra lbs".into(),
-                peer(|v, j, o| peers::nalgebra_lbs(v, &j.nalgebra, o)),
-            ));
-            kernels.push((
-                "glam dqs (Vec4, careful)".into(),
-                peer(|v, j, o| peers::glam_dqs(v, &j.glam_dq, o)),
-            ));
-            kernels.push((
-                "nalgebra dqs".into(),
-                peer(|v, j, o| peers::nalgebra_dqs(v, &j.nalgebra_dq, o)),
-            ));
+                kernels.push((
+                    name.into(),
+                    Box::new(move |o| {
+                        peers::run(v, o, parallel, &|v, o| f(v, pj, o));
+                        Ok(())
+                    }),
+                ));
+            }
             let (src, dst) = (&src, &mut dst);
             kernels.push((
                 "memcpy, 72 B a vertex".into(),
                 Box::new(move |_| {
-                    let src = std::hint::black_box(src);
-                    if parallel {
-                        dst.par_chunks_mut(4096 * 36)
-                            .zip(src.par_chunks(4096 * 36))
-                            .for_each(|(d, s)| d.copy_from_slice(s));
-                    } else {
-                        dst.copy_from_slice(src);
-                    }
+                    peers::copy_bound(src, dst, parallel);
                     Ok(())
                 }),
             ));
@@ -295,12 +278,12 @@ pub fn bench() -> Result<()> {
             let mut rates = std::collections::HashMap::new();
             for (k, (name, _)) in kernels.iter().enumerate() {
                 let (med, lo, hi) = rate[k];
-                let ours_over = if name.starts_with("glam lbs") || name == "nalgebra lbs" {
-                    format!("{:.2}×", lbs / med)
-                } else if name.contains(" dqs") {
-                    format!("{:.2}×", dqs / med)
-                } else {
-                    String::new()
+                // A baseline is compared with our kernel of its method (named in its name).
+                let baseline = peers::BASELINES.iter().any(|(b, _)| b == name);
+                let ours_over = match (baseline, name.contains("lbs")) {
+                    (false, _) => String::new(),
+                    (true, true) => format!("{:.2}×", lbs / med),
+                    (true, false) => format!("{:.2}×", dqs / med),
                 };
                 println!(
                     "| {n} | {threads} | {name} | {:.1} | {:.1}–{:.1} | {ours_over} | {:.2} |",
@@ -339,33 +322,12 @@ pub fn bench() -> Result<()> {
     Ok(())
 }
 
-/// Files made and checked, not yet written: each path, its bytes and what to say once it
-/// is written. `chasles skin` writes them only after everything it was asked for is made.
-#[derive(Default)]
-struct Pending(Vec<(PathBuf, Vec<u8>, String)>);
-
-impl Pending {
-    /// Adds `bytes` for `path`, with the words said once it is written.
-    fn add(&mut self, path: &Path, bytes: Vec<u8>, said: String) {
-        self.0.push((path.to_path_buf(), bytes, said));
+/// Writes `pending` all or none and says so on stdout.
+fn write_pending(pending: &Pending) -> Result<()> {
+    for line in pending.write()? {
+        println!("{line}");
     }
-
-    /// Writes every file, all or none ([`write_all`]), and says so.
-    fn write(self) -> Result<()> {
-        let all: Vec<(&Path, &[u8])> = self
-            .0
-            .iter()
-            .map(|(p, b, _)| (p.as_path(), &b[..]))
-            .collect();
-        write_all(&all)?;
-        for (p, _, said) in &self.0 {
-            match said.as_str() {
-                "" => {}
-                _ => println!("wrote {} ({said})", p.display()),
-            }
-        }
-        Ok(())
-    }
+    Ok(())
 }
 
 /// Runs `chasles skin`: every picture and output is made and checked before any file is
@@ -374,7 +336,7 @@ pub fn run(a: SkinArgs) -> Result<()> {
     if a.bench {
         return match a.device {
             crate::device::Device::Gpu => crate::device::bench_gpu(),
-            _ => bench(),
+            _ => bench(&a.bench_vertices),
         };
     }
     a.pictures.check(&["svg"])?;
@@ -388,19 +350,23 @@ pub fn run(a: SkinArgs) -> Result<()> {
             pending.add(
                 p,
                 img.png(),
-                "the cylinder twisted 180°, every method".into(),
+                Some("the cylinder twisted 180°, every method".into()),
             );
         }
         if let Some(p) = &a.pictures.gif {
             let frames = pictures::twist_sweep(25)?;
             let gif = chasles_viz::gif(&frames, 6)?;
-            pending.add(p, gif, "twist 0°→180°→0°, LBS beside DQS".into());
+            pending.add(p, gif, Some("twist 0°→180°→0°, LBS beside DQS".into()));
         }
         if let Some(p) = &a.pictures.plot {
             let svg = pictures::twist_plot()?.into_bytes();
-            pending.add(p, svg, "middle radius against twist, every method".into());
+            pending.add(
+                p,
+                svg,
+                Some("middle radius against twist, every method".into()),
+            );
         }
-        pending.write()?;
+        write_pending(&pending)?;
         print!("{table}");
         return Ok(());
     }
@@ -413,7 +379,11 @@ pub fn run(a: SkinArgs) -> Result<()> {
     if let Some(p) = &a.pictures.plot {
         let c = clip(&rig, &a.anim)?;
         let svg = pictures::volume_plot(&rig, c)?.into_bytes();
-        pending.add(p, svg, "LBS's smallest local volume over the clip".into());
+        pending.add(
+            p,
+            svg,
+            Some("LBS's smallest local volume over the clip".into()),
+        );
     }
     if let Some(p) = &a.pictures.sphere {
         let c = clip(&rig, &a.anim)?;
@@ -421,7 +391,7 @@ pub fn run(a: SkinArgs) -> Result<()> {
         pending.add(
             p,
             img.png(),
-            format!("the rotation of {joint} over the clip"),
+            Some(format!("the rotation of {joint} over the clip")),
         );
     }
     if let Some(p) = &a.pictures.gif {
@@ -435,7 +405,11 @@ pub fn run(a: SkinArgs) -> Result<()> {
         let n = frame_count(&rig, c, a.fps, a.max_frames.min(MAX_GIF_FRAMES), "--gif")?;
         let frames = pictures::clip_frames(&rig, c, a.fps, n)?;
         let gif = chasles_viz::gif(&frames, (100.0 / a.fps).round() as u16)?;
-        pending.add(p, gif, format!("{} frames, LBS beside DQS", frames.len()));
+        pending.add(
+            p,
+            gif,
+            Some(format!("{} frames, LBS beside DQS", frames.len())),
+        );
     }
     let pictures_only =
         a.pictures.plot.is_some() || a.pictures.sphere.is_some() || a.pictures.gif.is_some();
@@ -443,11 +417,11 @@ pub fn run(a: SkinArgs) -> Result<()> {
         if let Some(p) = &a.pictures.render {
             let pose = chosen_pose(&rig, &a)?.0;
             let img = pictures::methods_side_by_side(&rig, &pose, &Method::ALL)?;
-            pending.add(p, img.png(), "every method side by side".into());
-            return pending.write();
+            pending.add(p, img.png(), Some("every method side by side".into()));
+            return write_pending(&pending);
         }
         if pictures_only {
-            return pending.write();
+            return write_pending(&pending);
         }
     }
     let out = a
@@ -465,7 +439,7 @@ pub fn run(a: SkinArgs) -> Result<()> {
         let duration = rig.animations[c].duration();
         let frames = frame_count(&rig, c, a.fps, a.max_frames, "--all-frames")?;
         check_frames_dir("--all-frames --out", out)?;
-        all_frames(&rig, &a, c, frames, out, || pending.write())?;
+        all_frames(&rig, &a, c, frames, out, || write_pending(&pending))?;
         println!(
             "wrote {frames} frames of {:.3} s at {} fps to {}",
             duration,
@@ -477,13 +451,13 @@ pub fn run(a: SkinArgs) -> Result<()> {
     let (pose, when) = chosen_pose(&rig, &a)?;
     if let Some(p) = &a.pictures.render {
         let img = pictures::methods_side_by_side(&rig, &pose, &Method::ALL)?;
-        pending.add(p, img.png(), "every method side by side".into());
+        pending.add(p, img.png(), Some("every method side by side".into()));
     }
     let engine = crate::device::Engine::new(a.device, &rig, m)?;
     let s = engine.skin(&rig, &pose, m)?;
     let comment = format!("{} skinned with {} in {when}", rig.name, m.name());
-    pending.add(out, encode(&rig, &s, out, &comment)?, String::new());
-    pending.write()?;
+    pending.add(out, encode(&rig, &s, out, &comment)?, None);
+    write_pending(&pending)?;
     println!(
         "{}: {} vertices, {} joints, skinned with {} in {when} on {}; wrote {}",
         rig.name,

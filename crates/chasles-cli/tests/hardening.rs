@@ -347,9 +347,15 @@ fn a_clip_of_a_week_is_refused_before_any_frame_is_written() {
 
 /// A tour stopped by SIGINT half-way leaves no half report and no temporary file.
 /// `chasles ARGS`, stopped by `signal` (`-INT`, `-TERM`) once something appears in `dir`:
-/// it must exit 130 saying so and leave `dir` empty — or, had it finished first, hold only
-/// `done`.
-fn interrupted_leaves_nothing(args: &[&str], signal: &str, dir: &Path, done: &str) {
+/// it must exit 130 saying so and leave `dir` empty — or, had it finished first (allowed
+/// only when `may_finish`: a run that lasts long enough must be stopped), hold only `done`.
+fn interrupted_leaves_nothing(
+    args: &[&str],
+    signal: &str,
+    dir: &Path,
+    done: &str,
+    may_finish: bool,
+) {
     let child = Command::new(env!("CARGO_BIN_EXE_chasles"))
         .args(args)
         .stdout(Stdio::null())
@@ -378,6 +384,7 @@ fn interrupted_leaves_nothing(args: &[&str], signal: &str, dir: &Path, done: &st
         .map(|e| e.unwrap().file_name())
         .collect();
     if o.status.success() {
+        assert!(may_finish, "{args:?} finished before {signal} reached it");
         assert_eq!(left, [done], "{args:?} finished first, leaving {left:?}");
         return;
     }
@@ -400,6 +407,7 @@ fn interrupted_runs_leave_nothing_behind() {
         "-INT",
         dir.path(),
         "report",
+        true,
     );
 
     let rigs = tempfile::tempdir().unwrap();
@@ -417,7 +425,7 @@ fn interrupted_runs_leave_nothing_behind() {
         "--out",
         frames.to_str().unwrap(),
     ];
-    interrupted_leaves_nothing(&args, "-TERM", dir.path(), "frames");
+    interrupted_leaves_nothing(&args, "-TERM", dir.path(), "frames", false);
 }
 
 /// `interp --gif` draws every frame: a ceiling, checked before any picture is made or any

@@ -8,13 +8,12 @@
 //! `cargo bench -p chasles-skin --bench skin`
 
 use chasles_skin::fast::{
-    clusters, dib, dqs, dual_quats8, lbs, log, matrices12, qlb, sbs, skin_pose, twists, Out,
+    clusters, dib, dqs, dual_quats8, lbs, log, matrices12, qlb, sbs, skin_pose, twists,
 };
 use chasles_skin::synthetic;
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 
 use chasles_skin::peers;
-use rayon::prelude::*;
 use std::hint::black_box;
 
 fn bench(c: &mut Criterion) {
@@ -23,7 +22,6 @@ fn bench(c: &mut Criterion) {
         let jt = synthetic::joints(54, 7);
         let (m12, d8) = (matrices12(&jt), dual_quats8(&jt));
         let pj = peers::Joints::of(&jt);
-        let (gj, gd, nm, nd) = (&pj.glam, &pj.glam_dq, &pj.nalgebra, &pj.nalgebra_dq);
         let tw = twists(&jt).unwrap();
         let cl = clusters(&rig);
         let mut out = vec![[0f32; 6]; n];
@@ -54,51 +52,25 @@ fn bench(c: &mut Criterion) {
                 b.iter(|| dib(&rig, &jt.dual_quats, black_box(&mut out), parallel).unwrap())
             });
         }
+        // The baselines of `peers` and the bandwidth bound (a copy of the 72 bytes each
+        // vertex moves), on one and on all threads.
         let v = rig.vertices();
-        for parallel in [false, true] {
-            let th = if parallel { "all threads" } else { "1 thread" };
-            let run = |out: &mut [Out], f: &(dyn Fn(&[_], &mut [Out]) + Sync)| {
-                peers::run(v, out, parallel, f)
-            };
-            g.bench_function(format!("glam lbs (Mat3A, normals by M), {th}"), |b| {
-                b.iter(|| run(black_box(&mut out), &|v, o| peers::glam_lbs_by_m(v, gj, o)))
-            });
-            g.bench_function(format!("glam lbs (Mat3A, cofactor normals), {th}"), |b| {
-                b.iter(|| {
-                    run(black_box(&mut out), &|v, o| {
-                        peers::glam_lbs_cofactor(v, gj, o)
-                    })
-                })
-            });
-            g.bench_function(format!("glam dqs (Vec4, careful), {th}"), |b| {
-                b.iter(|| run(black_box(&mut out), &|v, o| peers::glam_dqs(v, gd, o)))
-            });
-        }
-        g.bench_function("nalgebra lbs (as users call it), 1 thread", |b| {
-            b.iter(|| peers::nalgebra_lbs(v, nm, black_box(&mut out)))
-        });
-        g.bench_function("nalgebra dqs (as users call it), 1 thread", |b| {
-            b.iter(|| peers::nalgebra_dqs(v, nd, black_box(&mut out)))
-        });
-        // Bandwidth bound: memcpy of 36 bytes per vertex reads 36 and writes 36 — the 72
-        // bytes each skinned vertex must move (48 read, 24 written).
         let src = vec![1u8; n * 36];
         let mut dst = vec![0u8; n * 36];
-        g.bench_function("memcpy 72 B moved per vertex, 1 thread", |b| {
-            b.iter(|| {
-                dst.copy_from_slice(black_box(&src));
-                black_box(dst[n])
-            })
-        });
-        // The bound on all threads: the same copy in the kernels' chunks of 4096 vertices.
-        g.bench_function("memcpy 72 B moved per vertex, all threads", |b| {
-            b.iter(|| {
-                dst.par_chunks_mut(4096 * 36)
-                    .zip(black_box(&src).par_chunks(4096 * 36))
-                    .for_each(|(d, s)| d.copy_from_slice(s));
-                black_box(dst[n])
-            })
-        });
+        for parallel in [false, true] {
+            let th = if parallel { "all threads" } else { "1 thread" };
+            for (name, f) in peers::BASELINES {
+                g.bench_function(format!("{name}, {th}"), |b| {
+                    b.iter(|| peers::run(v, black_box(&mut out), parallel, &|v, o| f(v, &pj, o)))
+                });
+            }
+            g.bench_function(format!("memcpy 72 B moved per vertex, {th}"), |b| {
+                b.iter(|| {
+                    peers::copy_bound(&src, &mut dst, parallel);
+                    black_box(dst[n])
+                })
+            });
+        }
         g.finish();
     }
 }

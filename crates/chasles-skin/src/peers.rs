@@ -43,6 +43,39 @@ impl Joints {
     }
 }
 
+/// A baseline: its name and the whole-mesh kernel on one thread.
+pub type Baseline = (&'static str, fn(&[Vertex<4>], &Joints, &mut [Out]));
+
+/// Every baseline, the LBS ones first (their names say which method each is).
+pub const BASELINES: [Baseline; 5] = [
+    ("glam lbs, normals by M", |v, j, o| {
+        glam_lbs_by_m(v, &j.glam, o)
+    }),
+    ("glam lbs, cofactor normals", |v, j, o| {
+        glam_lbs_cofactor(v, &j.glam, o)
+    }),
+    ("nalgebra lbs", |v, j, o| nalgebra_lbs(v, &j.nalgebra, o)),
+    ("glam dqs (Vec4, careful)", |v, j, o| {
+        glam_dqs(v, &j.glam_dq, o)
+    }),
+    ("nalgebra dqs", |v, j, o| nalgebra_dqs(v, &j.nalgebra_dq, o)),
+];
+
+/// The bandwidth bound: `src` copied into `dst` (36 bytes a vertex read and 36 written,
+/// the 72 bytes each skinned vertex moves: 48 read, 24 written), on one thread or on all
+/// in the fast paths' chunks of 4096 vertices.
+pub fn copy_bound(src: &[u8], dst: &mut [u8], parallel: bool) {
+    use rayon::prelude::*;
+    let src = std::hint::black_box(src);
+    if parallel {
+        dst.par_chunks_mut(4096 * 36)
+            .zip(src.par_chunks(4096 * 36))
+            .for_each(|(d, s)| d.copy_from_slice(s));
+    } else {
+        dst.copy_from_slice(src);
+    }
+}
+
 /// `f` over the mesh `v` and its output on one thread, or on all in the fast paths' chunks
 /// of 4096 vertices.
 pub fn run(

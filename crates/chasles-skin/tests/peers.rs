@@ -72,26 +72,15 @@ fn every_baseline_matches_an_f64_reference_on_a_single_influence_mesh() {
     let v = rig.vertices();
     let mut out = vec![[0f32; 6]; v.len()];
     let pj = peers::Joints::of(&jt);
-    let (gj, gd, nm, nd) = (&pj.glam, &pj.glam_dq, &pj.nalgebra, &pj.nalgebra_dq);
     let mut check = |name: &str, want: &[[f64; 6]], run: &mut dyn FnMut(&mut [Out])| {
         out.iter_mut().for_each(|o| *o = [f32::NAN; 6]);
         run(&mut out);
         let e = worst(&out, want);
         assert!(e < 4e-6, "{name}: off the f64 reference by {e:e}");
     };
-    check("glam lbs by M", &want, &mut |o| {
-        peers::glam_lbs_by_m(v, gj, o)
-    });
-    check("glam lbs cofactor", &want, &mut |o| {
-        peers::glam_lbs_cofactor(v, gj, o)
-    });
-    check("glam dqs", &want, &mut |o| peers::glam_dqs(v, gd, o));
-    check("nalgebra lbs", &want, &mut |o| {
-        peers::nalgebra_lbs(v, nm, o)
-    });
-    check("nalgebra dqs", &want, &mut |o| {
-        peers::nalgebra_dqs(v, nd, o)
-    });
+    for (name, f) in peers::BASELINES {
+        check(name, &want, &mut |o| f(v, &pj, o));
+    }
     let (m12, d8) = (matrices12(&jt), dual_quats8(&jt));
     check("chasles lbs", &want, &mut |o| {
         lbs(&rig, &m12, o, false).unwrap()
