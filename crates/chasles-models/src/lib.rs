@@ -115,6 +115,13 @@ pub fn on_disk() -> std::io::Result<&'static Path> {
     if let Some(d) = DIR.get() {
         return Ok(d);
     }
+    // One thread writes at a time: two threads of one process would share the temporary
+    // file's name below (it has the process id), and the second rename would find it gone.
+    static WRITING: std::sync::Mutex<()> = std::sync::Mutex::new(());
+    let _one = WRITING.lock().unwrap_or_else(|e| e.into_inner());
+    if let Some(d) = DIR.get() {
+        return Ok(d);
+    }
     let dir = std::env::temp_dir().join(concat!("chasles-models-", env!("CARGO_PKG_VERSION")));
     std::fs::create_dir_all(&dir)?;
     for m in ALL {
