@@ -166,151 +166,44 @@ pub(crate) fn median_secs(runs: usize, mut f: impl FnMut() -> Result<()>) -> Res
     Ok(t[runs / 2])
 }
 
-/// CPU time since boot: (all CPUs' busy jiffies, this process's jiffies), from
-/// `/proc/stat` and `/proc/self/stat`; `None` where those do not exist (not Linux).
-fn cpu_jiffies() -> Option<(u64, u64)> {
-    let stat = std::fs::read_to_string("/proc/stat").ok()?;
-    let cpu: Vec<u64> = stat
-        .lines()
-        .next()?
-        .split_whitespace()
-        .skip(1)
-        .filter_map(|x| x.parse().ok())
-        .collect();
-    // user nice system idle iowait irq softirq steal …: busy is all but idle and iowait.
-    let busy = cpu.iter().sum::<u64>() - cpu.get(3)? - cpu.get(4).copied().unwrap_or(0);
-    let own = std::fs::read_to_string("/proc/self/stat").ok()?;
-    // After the command name's closing parenthesis: utime and stime are fields 14 and 15.
-    let rest: Vec<&str> = own.rsplit_once(')')?.1.split_whitespace().collect();
-    let mine = rest.get(11)?.parse::<u64>().ok()? + rest.get(12)?.parse::<u64>().ok()?;
-    Some((busy, mine))
-}
-
 /// `chasles skin --bench`: on synthetic meshes of `sizes` vertices (54 joints, 4
 /// influences; the pose's joint data made in each run), one thread and all threads, every
 /// method's fast path beside the careful glam and nalgebra baselines of
 /// [`chasles_skin::peers`] and a memory copy of the 72 bytes each vertex moves (the
-/// bandwidth bound), timed in interleaved rounds (each round runs every kernel once, so a
-/// slow spell of a shared machine hits all alike): the median of each with its spread
-/// (lowest–highest rate), our speed over each baseline's (LBS over the LBS baselines, DQS
-/// over the DQS ones) and each method's share of the bound. A run during which other
-/// processes kept more than a quarter of the CPUs busy is flagged. The random joints make
-/// nearly every vertex its own SBS cluster: SBS's worst case, a rotation centre solved per
-/// vertex.
+/// bandwidth bound), timed in interleaved rounds ([`chasles_skin::peers::measure`]): the
+/// median rate of each with its spread, our speed over each baseline's (LBS over the LBS
+/// baselines, DQS over the DQS ones) and each kernel's share of the bound, both taken round
+/// by round. A run during which other processes (or the host of a virtual machine) kept
+/// more than a quarter of the CPUs busy is flagged.
 pub fn bench(sizes: &[usize]) -> Result<()> {
-    use chasles_skin::fast::skin_pose;
-    use chasles_skin::{peers, synthetic};
-    let started = (std::time::Instant::now(), cpu_jiffies());
-    println!("| vertices | threads | kernel | M vertices/s (median) | spread | ours / it | share of the bound |");
-    println!("|---|---|---|---|---|---|---|");
-    let mut ratios = Vec::new();
+    use chasles_skin::peers;
     if let Some(n) = sizes.iter().find(|n| **n == 0 || **n > 100_000_000) {
         bail!("--bench-vertices: {n} is not between 1 and 10^8");
     }
+    let load = peers::Load::start();
+    let mut tables = Vec::new();
     for &n in sizes {
         // Fewer rounds for big meshes: a round of every kernel takes about a second at 10⁶.
         let rounds = if n <= 200_000 { 21 } else { 7 };
-        let rig = synthetic::rig(n, 54, 7);
-        let jt = synthetic::joints(54, 7);
-        let pj = peers::Joints::of(&jt);
-        let v = rig.vertices();
-        let mut out = vec![[0f32; 6]; n];
-        let src = vec![1u8; n * 36];
-        let mut dst = vec![0u8; n * 36];
         for parallel in [false, true] {
-            let threads = if parallel {
-                rayon::current_num_threads()
-            } else {
-                1
-            };
-            type Run<'a> = Box<dyn FnMut(&mut [chasles_skin::fast::Out]) -> Result<()> + 'a>;
-            let mut kernels: Vec<(String, Run)> = Vec::new();
-            for m in Method::ALL {
-                let (rig, jt) = (&rig, &jt);
-                kernels.push((
-                    m.name().to_string(),
-                    Box::new(move |o| Ok(skin_pose(rig, jt, m, o, parallel)?)),
-                ));
-            }
-            for (name, f) in peers::BASELINES {
-                let pj = &pj;
-                kernels.push((
-                    name.into(),
-                    Box::new(move |o| {
-                        peers::run(v, o, parallel, &|v, o| f(v, pj, o));
-                        Ok(())
-                    }),
-                ));
-            }
-            let (src, dst) = (&src, &mut dst);
-            kernels.push((
-                "memcpy, 72 B a vertex".into(),
-                Box::new(move |_| {
-                    peers::copy_bound(src, dst, parallel);
-                    Ok(())
-                }),
-            ));
-            // One untimed round, then the interleaved ones.
-            let mut secs = vec![Vec::with_capacity(rounds); kernels.len()];
-            for round in 0..=rounds {
-                for (k, (_, f)) in kernels.iter_mut().enumerate() {
-                    let start = std::time::Instant::now();
-                    f(&mut out)?;
-                    if round > 0 {
-                        secs[k].push(start.elapsed().as_secs_f64());
-                    }
-                }
-            }
-            let rate: Vec<(f64, f64, f64)> = secs
-                .iter_mut()
-                .map(|s| {
-                    s.sort_by(f64::total_cmp);
-                    let r = |t: f64| n as f64 / t;
-                    (r(s[s.len() / 2]), r(s[s.len() - 1]), r(s[0]))
-                })
-                .collect();
-            let index = |name: &str| kernels.iter().position(|(k, _)| k == name);
-            let bound = rate[kernels.len() - 1].0;
-            let (lbs, dqs) = (
-                index("lbs").map_or(f64::NAN, |i| rate[i].0),
-                index("dqs").map_or(f64::NAN, |i| rate[i].0),
-            );
-            let mut rates = std::collections::HashMap::new();
-            for (k, (name, _)) in kernels.iter().enumerate() {
-                let (med, lo, hi) = rate[k];
-                // A baseline is compared with our kernel of its method (named in its name).
-                let baseline = peers::BASELINES.iter().any(|(b, _)| b == name);
-                let ours_over = match (baseline, name.contains("lbs")) {
-                    (false, _) => String::new(),
-                    (true, true) => format!("{:.2}×", lbs / med),
-                    (true, false) => format!("{:.2}×", dqs / med),
-                };
-                println!(
-                    "| {n} | {threads} | {name} | {:.1} | {:.1}–{:.1} | {ours_over} | {:.2} |",
-                    med / 1e6,
-                    lo / 1e6,
-                    hi / 1e6,
-                    med / bound
-                );
-                rates.insert(name.clone(), med);
-            }
-            ratios.push((n, threads, rig.clusters().len(), rates));
+            tables.push(peers::measure(n, parallel, rounds)?);
         }
     }
-    println!();
-    for (n, threads, centres, r) in ratios {
-        let dqs = r["dqs"];
+    println!("{}", peers::markdown(&tables));
+    for t in &tables {
+        let r = |name: &str| t.rate(name).unwrap_or(f64::NAN);
+        let dqs = r("dqs");
         println!(
-            "{n} vertices, {threads} thread(s): DQS costs {:.2}× LBS; DQS is {:.1}× Log and {:.1}× SBS (Figure 1: 2.3× and 2.2×; SBS solved {centres} rotation centres a pose here, real rigs far fewer)",
-            r["lbs"] / dqs,
-            dqs / r["log"],
-            dqs / r["sbs"]
+            "{} vertices, {} thread(s): DQS costs {:.2}× LBS; DQS is {:.1}× Log and {:.1}× SBS (Figure 1: 2.3× and 2.2×; SBS solved {} rotation centres a pose here, real rigs far fewer)",
+            t.vertices,
+            t.threads,
+            r("lbs") / dqs,
+            dqs / r("log"),
+            dqs / r("sbs"),
+            t.centres
         );
     }
-    if let ((t0, Some((busy0, mine0))), Some((busy1, mine1))) = (started, cpu_jiffies()) {
-        // Jiffies are 1/100 s on Linux.
-        let wall = t0.elapsed().as_secs_f64() * 100.0 * rayon::current_num_threads().max(1) as f64;
-        let others = (busy1 - busy0).saturating_sub(mine1 - mine0) as f64 / wall.max(1.0);
+    if let Some(others) = load.others() {
         println!(
             "other processes kept {:.0}% of the CPUs busy during the run",
             others * 100.0

@@ -3,7 +3,10 @@
 //! of `peers` — glam LBS with `Mat3A` sums, normals by the blended matrix and by its
 //! cofactor, a careful glam DQS on `Vec4` pairs, nalgebra's DQS and LBS as its users call
 //! them, each checked against an f64 reference in `tests/peers.rs` — and a memory copy of
-//! 72 bytes per vertex for the bandwidth bound).
+//! 72 bytes per vertex for the bandwidth bound). Criterion times each kernel on its own, one
+//! after another; the closing table (`ratios`) times them all again in interleaved rounds
+//! (`peers::measure`, the measurement behind `chasles skin --bench`) and prints our speed
+//! over each baseline and each kernel's share of the copy bound, round by round.
 //!
 //! `cargo bench -p chasles-skin --bench skin`
 
@@ -177,5 +180,24 @@ fn job(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, bench, eight_influences, figure_1, job);
+/// The peer ratios and the shares of the bound in one table: every kernel, baseline and the
+/// copy in interleaved rounds (`peers::measure`), so that each ratio is taken within a round.
+fn ratios(_: &mut Criterion) {
+    let load = peers::Load::start();
+    let mut tables = Vec::new();
+    for (n, rounds) in [(100_000, 21), (1_000_000, 7)] {
+        for parallel in [false, true] {
+            tables.push(peers::measure(n, parallel, rounds).unwrap());
+        }
+    }
+    println!("\n{}", peers::markdown(&tables));
+    if let Some(others) = load.others() {
+        println!(
+            "other processes kept {:.0}% of the CPUs busy",
+            others * 100.0
+        );
+    }
+}
+
+criterion_group!(benches, bench, eight_influences, figure_1, job, ratios);
 criterion_main!(benches);

@@ -19,6 +19,9 @@
 use crate::fast::{Out, Vertex};
 use glam::{Mat3A, Vec3A, Vec4};
 
+mod rounds;
+pub use rounds::{markdown, measure, Load, Role, Row, Spread, Table};
+
 /// Every baseline's joints for one pose.
 pub struct Joints {
     /// glam LBS's.

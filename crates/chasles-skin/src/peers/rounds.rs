@@ -1,0 +1,249 @@
+//! Every fast path beside the baselines of [`super::BASELINES`] and the copy bound, timed in
+//! interleaved rounds: each round runs every kernel once, so a slow spell of a shared
+//! machine hits all of them alike, and every ratio is taken within a round (a baseline's time
+//! over our kernel's of the same method, the copy's time over a kernel's) before the median
+//! is taken over the rounds. The one measurement behind `chasles skin --bench` and the
+//! criterion bench's closing table (Kavan et al. 2006, §6: what skinning costs).
+
+use super::{copy_bound, run, Joints, BASELINES};
+use crate::error::Result;
+use crate::fast::{skin_pose, Out};
+use crate::{synthetic, Method};
+use std::time::Instant;
+
+/// A median over rounds with the lowest and highest value.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Spread {
+    /// The median.
+    pub median: f64,
+    /// The lowest value.
+    pub lo: f64,
+    /// The highest value.
+    pub hi: f64,
+}
+
+impl Spread {
+    /// The median, lowest and highest of `x` (not empty; NaN sorts last).
+    pub fn of(mut x: Vec<f64>) -> Spread {
+        x.sort_by(f64::total_cmp);
+        Spread {
+            median: x[x.len() / 2],
+            lo: x[0],
+            hi: x[x.len() - 1],
+        }
+    }
+}
+
+/// What a timed kernel is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Role {
+    /// One of our fast paths.
+    Ours(Method),
+    /// A baseline of [`BASELINES`], compared with our kernel of this method.
+    Baseline(Method),
+    /// The copy of the 72 bytes a vertex moves ([`copy_bound`]).
+    Bound,
+}
+
+/// One kernel's figures over the rounds.
+#[derive(Debug, Clone)]
+pub struct Row {
+    /// Its name (a method's, a baseline's, or the copy's).
+    pub name: String,
+    /// What it is.
+    pub role: Role,
+    /// Vertices per second.
+    pub rate: Spread,
+    /// For a baseline: our kernel's speed over its, round by round.
+    pub ours_over: Option<Spread>,
+    /// Its speed over the copy's (the share of the bandwidth bound), round by round.
+    pub share: Spread,
+}
+
+/// The figures of one mesh size on one or on all threads.
+#[derive(Debug, Clone)]
+pub struct Table {
+    /// Vertices in the mesh.
+    pub vertices: usize,
+    /// Threads (1, or rayon's count).
+    pub threads: usize,
+    /// Rotation centres SBS solved a pose (one per vertex cluster).
+    pub centres: usize,
+    /// Timed rounds.
+    pub rounds: usize,
+    /// Every kernel: our methods, the baselines, the copy.
+    pub rows: Vec<Row>,
+}
+
+impl Table {
+    /// The median rate of the kernel named `name`.
+    pub fn rate(&self, name: &str) -> Option<f64> {
+        self.rows
+            .iter()
+            .find(|r| r.name == name)
+            .map(|r| r.rate.median)
+    }
+}
+
+/// Times every method's fast path (the pose's joint data made in each run, as
+/// [`skin_pose`] does), every baseline and the copy bound on a synthetic mesh of `n` vertices
+/// (54 joints, 4 random influences, [`synthetic::rig`]) in `rounds` interleaved rounds after
+/// one untimed one, on one thread or on all. The random joints make nearly every vertex its
+/// own SBS cluster: SBS's worst case.
+pub fn measure(n: usize, parallel: bool, rounds: usize) -> Result<Table> {
+    let rig = synthetic::rig(n, 54, 7);
+    let jt = synthetic::joints(54, 7);
+    let pj = Joints::of(&jt);
+    let v = rig.vertices();
+    let mut out = vec![[0f32; 6]; n];
+    let src = vec![1u8; n * 36];
+    let mut dst = vec![0u8; n * 36];
+    type Run<'a> = Box<dyn FnMut(&mut [Out]) -> Result<()> + 'a>;
+    let mut kernels: Vec<(String, Role, Run)> = Vec::new();
+    for m in Method::ALL {
+        let (rig, jt) = (&rig, &jt);
+        let f: Run = Box::new(move |o| skin_pose(rig, jt, m, o, parallel));
+        kernels.push((m.name().into(), Role::Ours(m), f));
+    }
+    for (name, f) in BASELINES {
+        let pj = &pj;
+        let method = if name.contains("lbs") {
+            Method::Lbs
+        } else {
+            Method::Dqs
+        };
+        let f: Run = Box::new(move |o| {
+            run(v, o, parallel, &|v, o| f(v, pj, o));
+            Ok(())
+        });
+        kernels.push((name.into(), Role::Baseline(method), f));
+    }
+    let (src, dst) = (&src, &mut dst);
+    let copy: Run = Box::new(move |_| {
+        copy_bound(src, dst, parallel);
+        Ok(())
+    });
+    kernels.push(("memcpy, 72 B a vertex".into(), Role::Bound, copy));
+    let mut secs = vec![Vec::with_capacity(rounds); kernels.len()];
+    for round in 0..=rounds.max(1) {
+        for (k, (_, _, f)) in kernels.iter_mut().enumerate() {
+            let start = Instant::now();
+            f(&mut out)?;
+            if round > 0 {
+                secs[k].push(start.elapsed().as_secs_f64());
+            }
+        }
+    }
+    let bound = kernels.len() - 1;
+    let ours = |m: Method| kernels.iter().position(|k| k.1 == Role::Ours(m));
+    // `a`'s time over `b`'s, round by round: `b`'s speed over `a`'s.
+    let over =
+        |a: usize, b: usize| Spread::of(secs[a].iter().zip(&secs[b]).map(|(a, b)| a / b).collect());
+    let rows = kernels
+        .iter()
+        .enumerate()
+        .map(|(k, (name, role, _))| Row {
+            name: name.clone(),
+            role: *role,
+            rate: Spread::of(secs[k].iter().map(|t| n as f64 / t).collect()),
+            ours_over: match role {
+                Role::Baseline(m) => ours(*m).map(|o| over(k, o)),
+                _ => None,
+            },
+            share: over(bound, k),
+        })
+        .collect();
+    Ok(Table {
+        vertices: n,
+        threads: if parallel {
+            rayon::current_num_threads()
+        } else {
+            1
+        },
+        centres: rig.clusters().len(),
+        rounds: rounds.max(1),
+        rows,
+    })
+}
+
+/// The Markdown table of `tables`: per kernel the median rate with its spread, our speed
+/// over each baseline and every kernel's share of the copy bound (medians of the rounds'
+/// ratios, with their spreads).
+pub fn markdown(tables: &[Table]) -> String {
+    let mut s = String::from(
+        "| vertices | threads | kernel | M vertices/s (median) | spread | ours / it (median, spread) | share of the bound (median, spread) |\n|---|---|---|---|---|---|---|\n",
+    );
+    let m = |x: f64| x / 1e6;
+    for t in tables {
+        for r in &t.rows {
+            let ours = r.ours_over.map_or(String::new(), |o| {
+                format!("{:.2}× ({:.2}–{:.2})", o.median, o.lo, o.hi)
+            });
+            s += &format!(
+                "| {} | {} | {} | {:.1} | {:.1}–{:.1} | {ours} | {:.2} ({:.2}–{:.2}) |\n",
+                t.vertices,
+                t.threads,
+                r.name,
+                m(r.rate.median),
+                m(r.rate.lo),
+                m(r.rate.hi),
+                r.share.median,
+                r.share.lo,
+                r.share.hi
+            );
+        }
+    }
+    s
+}
+
+/// The busy time of the machine and of this process, to tell how much of the CPUs other
+/// processes (and, on a virtual machine, the host: steal time counts as busy) kept during a
+/// measurement. Linux only (`/proc`); elsewhere [`Load::others`] is `None`.
+#[derive(Debug, Clone, Copy)]
+pub struct Load {
+    start: Instant,
+    jiffies: Option<(u64, u64, usize)>,
+}
+
+impl Load {
+    /// Starts counting.
+    pub fn start() -> Load {
+        Load {
+            start: Instant::now(),
+            jiffies: cpu_jiffies(),
+        }
+    }
+
+    /// The share of all CPUs' time since [`Load::start`] that went to other processes.
+    pub fn others(&self) -> Option<f64> {
+        let ((busy0, mine0, cpus), (busy1, mine1, _)) = (self.jiffies?, cpu_jiffies()?);
+        // Jiffies are 1/100 s on Linux.
+        let wall = self.start.elapsed().as_secs_f64() * 100.0 * cpus as f64;
+        Some((busy1 - busy0).saturating_sub(mine1 - mine0) as f64 / wall.max(1.0))
+    }
+}
+
+/// CPU time since boot: (all CPUs' busy jiffies, this process's jiffies, the CPUs), from
+/// `/proc/stat` and `/proc/self/stat`.
+fn cpu_jiffies() -> Option<(u64, u64, usize)> {
+    let stat = std::fs::read_to_string("/proc/stat").ok()?;
+    let cpu: Vec<u64> = stat
+        .lines()
+        .next()?
+        .split_whitespace()
+        .skip(1)
+        .filter_map(|x| x.parse().ok())
+        .collect();
+    // user nice system idle iowait irq softirq steal (guest guest_nice, already in user and
+    // nice): busy is the first eight but idle and iowait.
+    let cpus = stat
+        .lines()
+        .filter(|l| l.starts_with("cpu") && l.as_bytes().get(3).is_some_and(u8::is_ascii_digit))
+        .count();
+    let busy = cpu.iter().take(8).sum::<u64>() - cpu.get(3)? - cpu.get(4).copied().unwrap_or(0);
+    let own = std::fs::read_to_string("/proc/self/stat").ok()?;
+    // After the command name's closing parenthesis: utime and stime are fields 14 and 15.
+    let rest: Vec<&str> = own.rsplit_once(')')?.1.split_whitespace().collect();
+    let mine = rest.get(11)?.parse::<u64>().ok()? + rest.get(12)?.parse::<u64>().ok()?;
+    Some((busy, mine, cpus.max(1)))
+}
