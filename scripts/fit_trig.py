@@ -1,11 +1,16 @@
 #!/usr/bin/env python3
-"""Refits the polynomial tables `ACOS`, `SIN` and `COS` of crates/chasles/src/trig.rs.
+"""Refits the polynomial tables `ACOS`, `SIN`, `COS`, `ANGLE2_F32` and `SINC_F32` of
+crates/chasles/src/trig.rs.
 
 What is fitted (each table is the polynomial in its own variable, constant term first):
   ACOS  A(y) ~ acos(1 - y)/sqrt(2y),        0 <= y <= 1.0001 (ACOS_OVER_CHORD_MAX), 19 terms;
   SIN   S(z) ~ (sin x - x)/(x z),           z = x^2, 0 <= z <= 0.64 (|x| <= 0.8), 6 terms
         (sin x = x + x z S(z));
-  COS   C(z) ~ (cos x - 1 + z/2)/z^2,       same z, 7 terms (cos x = 1 - z/2 + z^2 C(z)).
+  COS   C(z) ~ (cos x - 1 + z/2)/z^2,       same z, 7 terms (cos x = 1 - z/2 + z^2 C(z));
+and, for f32 (coefficients rounded to f32 where used, errors in f32 ulp = 2^-23):
+  ANGLE2_F32  Z(y) ~ acos(1 - y)^2/(2y),    0 <= y <= 1.0001, 9 terms (the squared angle);
+  SINC_F32    T(u) ~ (sin(sqrt u)/sqrt u - 1)/u, 0 <= u <= acos(-0.0001)^2 (SINC_F32_MAX),
+              5 terms (sinc = 1 + u T(u); its error is counted on the sinc).
 How: plain (unweighted) least squares in the monomial basis at --nodes Chebyshev nodes (first
 kind) of the variable's interval, in 50-digit mpmath arithmetic, each coefficient then rounded
 to the nearest f64. All 19 ACOS terms are fitted: the constant comes out 1 + 1.4e-17 and rounds
@@ -18,6 +23,8 @@ Errors are relative, in ulp = 2^-52 (f64::EPSILON, as trig.rs's tests count them
 angle factor A(y) (the angle is d * A(y)), of sin x and of cos x, over a dense grid: exactly
 (50 digits, coefficients as f64 values) and evaluated in f64 by Horner without FMA (trig.rs
 uses Estrin's scheme, with FMA where the build has it, so its rounding differs a little).
+The f32 tables likewise in ulp = 2^-23, their coefficients rounded to f32, evaluated in
+f32 (each operation rounded to f32).
 
 Usage (needs mpmath: pip install mpmath):
   python3 scripts/fit_trig.py            print the refitted tables as Rust source, and errors
@@ -28,6 +35,7 @@ Usage (needs mpmath: pip install mpmath):
 import argparse
 import pathlib
 import re
+import struct
 import sys
 
 try:
@@ -40,8 +48,23 @@ except ImportError:
 
 mp.mp.dps = 50
 EPS = 2.0**-52
+EPS32 = 2.0**-23
 TRIG_RS = pathlib.Path(__file__).resolve().parent.parent / "crates" / "chasles" / "src" / "trig.rs"
 Y_MAX, X_MAX = "1.0001", "0.8"  # ACOS_OVER_CHORD_MAX, SIN_COS_REDUCED_MAX in trig.rs
+U_MAX = mp.acos(-mp.mpf("0.0001")) ** 2  # SINC_F32_MAX in trig.rs
+
+
+def f32(v):
+    """v rounded to the nearest f32."""
+    return struct.unpack("f", struct.pack("f", float(v)))[0]
+
+
+def horner32(c, t):
+    """Horner's rule with every coefficient, product and sum rounded to f32."""
+    s = 0.0
+    for a in reversed(c):
+        s = f32(f32(s * t) + f32(a))
+    return s
 
 
 def horner(c, t):
@@ -55,29 +78,50 @@ def acos_factor(y):
     return mp.acos(1 - y) / mp.sqrt(2 * y)
 
 
+def angle2(y):
+    return mp.acos(1 - y) ** 2 / (2 * y)
+
+
+def sinc(u):
+    return mp.sin(mp.sqrt(u)) / mp.sqrt(u)
+
+
 # name: (terms, top of the variable's range, the polynomial's target in its variable,
 #        grid top (y or x), the function from coefficients c at grid point u exactly and in
-#        f64, the true function at u, the documented bound in ulp).
+#        f64 (f32 for the f32 tables), the true function at u, the documented bound in ulp,
+#        the ulp: EPS or EPS32, with coefficients rounded to f32 for the latter).
 KERNELS = {
     "ACOS": (
         19, mp.mpf(Y_MAX), acos_factor, float(Y_MAX),
         lambda c, y: horner(c, y),
         lambda c, y: horner(c, y),
-        acos_factor, 3.0,
+        acos_factor, 3.0, EPS,
     ),
     "SIN": (
         6, mp.mpf(X_MAX) ** 2, lambda z: (mp.sin(mp.sqrt(z)) - mp.sqrt(z)) / (mp.sqrt(z) * z),
         float(X_MAX),
         lambda c, x: x + x * x * x * horner(c, x * x),
         lambda c, x: x * (x * x) * horner(c, x * x) + x,
-        mp.sin, 1.5,
+        mp.sin, 1.5, EPS,
     ),
     "COS": (
         7, mp.mpf(X_MAX) ** 2, lambda z: (mp.cos(mp.sqrt(z)) - 1 + z / 2) / z**2,
         float(X_MAX),
         lambda c, x: 1 - x * x / 2 + (x * x) ** 2 * horner(c, x * x),
         lambda c, x: (x * x) * (x * x) * horner(c, x * x) + ((x * x) * -0.5 + 1.0),
-        mp.cos, 1.5,
+        mp.cos, 1.5, EPS,
+    ),
+    "ANGLE2_F32": (
+        9, mp.mpf(Y_MAX), angle2, float(Y_MAX),
+        lambda c, y: horner(c, y),
+        lambda c, y: horner32(c, f32(y)),
+        angle2, 1.5, EPS32,
+    ),
+    "SINC_F32": (
+        5, U_MAX, lambda u: (sinc(u) - 1) / u, float(U_MAX),
+        lambda c, u: 1 + u * horner(c, u),
+        lambda c, u: f32(1.0 + f32(f32(u) * horner32(c, f32(u)))),
+        sinc, 1.5, EPS32,
     ),
 }
 
@@ -90,35 +134,46 @@ def fit(terms, top, target, nodes):
     return [float(coef[j]) for j in range(terms)]
 
 
+def used(name, c):
+    """The coefficients as the code uses them: f64 values, or rounded to f32."""
+    return [f32(a) for a in c] if KERNELS[name][8] == EPS32 else list(c)
+
+
 def errors(name, c, grid):
-    """Largest relative error in ulp of the table `c` (f64 values): exactly and in f64."""
-    _, _, _, top, exact, f64, true, _ = KERNELS[name]
+    """Largest relative error in ulp of the table `c` (f64 values): exactly (coefficients as
+    used) and evaluated in the table's precision."""
+    _, _, _, top, exact, f64, true, _, eps = KERNELS[name]
+    c = used(name, c)
     cm = [mp.mpf(a) for a in c]
     e_mp = e_64 = 0.0
     for i in range(1, grid + 1):
         u = top * i / grid
         want = true(mp.mpf(u))
-        e_mp = max(e_mp, float(abs(exact(cm, mp.mpf(u)) - want) / abs(want)) / EPS)
-        e_64 = max(e_64, float(abs(f64(c, u) - want) / abs(want)) / EPS)
+        e_mp = max(e_mp, float(abs(exact(cm, mp.mpf(u)) - want) / abs(want)) / eps)
+        e_64 = max(e_64, float(abs(f64(c, u) - want) / abs(want)) / eps)
     return e_mp, e_64
 
 
 def value_difference(name, c, d, grid):
     """Largest relative difference in ulp between the functions built from tables c and d."""
-    _, _, _, top, exact, _, true, _ = KERNELS[name]
-    cm, dm = [mp.mpf(a) for a in c], [mp.mpf(a) for a in d]
+    _, _, _, top, exact, _, true, _, eps = KERNELS[name]
+    cm, dm = [mp.mpf(a) for a in used(name, c)], [mp.mpf(a) for a in used(name, d)]
     return max(
-        float(abs(exact(cm, u) - exact(dm, u)) / abs(true(u))) / EPS
+        float(abs(exact(cm, u) - exact(dm, u)) / abs(true(u))) / eps
         for u in (mp.mpf(top * i / grid) for i in range(1, grid + 1))
     )
 
 
 def current_tables():
     src = TRIG_RS.read_text()
-    for const, want in (("ACOS_OVER_CHORD_MAX", Y_MAX), ("SIN_COS_REDUCED_MAX", X_MAX)):
+    for const, want in (
+        ("ACOS_OVER_CHORD_MAX", Y_MAX),
+        ("SIN_COS_REDUCED_MAX", X_MAX),
+        ("SINC_F32_MAX", repr(float(U_MAX))),
+    ):
         m = re.search(rf"const {const}: f64 = ([^;]+);", src)
         if not m or float(m.group(1).replace("_", "")) != float(want):
-            sys.exit(f"{TRIG_RS}: {const} is not {want}; update Y_MAX, X_MAX here")
+            sys.exit(f"{TRIG_RS}: {const} is not {want}; update Y_MAX, X_MAX, U_MAX here")
     tables = {}
     for name in KERNELS:
         m = re.search(rf"const {name}: \[f64; (\d+)\] = \[([^\]]*)\];", src)
@@ -152,18 +207,20 @@ def main():
             print("".join(f"    {a!r},\n" for a in c) + "];")
         for name, c in refit.items():
             e_mp, e_64 = errors(name, c, args.grid)
-            print(f"// {name}: max error {e_mp:.3f} ulp exactly, {e_64:.3f} ulp in f64 (Horner)")
+            what = "f32" if KERNELS[name][8] == EPS32 else "f64"
+            print(f"// {name}: max error {e_mp:.3f} ulp exactly, {e_64:.3f} ulp in {what} (Horner)")
         return 0
     ok = True
     for name, cur in current_tables().items():
-        bound = KERNELS[name][-1]
+        bound = KERNELS[name][7]
         diff = value_difference(name, refit[name], cur, args.grid)
         e_mp, e_64 = errors(name, cur, args.grid)
         good = diff <= bound and e_64 <= bound
         ok &= good
         print(f"{name}: {agreement(refit[name], cur)}; values differ by <= {diff:.3f} ulp")
+        what = "f32" if KERNELS[name][8] == EPS32 else "f64"
         print(
-            f"  trig.rs's table: max error {e_mp:.3f} ulp exactly, {e_64:.3f} ulp in f64 (Horner),"
+            f"  trig.rs's table: max error {e_mp:.3f} ulp exactly, {e_64:.3f} ulp in {what} (Horner),"
             f" documented {bound} ulp: {'ok' if good else 'FAIL'}"
         )
     return 0 if ok else 1

@@ -10,7 +10,11 @@
 //! * `Ω = d · acos(1 − y)/√(2y)` with `d = ‖p − q‖ = 2 sin(Ω/2)` and `y = d²/2 = 1 − cos Ω
 //!   ∈ [0, 1]`: [`acos_over_chord`] is that smooth factor, a polynomial in `y` — no square
 //!   root or division stands between the inputs and the angle;
-//! * `sin x`, `cos x` for `|x| ≤ π/4 < 0.8`: [`sin_cos_reduced`].
+//! * `sin x`, `cos x` for `|x| ≤ π/4 < 0.8`: [`sin_cos_reduced`];
+//! * for f32 Slerp (Dam et al. 1998, eq. 6.13, up to a quarter turn), two shorter
+//!   polynomials fitted to f32's precision: the squared angle `Ω² = 2y Z(y)`
+//!   ([`angle2_over_2y_f32`], 9 terms) and the small part of `sinc √u = 1 + u T(u)`
+//!   ([`sinc_minus_one_f32`], 5 terms), within 1.5 f32 ulp each.
 //!
 //! The polynomials were fitted in 50-digit arithmetic (unweighted least squares at Chebyshev
 //! nodes of the first kind, near-minimax; every coefficient of `ACOS` free, the constant
@@ -18,7 +22,7 @@
 //! refit reproduces the tables bit for bit (its `--check`, run in CI, reports that and fails
 //! if the tables' values drift past these bounds); in `f64` they are within about 3 ulp (the
 //! angle) and 1.5 ulp (sin, cos) of the true values there — the tests check this against
-//! the library functions. They are evaluated by Estrin's scheme (short dependency chains),
+//! the library functions; the f32 tables likewise within 1.5 f32 ulp, evaluated in f32. They are evaluated by Estrin's scheme (short dependency chains),
 //! with fused multiply-adds where the build has them (`fma` target feature), and are generic
 //! over [`Lanes`]: every [`Real`] (so the FLOP counter counts them as they run) and
 //! `wide::f64x2`, two values at once (SSE2 on every x86-64, NEON on AArch64).
@@ -110,6 +114,48 @@ const COS: [f64; 7] = [
     -1.1470439189559761e-11,
     4.744616280885557e-14,
 ];
+
+/// `acos(1 − y)²/(2y) = Z(y)` to f32's precision (coefficients rounded to f32 where used):
+/// the squared angle between two unit quaternions is `Ω² = 2y Z(y)`, `y = 1 − cos Ω`.
+const ANGLE2_F32: [f64; 9] = [
+    1.000000005637174,
+    0.1666657806792452,
+    0.04446721433970504,
+    0.01406248754671851,
+    0.006160982669189821,
+    -0.000959299380621566,
+    0.005119355246258256,
+    -0.0032711373969434936,
+    0.0014551533271805839,
+];
+/// `(sin √u/√u − 1)/u = T(u)` to f32's precision for `0 ≤ u ≤` [`SINC_F32_MAX`]: `sinc √u
+/// = 1 + u T(u)`.
+const SINC_F32: [f64; 5] = [
+    -0.1666666666388766,
+    0.008333332769528681,
+    -0.00019841086706879498,
+    2.7536472237430724e-06,
+    -2.408035098251646e-08,
+];
+/// Largest `u` for which [`sinc_minus_one_f32`] keeps its accuracy: `acos(−0.0001)²`, a
+/// quarter turn with the margin of [`ACOS_OVER_CHORD_MAX`].
+// Read by the tests and checked by scripts/fit_trig.py; Slerp's arguments stay below it.
+#[allow(dead_code)]
+pub const SINC_F32_MAX: f64 = 2.467715269538222;
+
+/// `acos(1 − y)²/(2y)` to f32's precision for `0 ≤ y ≤` [`ACOS_OVER_CHORD_MAX`] (1 at
+/// `y = 0`): `Ω² = 2y · angle2_over_2y_f32(y)`.
+#[inline(always)]
+pub fn angle2_over_2y_f32<L: Lanes>(y: L) -> L {
+    poly(y, &ANGLE2_F32)
+}
+
+/// `sinc √u − 1 = u T(u)` to f32's precision for `0 ≤ u ≤` [`SINC_F32_MAX`]: the small part
+/// of the sinc, kept apart so that ratios of sincs lose nothing to the 1.
+#[inline(always)]
+pub fn sinc_minus_one_f32<L: Lanes>(u: L) -> L {
+    u * poly(u, &SINC_F32)
+}
 
 /// The polynomial with coefficients `c` (constant term first) at `z`, by Estrin's scheme
 /// (pairs, then pairs of pairs, up to 32 coefficients): a dependency chain of about log₂ N
@@ -239,5 +285,27 @@ mod tests {
         let (s, c) = sin_cos_reduced::<f32>(0.7);
         assert!((s - 0.7_f32.sin()).abs() < 2.0 * f32::EPSILON);
         assert!((c - 0.7_f32.cos()).abs() < 2.0 * f32::EPSILON);
+    }
+    #[test]
+    fn the_f32_kernels_within_two_f32_ulps_on_their_range() {
+        let ulps32 = |got: f32, want: f64| ((f64::from(got) - want) / want).abs() / 2f64.powi(-23);
+        let mut worst = (0.0f64, 0.0f64);
+        for i in 0..=4000 {
+            let y = (i as f64 / 4000.0 * ACOS_OVER_CHORD_MAX) as f32;
+            let want = if y == 0.0 {
+                1.0
+            } else {
+                let y = f64::from(y);
+                (1.0 - y).acos().powi(2) / (2.0 * y)
+            };
+            worst.0 = worst.0.max(ulps32(angle2_over_2y_f32(y), want));
+            let u = (i as f64 / 4000.0 * SINC_F32_MAX) as f32;
+            let r = f64::from(u).sqrt();
+            let sinc = if u == 0.0 { 1.0 } else { r.sin() / r };
+            worst.1 = worst.1.max(ulps32(1.0 + sinc_minus_one_f32(u), sinc));
+        }
+        assert!(worst.0 < 2.0 && worst.1 < 2.0, "{worst:?} f32 ulp");
+        assert_eq!(angle2_over_2y_f32(0.0f32), 1.0);
+        assert_eq!(sinc_minus_one_f32(0.0f32), 0.0);
     }
 }

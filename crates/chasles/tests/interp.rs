@@ -8,7 +8,7 @@ use chasles::analysis::curvature::{curvature_energy, Width};
 use chasles::analysis::velocity::{velocity_angle, velocity_chord};
 use chasles::interp::lerp::{lerp, nlerp};
 use chasles::interp::lin_mat::{lin_mat, non_rigidity, rotation_part};
-use chasles::interp::slerp::{slerp, slerp_pow, slerp_shortest};
+use chasles::interp::slerp::{slerp, slerp_pow, slerp_shortest, slerp_trig};
 use chasles::interp::timing::{distribute, largest_remainder};
 use chasles::interp::{examples, interpolate, Frame, Hemisphere, KeyFrames, Method, Squad, Timing};
 use chasles::{Error, EulerOrder, Quat, Real, Vec3};
@@ -538,6 +538,55 @@ fn eberly_series_weights_match_trigonometry() {
     assert!(worst < 4e-8, "series weights off by {worst}");
     assert_eq!(slerp_weights_series(0.3f32, 0.0), (1.0, 0.0));
     assert_eq!(slerp_weights_series(0.3f32, 1.0), (0.0, 1.0));
+}
+
+#[test]
+fn f32_weights_match_trigonometry_to_f32_rounding() {
+    // The weights f32 Slerp uses up to a quarter turn, computed in f32, against
+    // sin(hΩ)/sin Ω in f64 at the very f32 cosine they were given (so only their own
+    // rounding counts): within four ulp of 1 everywhere (2.2e-7 measured, near a quarter
+    // turn with h near 0 or 1), near Ω = 0 included, and exact at h = 0 and h = 1.
+    use chasles::interp::slerp::slerp_weights_f32;
+    let mut worst = 0.0f64;
+    let xs = (0..=2000)
+        .map(|i| i as f32 / 2000.0)
+        .chain((1..=200).map(|i| 1.0 - i as f32 * 1e-7))
+        .chain([1.0 - f32::EPSILON, 1.0]);
+    for x in xs {
+        let omega = f64::from(x).acos();
+        for k in 0..=200 {
+            let h = k as f32 / 200.0;
+            let (a, b) = slerp_weights_f32(x, h);
+            let w = |t: f64| {
+                let sinc = |u: f64| if u == 0.0 { 1.0 } else { u.sin() / u };
+                t * sinc(t * omega) / sinc(omega)
+            };
+            let h64 = f64::from(h);
+            let e = (f64::from(a) - w(1.0 - h64))
+                .abs()
+                .max((f64::from(b) - w(h64)).abs());
+            worst = worst.max(e);
+        }
+        assert_eq!(slerp_weights_f32(x, 0.0), (1.0, 0.0), "x = {x}");
+        assert_eq!(slerp_weights_f32(x, 1.0), (0.0, 1.0), "x = {x}");
+    }
+    assert!(worst < 2.4e-7, "f32 weights off by {worst:e}");
+    // Through Slerp: every f32 pair within a quarter turn, against the f64 form.
+    let p = Quat::new(0.5f32, -0.5, 0.5, 0.5);
+    let perp = Quat::new(0.5f32, 0.5, 0.5, -0.5);
+    for i in 0..=90 {
+        let omega = (i as f32).to_radians();
+        let q = p * omega.cos() + perp * omega.sin();
+        for k in 0..=10 {
+            let h = k as f32 / 10.0;
+            let got = slerp(p, q, h).cast::<f64>();
+            let want = slerp_trig(p.cast::<f64>(), q.cast::<f64>(), f64::from(h));
+            assert!(
+                (got - want).norm() < 3e-7,
+                "Ω = {i}°, h = {h}: {got:?} vs {want:?}"
+            );
+        }
+    }
 }
 
 #[test]
