@@ -57,6 +57,15 @@ pub struct SkinArgs {
         default_value = "100000,1000000"
     )]
     pub bench_vertices: Vec<usize>,
+    /// --bench: the thread counts, e.g. 1,2,4,all (the scaling curve; each at most 1024).
+    #[arg(
+        long,
+        value_delimiter = ',',
+        value_name = "N,N,…",
+        default_value = "1,all",
+        value_parser = threads
+    )]
+    pub bench_threads: Vec<usize>,
     #[command(flatten)]
     pub pictures: Pictures,
     /// Where to skin: cpu, gpu (any adapter, lavapipe included) or auto (a hardware GPU for lbs/dqs/dib when there is one).
@@ -166,8 +175,20 @@ pub(crate) fn median_secs(runs: usize, mut f: impl FnMut() -> Result<()>) -> Res
     Ok(t[runs / 2])
 }
 
+/// A thread count of `--bench-threads`: a number from 1 to 1024, or `all` (rayon's count:
+/// the machine's, or `RAYON_NUM_THREADS`).
+fn threads(s: &str) -> std::result::Result<usize, String> {
+    if s == "all" {
+        return Ok(rayon::current_num_threads());
+    }
+    match s.parse::<usize>() {
+        Ok(n) if (1..=1024).contains(&n) => Ok(n),
+        _ => Err(format!("{s} is not a thread count from 1 to 1024 or all")),
+    }
+}
+
 /// `chasles skin --bench`: on synthetic meshes of `sizes` vertices (54 joints, 4
-/// influences; the pose's joint data made in each run), one thread and all threads, every
+/// influences; the pose's joint data made in each run), on each of `threads`, every
 /// method's fast path beside the careful glam and nalgebra baselines of
 /// [`chasles_skin::peers`] and a memory copy of the 72 bytes each vertex moves (the
 /// bandwidth bound), timed in interleaved rounds ([`chasles_skin::peers::measure`]): the
@@ -175,7 +196,7 @@ pub(crate) fn median_secs(runs: usize, mut f: impl FnMut() -> Result<()>) -> Res
 /// baselines, DQS over the DQS ones) and each kernel's share of the bound, both taken round
 /// by round. A run during which other processes (or the host of a virtual machine) kept
 /// more than a quarter of the CPUs busy is flagged.
-pub fn bench(sizes: &[usize]) -> Result<()> {
+pub fn bench(sizes: &[usize], threads: &[usize]) -> Result<()> {
     use chasles_skin::peers;
     if let Some(n) = sizes.iter().find(|n| **n == 0 || **n > 100_000_000) {
         bail!("--bench-vertices: {n} is not between 1 and 10^8");
@@ -185,8 +206,8 @@ pub fn bench(sizes: &[usize]) -> Result<()> {
     for &n in sizes {
         // Fewer rounds for big meshes: a round of every kernel takes about a second at 10⁶.
         let rounds = if n <= 200_000 { 21 } else { 7 };
-        for parallel in [false, true] {
-            tables.push(peers::measure(n, parallel, rounds)?);
+        for &t in threads {
+            tables.push(peers::measure(n, t, rounds)?);
         }
     }
     println!("{}", peers::markdown(&tables));
@@ -229,7 +250,7 @@ pub fn run(a: SkinArgs) -> Result<()> {
     if a.bench {
         return match a.device {
             crate::device::Device::Gpu => crate::device::bench_gpu(),
-            _ => bench(&a.bench_vertices),
+            _ => bench(&a.bench_vertices, &a.bench_threads),
         };
     }
     a.pictures.check(&["svg"])?;

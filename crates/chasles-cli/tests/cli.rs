@@ -1655,3 +1655,39 @@ fn a_closed_pipe_ends_quietly() {
     );
     assert_ne!(o.status.code(), Some(101), "{err}");
 }
+
+#[test]
+fn skin_bench_prints_every_kernel_on_every_thread_count_with_round_by_round_ratios() {
+    let out = stdout(&chasles(&[
+        "skin",
+        "--bench",
+        "--bench-vertices",
+        "64",
+        "--bench-threads",
+        "1,2",
+    ]));
+    let rows: Vec<Vec<&str>> = out
+        .lines()
+        .filter(|l| l.starts_with("| 64 |"))
+        .map(|l| l.split('|').map(str::trim).collect())
+        .collect();
+    // Six methods, five baselines and the copy, on 1 and on 2 threads.
+    assert_eq!(rows.len(), 2 * 12, "{out}");
+    for threads in ["1", "2"] {
+        let of = |name: &str| {
+            rows.iter()
+                .find(|r| r[2] == threads && r[3] == name)
+                .unwrap_or_else(|| panic!("no {name} on {threads}: {out}"))
+        };
+        // A baseline's ratio: median and spread, "1.23× (1.01–1.50)".
+        let ratio = of("glam dqs (Vec4, careful)")[6];
+        assert!(ratio.ends_with(')') && ratio.contains("× ("), "{ratio}");
+        assert_eq!(of("memcpy, 72 B a vertex")[7], "1.00 (1.00–1.00)");
+        assert_eq!(of("dqs")[6], "", "our kernels have no ratio to themselves");
+    }
+    assert!(out.contains("of the CPUs busy during the run"), "{out}");
+    let bad = chasles(&["skin", "--bench", "--bench-threads", "0"]);
+    assert_eq!(bad.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&bad.stderr)
+        .contains("0 is not a thread count from 1 to 1024 or all"));
+}

@@ -186,8 +186,8 @@ fn ratios(_: &mut Criterion) {
     let load = peers::Load::start();
     let mut tables = Vec::new();
     for (n, rounds) in [(100_000, 21), (1_000_000, 7)] {
-        for parallel in [false, true] {
-            tables.push(peers::measure(n, parallel, rounds).unwrap());
+        for threads in [1, rayon::current_num_threads()] {
+            tables.push(peers::measure(n, threads, rounds).unwrap());
         }
     }
     println!("\n{}", peers::markdown(&tables));

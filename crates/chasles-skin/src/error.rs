@@ -207,6 +207,9 @@ pub enum SkinError {
         /// Bytes available.
         available: usize,
     },
+    /// A pool of worker threads could not be started.
+    #[error("cannot start worker threads: {0}")]
+    Threads(String),
     /// An error from the core algebra.
     #[error(transparent)]
     Math(#[from] chasles::Error),

@@ -10,7 +10,11 @@
 //!
 //! Per vertex it reads 48 bytes (position, normal, four u16 joints, four f32 weights) and
 //! writes 24 (position, normal): 72 bytes, the figure the bandwidth bound is computed
-//! from. Influences are sorted by weight, heaviest first, so the DQS pivot (the heaviest
+//! from. Meshes of [`STREAM_VERTICES`] or more write their packed output by non-temporal
+//! stores (an ordinary store that misses the cache first reads the line it writes: 96
+//! bytes a vertex). Every vertex of a chunk of eight or more goes through the SIMD kernel
+//! (blocks at the chunk's ends overlap their neighbours), so a vertex's numbers do not
+//! depend on the output's layout, alignment or chunking. Influences are sorted by weight, heaviest first, so the DQS pivot (the heaviest
 //! influence, as in the reference path) is simply the first.
 //!
 //! DQS normalizes the blended dual quaternion by ‖q0‖ only: removing qε's component along
@@ -274,9 +278,64 @@ fn out_of(p: Vec3<f32>, n: Vec3<f32>) -> Out {
 /// Vertices per parallel task.
 const CHUNK: usize = 4096;
 
+/// Meshes of at least this many vertices (18.9 MB moved a pose, more than a core's share of
+/// most last-level caches) have their packed output written by non-temporal stores, which
+/// skip reading each output line before writing it; smaller ones, whose output may stay
+/// in the cache for whoever reads it next, by ordinary stores.
+const STREAM_VERTICES: usize = 1 << 18;
+
 /// The 8-vertex SIMD kernel of a method, if this processor has one: it skins a prefix of
-/// whole blocks and returns how many vertices it did.
-type SimdKernel<const K: usize, J, T> = unsafe fn(&[Vertex<K>], &[J], &T, &mut [Out]) -> usize;
+/// whole blocks and returns how many vertices it did; with the flag (only where the output
+/// is 32-byte aligned, see [`simd_start`]) it writes by non-temporal stores.
+type SimdKernel<const K: usize, J, T> =
+    unsafe fn(&[Vertex<K>], &[J], &T, &mut [Out], bool) -> usize;
+
+/// Where a SIMD kernel starts in a chunk's output `o`, and whether it streams: with
+/// `stream`, at the first vertex whose output is 32-byte aligned (24-byte vertices come back
+/// to an alignment every 4; an output that is not 8-byte aligned never reaches 32), the
+/// vertices before it left to the scalar kernel; else at 0, not streaming.
+fn simd_start(o: &[Out], stream: bool) -> (usize, bool) {
+    let addr = o.as_ptr() as usize;
+    match (0..4).find(|l| (addr + 24 * l).is_multiple_of(32)) {
+        Some(lead) if stream && lead + 8 <= o.len() => (lead, true),
+        _ => (0, false),
+    }
+}
+
+/// Orders a SIMD kernel's non-temporal stores before whatever follows (the job's end, which
+/// hands the output to other threads).
+#[cfg(target_arch = "x86_64")]
+fn fence_streams() {
+    // SAFETY: SSE is part of every x86-64 processor.
+    unsafe { std::arch::x86_64::_mm_sfence() }
+}
+
+/// Every vertex of a chunk of `n ≥ 8` through a SIMD kernel, so that each vertex's numbers
+/// are the same whatever the output's layout, alignment or chunking: `kernel(from, to,
+/// stream)` skins the whole blocks of `from..to` and returns how many vertices it did.
+/// The whole blocks from `lead` (streamed with `streams`, see [`simd_start`]); before them
+/// the block `0..8`, after them the block `n − 8..n` where vertices are left over — both
+/// overlap their neighbours, whose vertices they skin again to the same numbers (by
+/// ordinary stores, after the fence).
+#[cfg(target_arch = "x86_64")]
+fn cover(
+    n: usize,
+    lead: usize,
+    streams: bool,
+    mut kernel: impl FnMut(usize, usize, bool) -> usize,
+) {
+    debug_assert!(n >= 8 && lead + 8 <= n.max(8));
+    if lead > 0 {
+        kernel(0, 8, false);
+    }
+    let done = lead + kernel(lead, n, streams);
+    if streams {
+        fence_streams();
+    }
+    if done < n {
+        kernel(n - 8, n, false);
+    }
+}
 
 /// Whether the SIMD kernels may run (they do where the processor has them); see
 /// [`set_simd`].
@@ -322,28 +381,33 @@ trait Kernel<const K: usize> {
     #[cfg(target_arch = "x86_64")]
     const AVX2: Option<SimdKernel<K, Self::Joint, Self::Table>>;
     /// A chunk of vertices (joint indices already checked against `joints`): the SIMD kernel
-    /// where `simd` says so, the scalar kernel for the rest.
+    /// where `simd` says so (streaming its output where `stream` asks and the output's
+    /// alignment allows), the scalar kernel for the rest.
     fn chunk(
         o: &mut [Out],
         v: &[Vertex<K>],
         joints: &[Self::Joint],
         table: &Self::Table,
         simd: bool,
+        stream: bool,
     ) {
-        let mut done = 0;
         #[cfg(target_arch = "x86_64")]
-        if let (true, Some(kernel)) = (simd, Self::AVX2) {
-            // SAFETY: `simd` is only true when K is 4 or 8 and the processor has AVX2 and
-            // FMA (see `simd`); the joint indices were checked against the joint count
-            // when the FastRig was built and `run` checked that `joints` has that many
-            // entries; `table` was made from `joints`; `o` is as long as `v`.
-            done = unsafe { kernel(v, joints, table, o) };
+        if let (true, Some(kernel), true) = (simd, Self::AVX2, v.len() >= 8) {
+            let (lead, streams) = simd_start(o, stream);
+            cover(v.len(), lead, streams, |from, to, s| {
+                // SAFETY: `simd` is only true when K is 4 or 8 and the processor has AVX2
+                // and FMA (see `simd`); the joint indices were checked against the joint
+                // count when the FastRig was built and `run` checked that `joints` has that
+                // many entries; `table` was made from `joints`; `o` is as long as `v`;
+                // `simd_start` streams only where `o[lead]` is 32-byte aligned.
+                unsafe { kernel(&v[from..to], joints, table, &mut o[from..to], s) }
+            });
+            return;
         }
-        let _ = (simd, table);
-        o[done..]
-            .iter_mut()
-            .zip(&v[done..])
-            .for_each(|(o, v)| *o = Self::vertex(v, joints));
+        let _ = (simd, table, stream);
+        for (o, v) in o.iter_mut().zip(v) {
+            *o = Self::vertex(v, joints);
+        }
     }
 }
 
@@ -401,8 +465,9 @@ fn run_with<const K: usize, F: Kernel<K>>(
 ) -> Result<()> {
     check(rig, joints.len(), out.vertices()?)?;
     let simd = simd(K);
-    for_chunks(out, &rig.vertices, parallel, |_, o, v| {
-        F::chunk(o, v, joints, table, simd)
+    let big = rig.vertices.len() >= STREAM_VERTICES;
+    for_chunks(out, &rig.vertices, parallel, |_, o, v, direct| {
+        F::chunk(o, v, joints, table, simd, big && direct)
     });
     Ok(())
 }

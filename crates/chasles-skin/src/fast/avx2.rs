@@ -121,14 +121,19 @@ fn transpose4_halves(r: [__m256; 4]) -> [__m256; 4] {
 }
 
 /// Writes eight vertices' results (six lane vectors) to `o[i … i + 7]` by a transpose, seven
-/// whole stores and one 6-lane masked store.
+/// whole stores and one 6-lane masked store; or, with `stream` (where `o[i]` is 32-byte
+/// aligned), packed into six registers and written by non-temporal stores.
 #[inline]
 #[target_feature(enable = "avx2,fma")]
-unsafe fn store_rows(o: &mut [Out], i: usize, r: [__m256; 6]) {
+unsafe fn store_rows(o: &mut [Out], i: usize, r: [__m256; 6], stream: bool) {
     unsafe {
         let z = _mm256_setzero_ps();
         let rows = transpose8([r[0], r[1], r[2], r[3], r[4], r[5], z, z]);
         let ob = o.as_mut_ptr().add(i) as *mut f32;
+        if stream {
+            stream_rows(ob, rows);
+            return;
+        }
         // Rows 0–6 by whole stores, each overwriting the next vertex's first two floats with
         // the zeros of its lanes 6–7 before that vertex's own store writes them; row 7 by a
         // masked store, so nothing past the block is touched. One masked store per block,
@@ -140,6 +145,46 @@ unsafe fn store_rows(o: &mut [Out], i: usize, r: [__m256; 6]) {
         }
         let mask = _mm256_setr_epi32(-1, -1, -1, -1, -1, -1, 0, 0);
         _mm256_maskstore_ps(ob.add(42), mask, rows[7]);
+    }
+}
+
+/// Eight vertices' rows (vertex l's six numbers in lanes 0–5 of `rows[l]`) packed back to
+/// back into six registers and written to the 32-byte aligned `ob` by non-temporal stores:
+/// the written lines go to memory without first being read into the cache (a store that
+/// misses reads its line first), so a mesh streamed from memory moves 72 bytes a vertex,
+/// not 96. The caller fences (`_mm_sfence`) before others read the output.
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn stream_rows(ob: *mut f32, rows: [__m256; 8]) {
+    unsafe {
+        let at = |r: __m256, i: [i32; 8]| {
+            _mm256_permutevar8x32_ps(
+                r,
+                _mm256_setr_epi32(i[0], i[1], i[2], i[3], i[4], i[5], i[6], i[7]),
+            )
+        };
+        for h in 0..2 {
+            let [a, b, c, d] = [
+                rows[4 * h],
+                rows[4 * h + 1],
+                rows[4 * h + 2],
+                rows[4 * h + 3],
+            ];
+            // a0–a5 b0 b1 | b2–b5 c0–c3 | c4 c5 d0–d5
+            let p0 = _mm256_blend_ps::<0xC0>(a, at(b, [0, 0, 0, 0, 0, 0, 0, 1]));
+            let p1 = _mm256_blend_ps::<0xF0>(
+                at(b, [2, 3, 4, 5, 0, 0, 0, 0]),
+                at(c, [0, 0, 0, 0, 0, 1, 2, 3]),
+            );
+            let p2 = _mm256_blend_ps::<0xFC>(
+                at(c, [4, 5, 0, 0, 0, 0, 0, 0]),
+                at(d, [0, 0, 0, 1, 2, 3, 4, 5]),
+            );
+            let base = ob.add(24 * h);
+            _mm256_stream_ps(base, p0);
+            _mm256_stream_ps(base.add(8), p1);
+            _mm256_stream_ps(base.add(16), p2);
+        }
     }
 }
 
@@ -178,21 +223,23 @@ unsafe fn blend_signed<const K: usize>(
 ///
 /// # Safety
 /// The processor must have AVX2 and FMA, K must be 4 or 8, every joint index in `v` must be below
-/// `d.len()`, `antipodes` must be empty or made from `d`, and `o.len() >= v.len()`.
+/// `d.len()`, `antipodes` must be empty or made from `d`, and `o.len() >= v.len()`; with
+/// `stream`, `o` must be 32-byte aligned (see [`store_rows`]).
 #[target_feature(enable = "avx2,fma")]
 pub unsafe fn dqs<const K: usize>(
     v: &[Vertex<K>],
     d: &[[f32; 8]],
     antipodes: &Antipodes,
     o: &mut [Out],
+    stream: bool,
 ) -> usize {
     unsafe {
         let db = d.as_ptr() as *const f32;
         if antipodes.is_empty() {
-            dqs_blocks(v, o, |vx| blend_one(vx, db))
+            dqs_blocks(v, o, stream, |vx| blend_one(vx, db))
         } else {
             let (signs, joints) = (antipodes.signs.as_ptr(), antipodes.joints);
-            dqs_blocks(v, o, |vx| blend_signed(vx, db, signs, joints))
+            dqs_blocks(v, o, stream, |vx| blend_signed(vx, db, signs, joints))
         }
     }
 }
@@ -204,6 +251,7 @@ pub unsafe fn dqs<const K: usize>(
 unsafe fn dqs_blocks<const K: usize>(
     v: &[Vertex<K>],
     o: &mut [Out],
+    stream: bool,
     blend: impl Fn(&Vertex<K>) -> __m256,
 ) -> usize {
     unsafe {
@@ -212,7 +260,7 @@ unsafe fn dqs_blocks<const K: usize>(
             let i = blk * 8;
             let [px, py, pz, nx, ny, nz, _, _] = load_head(v, i);
             let b = transpose8(eight(|l| blend(v.get_unchecked(i + l))));
-            store_rows(o, i, transform(b, [px, py, pz], [nx, ny, nz]));
+            store_rows(o, i, transform(b, [px, py, pz], [nx, ny, nz]), stream);
         }
         blocks * 8
     }
@@ -252,6 +300,7 @@ pub unsafe fn lbs<const K: usize>(
     m: &[[f32; 12]],
     _: &(),
     o: &mut [Out],
+    stream: bool,
 ) -> usize {
     unsafe {
         let mb = m.as_ptr() as *const f32;
@@ -288,7 +337,7 @@ pub unsafe fn lbs<const K: usize>(
             let mx = _mm256_blendv_ps(nx, _mm256_div_ps(mx, l), ok);
             let my = _mm256_blendv_ps(ny, _mm256_div_ps(my, l), ok);
             let mz = _mm256_blendv_ps(nz, _mm256_div_ps(mz, l), ok);
-            store_rows(o, i, [px, py, pz, mx, my, mz]);
+            store_rows(o, i, [px, py, pz, mx, my, mz], stream);
         }
         blocks * 8
     }
@@ -313,7 +362,7 @@ mod tests {
             let mut out: Vec<Out> = vec![[f32::NAN; 6]; 1003];
             // SAFETY: the processor has AVX2 and FMA (`simd`), the synthetic rig's joint
             // indices are below 54 and `out` is as long as the vertices.
-            let done = unsafe { super::lbs(rig.vertices(), &m, &(), &mut out) };
+            let done = unsafe { super::lbs(rig.vertices(), &m, &(), &mut out, false) };
             assert_eq!(done, 1000);
             for (v, o) in rig.vertices().iter().zip(&out[..done]) {
                 assert_eq!(*o, lbs_vertex(v, &m));

@@ -72,21 +72,24 @@ impl Output<'_> {
 /// the SIMD kernels' 8-vertex block, 6 KB.
 const STAGE: usize = 256;
 
-/// `chunk(first, out, vertices)` over chunks of [`CHUNK`] vertices into `out` (`first`: the
-/// index of the chunk's first vertex), on all threads when `parallel`. `out` holds as many
-/// vertices as `vertices` (checked by the caller).
+/// `chunk(first, out, vertices, direct)` over chunks of [`CHUNK`] vertices into `out`
+/// (`first`: the index of the chunk's first vertex; `direct`: whether `out` is the caller's
+/// packed buffer itself, which a kernel may stream into, rather than the stack stage), on
+/// all threads when `parallel`. `out` holds as many vertices as `vertices` (checked by the
+/// caller).
 pub(super) fn for_chunks<const K: usize>(
     out: Output<'_>,
     vertices: &[Vertex<K>],
     parallel: bool,
-    chunk: impl Fn(usize, &mut [Out], &[Vertex<K>]) + Sync,
+    chunk: impl Fn(usize, &mut [Out], &[Vertex<K>], bool) + Sync,
 ) {
     if vertices.is_empty() {
         return; // and no chunk size to compute from a stride
     }
     match out {
         Output::Packed(o) => {
-            let each = |(c, (o, v)): (usize, (&mut [Out], &[Vertex<K>]))| chunk(c * CHUNK, o, v);
+            let each =
+                |(c, (o, v)): (usize, (&mut [Out], &[Vertex<K>]))| chunk(c * CHUNK, o, v, true);
             if parallel {
                 o.par_chunks_mut(CHUNK)
                     .zip(vertices.par_chunks(CHUNK))
@@ -164,14 +167,14 @@ pub(super) fn for_chunks<const K: usize>(
 fn staged<const K: usize, S>(
     first: usize,
     vertices: &[Vertex<K>],
-    chunk: &impl Fn(usize, &mut [Out], &[Vertex<K>]),
+    chunk: &impl Fn(usize, &mut [Out], &[Vertex<K>], bool),
     stages: impl Iterator<Item = S>,
     mut put: impl FnMut(S, &[Out]),
 ) {
     let mut buf = [[0f32; 6]; STAGE];
     for ((s, v), dst) in vertices.chunks(STAGE).enumerate().zip(stages) {
         let o = &mut buf[..v.len()];
-        chunk(first + s * STAGE, o, v);
+        chunk(first + s * STAGE, o, v, false);
         put(dst, o);
     }
 }

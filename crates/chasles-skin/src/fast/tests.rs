@@ -16,7 +16,15 @@ fn both<const K: usize, F: Kernel<K>>(
     // SAFETY: the callers check `simd(K)`; the rig's joint indices are below its joint
     // count, which is `joints.len()`; the table is made from `joints`; `simd` is as
     // long as the vertices.
-    let done = unsafe { kernel(&rig.vertices, joints, &F::table(joints, n), &mut simd) };
+    let done = unsafe {
+        kernel(
+            &rig.vertices,
+            joints,
+            &F::table(joints, n),
+            &mut simd,
+            false,
+        )
+    };
     assert_eq!(done, n / 8 * 8, "the SIMD kernel did every whole block");
     simd.truncate(done);
     let scalar = rig.vertices[..done]
@@ -85,6 +93,7 @@ fn the_simd_kernels_take_8_influences() {
             cl.of_vertex(),
             &padded,
             &mut o,
+            false,
         )
     };
     assert_eq!(done, 1000);
@@ -98,4 +107,97 @@ fn the_simd_kernels_take_8_influences() {
         .collect();
     let (most, within) = apart(&o[..done], &want, 4e-6);
     assert!(within == 1.0, "SBS {most}");
+}
+
+/// Every SIMD kernel writes the same numbers by non-temporal stores (into 32-byte aligned
+/// output) as by ordinary ones, bit for bit.
+#[test]
+fn streamed_output_is_the_stored_output() {
+    if !simd(4) {
+        eprintln!("no AVX2+FMA here: nothing to compare");
+        return;
+    }
+    let n = 1003;
+    let rig = synthetic::rig(n, 54, 7);
+    let jt = synthetic::joints(54, 7);
+    let d8 = dual_quats8(&jt);
+    let m12 = matrices12(&jt);
+    let t = log::rows(&twists(&jt).unwrap());
+    let rows = qlb::rows(&jt.dual_quats, rig.centres());
+    let cl = clusters(&rig);
+    let padded = qlb::padded(&cl.centres(&jt.dual_quats, rig.centres(), false));
+    let sbs = |v: &[Vertex<4>], rows: &[qlb::Row], table: &Antipodes, o: &mut [Out], s| {
+        // SAFETY: as in `both`, and every cluster index is below `padded.len()`.
+        unsafe { avx2::qlb::sbs(v, rows, table, cl.of_vertex(), &padded, o, s) }
+    };
+    let mut buf = vec![[f32::NAN; 6]; n + 4];
+    let (lead, streams) = simd_start(&buf, true);
+    assert!(
+        streams,
+        "a heap buffer is 8-byte aligned: some vertex of the first four is 32"
+    );
+    let mut run = |k: &dyn Fn(&mut [Out], bool) -> usize| {
+        let stored = {
+            let mut o = vec![[f32::NAN; 6]; n];
+            let done = k(&mut o, false);
+            o.truncate(done);
+            o
+        };
+        let o = &mut buf[lead..lead + n];
+        o.fill([f32::NAN; 6]);
+        let done = k(o, true);
+        fence_streams();
+        assert_eq!(&o[..done], &stored[..], "streamed output differs");
+        assert!(
+            o[done..].iter().flatten().all(|x| x.is_nan()),
+            "wrote past the blocks"
+        );
+    };
+    let signs = Antipodes::new(&d8, n);
+    let qsigns = Antipodes::new(&rows, n);
+    // SAFETY (each kernel): the processor has AVX2 and FMA (`simd`), the synthetic rig's joint
+    // indices are below 54 = every joint table's length, the sign tables are made from the
+    // joints they are used with, outputs are as long as the vertices, and a streamed output
+    // starts 32-byte aligned (`simd_start`).
+    let v = rig.vertices();
+    run(&|o, s| unsafe { avx2::lbs(v, &m12, &(), o, s) });
+    run(&|o, s| unsafe { avx2::dqs(v, &d8, &signs, o, s) });
+    run(&|o, s| unsafe { avx2::log::log(v, &t, &(), o, s) });
+    run(&|o, s| unsafe { avx2::qlb::qlb(v, &rows, &qsigns, o, s) });
+    run(&|o, s| unsafe { avx2::dib::dib(v, &d8, &(), o, s) });
+    run(&|o, s| sbs(v, &rows, &qsigns, o, s));
+}
+
+/// A mesh big enough to stream ([`STREAM_VERTICES`]): every method's job writes the same
+/// numbers into a packed output (streamed, its first vertices and last few by the scalar
+/// kernel) as into an interleaved one (through the stack stage, not streamed), bit for bit.
+#[test]
+fn big_meshes_stream_the_same_numbers() {
+    use crate::Method;
+    let n = STREAM_VERTICES + 13;
+    let rig = synthetic::rig(n, 54, 3);
+    let jt = synthetic::joints(54, 3);
+    let mut packed = vec![[0f32; 6]; n];
+    let mut inter = vec![0f32; n * 7];
+    for m in Method::ALL {
+        let palette = Palette::from_joint_transforms(m, &rig, &jt, true).unwrap();
+        for output in [
+            Output::Packed(&mut packed),
+            Output::Interleaved {
+                data: &mut inter,
+                stride: 7,
+            },
+        ] {
+            let job = SkinningJob {
+                rig: &rig,
+                palette: &palette,
+                output,
+                parallel: true,
+            };
+            job.run().unwrap();
+        }
+        for (k, (p, i)) in packed.iter().zip(inter.chunks_exact(7)).enumerate() {
+            assert_eq!(p[..], i[..6], "{} vertex {k}", m.name());
+        }
+    }
 }

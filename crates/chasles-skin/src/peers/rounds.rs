@@ -88,9 +88,23 @@ impl Table {
 /// Times every method's fast path (the pose's joint data made in each run, as
 /// [`skin_pose`] does), every baseline and the copy bound on a synthetic mesh of `n` vertices
 /// (54 joints, 4 random influences, [`synthetic::rig`]) in `rounds` interleaved rounds after
-/// one untimed one, on one thread or on all. The random joints make nearly every vertex its
+/// one untimed one, on `threads` threads (1: the caller's; more: a rayon pool of that many,
+/// the fast paths' chunks spread over it). The random joints make nearly every vertex its
 /// own SBS cluster: SBS's worst case.
-pub fn measure(n: usize, parallel: bool, rounds: usize) -> Result<Table> {
+pub fn measure(n: usize, threads: usize, rounds: usize) -> Result<Table> {
+    let threads = threads.max(1);
+    if threads == 1 {
+        return measure_on(n, false, rounds, 1);
+    }
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .map_err(|e| crate::SkinError::Threads(e.to_string()))?;
+    pool.install(|| measure_on(n, true, rounds, threads))
+}
+
+/// [`measure`] on the current rayon pool (`parallel`) or the caller's thread.
+fn measure_on(n: usize, parallel: bool, rounds: usize, threads: usize) -> Result<Table> {
     let rig = synthetic::rig(n, 54, 7);
     let jt = synthetic::joints(54, 7);
     let pj = Joints::of(&jt);
@@ -155,11 +169,7 @@ pub fn measure(n: usize, parallel: bool, rounds: usize) -> Result<Table> {
         .collect();
     Ok(Table {
         vertices: n,
-        threads: if parallel {
-            rayon::current_num_threads()
-        } else {
-            1
-        },
+        threads,
         centres: rig.clusters().len(),
         rounds: rounds.max(1),
         rows,

@@ -17,9 +17,15 @@ use std::arch::x86_64::*;
 ///
 /// # Safety
 /// The processor must have AVX2 and FMA, K must be 4 or 8, every joint index in `v` must be below
-/// `d.len()`, and `o.len() >= v.len()`.
+/// `d.len()`, and `o.len() >= v.len()`; with `stream`, `o` must be 32-byte aligned.
 #[target_feature(enable = "avx2,fma")]
-pub unsafe fn dib<const K: usize>(v: &[Vertex<K>], d: &[[f32; 8]], _: &(), o: &mut [Out]) -> usize {
+pub unsafe fn dib<const K: usize>(
+    v: &[Vertex<K>],
+    d: &[[f32; 8]],
+    _: &(),
+    o: &mut [Out],
+    stream: bool,
+) -> usize {
     unsafe {
         let db = d.as_ptr() as *const f32;
         let zero = _mm256_setzero_ps();
@@ -47,7 +53,7 @@ pub unsafe fn dib<const K: usize>(v: &[Vertex<K>], d: &[[f32; 8]], _: &(), o: &m
                 q[k] = eight(|c| _mm256_blendv_ps(identity[c], t[c], used[k]));
             }
             let b = blend(&q, &w, slots);
-            store_rows(o, i, transform(b, [px, py, pz], [nx, ny, nz]));
+            store_rows(o, i, transform(b, [px, py, pz], [nx, ny, nz]), stream);
         }
         blocks * 8
     }
@@ -93,7 +99,7 @@ mod tests {
         // SAFETY: AVX2 and FMA are present (`simd`), the rig's joint indices are below
         // d.len() (checked by its constructor against the same count), `out` is as long as
         // the vertices.
-        let done = unsafe { dib(rig.vertices(), d, &(), &mut out) };
+        let done = unsafe { dib(rig.vertices(), d, &(), &mut out, false) };
         assert_eq!(done, n / 8 * 8);
         let each = |(v, o): (&Vertex<4>, &Out)| {
             let want = <crate::fast::dib::DibKernel as Kernel<4>>::vertex(v, d);
@@ -172,7 +178,7 @@ mod tests {
             let mut out = vec![[f32::NAN; 6]; 800];
             // SAFETY: AVX2 and FMA are present, joint indices are below 55 = d.len(),
             // `out` is as long as the vertices.
-            unsafe { dib(rig.vertices(), d, &(), &mut out) };
+            unsafe { dib(rig.vertices(), d, &(), &mut out, false) };
             out
         };
         let want = run(&d);

@@ -43,9 +43,15 @@ unsafe fn blend<const K: usize>(vx: &Vertex<K>, tb: *const f32) -> __m256 {
 ///
 /// # Safety
 /// The processor must have AVX2 and FMA, K must be 4 or 8, every joint index in `v` must be below
-/// `t.len()`, and `o.len() >= v.len()`.
+/// `t.len()`, and `o.len() >= v.len()`; with `stream`, `o` must be 32-byte aligned.
 #[target_feature(enable = "avx2,fma")]
-pub unsafe fn log<const K: usize>(v: &[Vertex<K>], t: &[[f32; 8]], _: &(), o: &mut [Out]) -> usize {
+pub unsafe fn log<const K: usize>(
+    v: &[Vertex<K>],
+    t: &[[f32; 8]],
+    _: &(),
+    o: &mut [Out],
+    stream: bool,
+) -> usize {
     unsafe {
         let tb = t.as_ptr() as *const f32;
         let blocks = v.len() / 8;
@@ -76,7 +82,7 @@ pub unsafe fn log<const K: usize>(v: &[Vertex<K>], t: &[[f32; 8]], _: &(), o: &m
             let f = [f(0), f(1), f(2)];
             let m = |c: usize| add(n[c], cross(f, c));
             let m = [m(0), m(1), m(2)];
-            store_rows(o, i, [q[0], q[1], q[2], m[0], m[1], m[2]]);
+            store_rows(o, i, [q[0], q[1], q[2], m[0], m[1], m[2]], stream);
         }
         blocks * 8
     }
@@ -132,7 +138,7 @@ mod tests {
         let mut out = vec![[f32::NAN; 6]; 1000];
         // SAFETY: AVX2 and FMA are present (`simd`), the synthetic rig's joint indices are
         // below 54 = t.len(), `out` is as long as the vertices.
-        let done = unsafe { log(rig.vertices(), &t, &(), &mut out) };
+        let done = unsafe { log(rig.vertices(), &t, &(), &mut out, false) };
         assert_eq!(done, 1000);
         for (v, o) in rig.vertices().iter().zip(&out) {
             let want = <crate::fast::log::LogKernel as crate::fast::Kernel<4>>::vertex(v, &t);

@@ -76,15 +76,17 @@ unsafe fn blend<const K: usize, const SBS: bool>(
 ///
 /// # Safety
 /// The processor must have AVX2 and FMA, K must be 4 or 8, every joint index in `v` must be below
-/// `rows.len()`, `table` must be empty or made from `rows`, and `o.len() >= v.len()`.
+/// `rows.len()`, `table` must be empty or made from `rows`, and `o.len() >= v.len()`; with
+/// `stream`, `o` must be 32-byte aligned.
 #[target_feature(enable = "avx2,fma")]
 pub unsafe fn qlb<const K: usize>(
     v: &[Vertex<K>],
     rows: &[[f32; ROW]],
     table: &Antipodes,
     o: &mut [Out],
+    stream: bool,
 ) -> usize {
-    unsafe { blocks::<K, false>(v, rows, table, &[], &[], o) }
+    unsafe { blocks::<K, false>(v, rows, table, &[], &[], o, stream) }
 }
 
 /// SBS for the first `v.len() / 8 * 8` vertices, each about its cluster's centre
@@ -101,8 +103,9 @@ pub unsafe fn sbs<const K: usize>(
     cluster: &[u32],
     centres: &[[f32; 8]],
     o: &mut [Out],
+    stream: bool,
 ) -> usize {
-    unsafe { blocks::<K, true>(v, rows, table, cluster, centres, o) }
+    unsafe { blocks::<K, true>(v, rows, table, cluster, centres, o, stream) }
 }
 
 /// The body over whole blocks of eight: each vertex's blended row, and its centre — its
@@ -117,6 +120,7 @@ unsafe fn blocks<const K: usize, const SBS: bool>(
     cluster: &[u32],
     centres: &[[f32; 8]],
     o: &mut [Out],
+    stream: bool,
 ) -> usize {
     unsafe {
         let blocks = v.len() / 8;
@@ -165,6 +169,7 @@ unsafe fn blocks<const K: usize, const SBS: bool>(
                     n[1],
                     n[2],
                 ],
+                stream,
             );
         }
         blocks * 8
