@@ -10,7 +10,7 @@
 //!
 //! Per vertex it reads 48 bytes (position, normal, four u16 joints, four f32 weights) and
 //! writes 24 (position, normal): 72 bytes, the figure the bandwidth bound is computed
-//! from. Meshes of [`STREAM_VERTICES`] or more write their packed output by non-temporal
+//! from. Meshes of `STREAM_VERTICES` (2¹⁸) or more write their packed output by non-temporal
 //! stores (an ordinary store that misses the cache first reads the line it writes: 96
 //! bytes a vertex). Every vertex of a chunk of eight or more goes through the SIMD kernel
 //! (blocks at the chunk's ends overlap their neighbours), so a vertex's numbers do not
