@@ -31,6 +31,7 @@ pub mod dualquat;
 pub mod interp;
 pub mod pickle;
 pub mod quat;
+pub mod rig;
 pub mod skin;
 pub mod spring;
 
@@ -78,8 +79,13 @@ fn chasles_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
         w!(interp::spring, m)?,
         w!(blend::blend, m)?,
         w!(blend::sclerp, m)?,
+        w!(skin::skin, m)?,
+        w!(rig::models, m)?,
+        w!(rig::model_bytes, m)?,
     ] {
         m.add_function(f)?;
     }
+    m.add_class::<rig::PyRig>()?;
+    m.add_class::<rig::PyPose>()?;
     Ok(())
 }

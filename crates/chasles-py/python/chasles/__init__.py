@@ -8,6 +8,8 @@ the library's message.
 """
 
 from ._chasles import (  # noqa: F401
+    Pose,
+    Rig,
     __version__,
     blend,
     dq_from_matrix,
@@ -21,6 +23,8 @@ from ._chasles import (  # noqa: F401
     dq_to_rt,
     dq_transform,
     interpolate,
+    model_bytes,
+    models,
     quat_angle,
     quat_conj,
     quat_exp,
@@ -40,6 +44,7 @@ from ._chasles import (  # noqa: F401
     rotate,
     sclerp,
     screw,
+    skin,
     slerp,
     spring,
     squad,
