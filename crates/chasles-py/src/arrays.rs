@@ -2,7 +2,7 @@
 //!
 //! * [`wants_f32`] picks the precision of a call: float32 when the arrays given are float32,
 //!   float64 otherwise (lists, integers, float64), as numpy would promote them.
-//! * [`array`] reads an argument as a C-contiguous array of that type (numpy's `asarray`),
+//! * [`array`] reads an argument as a C-contiguous, aligned array of that type (`numpy.require`),
 //!   naming the argument when it cannot.
 //! * [`map`] checks each argument's trailing "core" shape (a quaternion's 4, a matrix's
 //!   (4, 4)), broadcasts the leading dimensions as numpy does, allocates the output and
@@ -104,19 +104,21 @@ macro_rules! dispatch {
 }
 pub(crate) use dispatch;
 
-/// `obj` as a C-contiguous array of T (numpy's `asarray`); a `ValueError` naming the
-/// argument when it is not numbers.
+/// `obj` as a C-contiguous, aligned array of T (numpy's `require`); a `ValueError` naming
+/// the argument when it is not numbers.
 pub fn array<'py, T: Num>(
     obj: &Bound<'py, PyAny>,
     name: &str,
 ) -> PyResult<PyReadonlyArrayDyn<'py, T>> {
     let py = obj.py();
     let np = py.import(intern!(py, "numpy"))?;
+    // C-contiguous, aligned (arrays unpickled from out-of-band buffers may not be) and a
+    // base-class ndarray.
     let kw = PyDict::new(py);
     kw.set_item(intern!(py, "dtype"), numpy::dtype::<T>(py))?;
-    kw.set_item(intern!(py, "order"), "C")?;
+    kw.set_item(intern!(py, "requirements"), "CAE")?;
     let a = np
-        .call_method(intern!(py, "asarray"), (obj,), Some(&kw))
+        .call_method(intern!(py, "require"), (obj,), Some(&kw))
         .map_err(|e| {
             value_error(format!(
                 "{name}: cannot be read as an array of {}: {e}",

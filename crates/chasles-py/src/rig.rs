@@ -30,8 +30,8 @@ pub fn int_array<'py>(
     }
     let kw = pyo3::types::PyDict::new(py);
     kw.set_item("dtype", np.getattr("int64")?)?;
-    kw.set_item("order", "C")?;
-    let a = np.call_method("asarray", (a,), Some(&kw))?;
+    kw.set_item("requirements", "CAE")?;
+    let a = np.call_method("require", (a,), Some(&kw))?;
     Ok(a.cast_into::<PyArrayDyn<i64>>()?.readonly())
 }
 

@@ -233,3 +233,15 @@ def test_bad_inputs_raise_value_error():
     raises(chasles.dq_from_screw, [0, 0, 0], [0, 0, 0], 1.0, 0.0, match="screw axis")
     raises(chasles.slerp, z, [1, 0, 0, 0], 0.5, match="zero length")
     raises(chasles.slerp, [1, 0, 0, 0], [1, 0, 0, 0], np.nan, match="interpolation parameter is not finite")
+
+
+def test_misaligned_and_strided_inputs_are_read(rng):
+    q = unit_quats(rng, 10)
+    raw = np.frombuffer(b"\0" + q.tobytes(), dtype=np.uint8)[1:]
+    misaligned = raw.view(np.float64).reshape(10, 4)
+    assert not misaligned.flags.aligned
+    assert np.array_equal(chasles.quat_to_matrix(misaligned), chasles.quat_to_matrix(q))
+    wide = np.zeros((10, 8))
+    wide[:, ::2] = q
+    assert np.array_equal(chasles.quat_conj(wide[:, ::2]), chasles.quat_conj(q))
+    assert np.array_equal(chasles.quat_conj(q.T.copy().T), chasles.quat_conj(q))
