@@ -131,8 +131,8 @@ fn from_matrix<'py, T: Num>(m: &Bound<'py, PyAny>, sf: bool) -> PyResult<Bound<'
 /// Zero or non-finite quaternions raise ``ValueError``.
 ///
 /// >>> import chasles, numpy as np
-/// >>> np.round(chasles.quat_to_matrix([0.0, 0.0, 0.0, 1.0]), 12)
-/// array([[-1., -0.,  0.],
+/// >>> np.round(chasles.quat_to_matrix([0.0, 0.0, 0.0, 1.0]), 12) + 0.0
+/// array([[-1.,  0.,  0.],
 ///        [ 0., -1.,  0.],
 ///        [ 0.,  0.,  1.]])
 #[pyfunction]
@@ -247,7 +247,7 @@ fn from_axis_angle<'py, T: Num>(
 /// >>> import chasles, numpy as np
 /// >>> axis, angle = chasles.quat_to_axis_angle([0.0, 0.0, 1.0, 0.0])
 /// >>> axis, round(float(angle), 12)
-/// (array([0., 1., 0.]), 3.141592653590)
+/// (array([0., 1., 0.]), 3.14159265359)
 #[pyfunction]
 #[pyo3(signature = (q, *, scalar_first = true))]
 pub fn quat_to_axis_angle<'py>(

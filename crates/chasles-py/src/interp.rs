@@ -31,7 +31,7 @@ use pyo3::types::PyTuple;
 /// >>> import chasles, numpy as np
 /// >>> q1 = chasles.quat_from_axis_angle([0.0, 0.0, 1.0], np.pi / 2)
 /// >>> q = chasles.slerp([1.0, 0.0, 0.0, 0.0], q1, [0.0, 0.5, 1.0])
-/// >>> np.round(chasles.quat_to_rotvec(q)[:, 2], 12)
+/// >>> np.round(chasles.quat_to_rotvec(q)[:, 2], 6)
 /// array([0.      , 0.785398, 1.570796])
 #[pyfunction]
 #[pyo3(signature = (q0, q1, t, *, shortest = true, scalar_first = true))]

@@ -113,7 +113,7 @@ fn normalize<'py, T: Num>(q: &Bound<'py, PyAny>, sf: bool) -> PyResult<Bound<'py
 /// *half* angle. Exact near the identity. Zero or non-finite input raises ``ValueError``.
 ///
 /// >>> import chasles, numpy as np
-/// >>> np.round(chasles.quat_log([0.0, 0.0, 0.0, 1.0]), 12)
+/// >>> np.round(chasles.quat_log([0.0, 0.0, 0.0, 1.0]), 6)
 /// array([0.      , 0.      , 0.      , 1.570796])
 #[pyfunction]
 #[pyo3(signature = (q, *, scalar_first = true))]
