@@ -250,5 +250,5 @@ fn angle<'py, T: Num>(
     )?;
     // A 0-d result comes back as a numpy scalar, as numpy's own reductions do.
     let py = out.py();
-    Ok(out.into_any().get_item(pyo3::types::PyTuple::empty(py))?)
+    out.into_any().get_item(pyo3::types::PyTuple::empty(py))
 }
