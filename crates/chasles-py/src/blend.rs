@@ -45,6 +45,17 @@ fn dlb_item<T: Real>(q: &[DualQuat<T>], w: &[T]) -> Result<DualQuat<T>, Fail> {
     Ok(dlb::dlb_convex(q, &c[..w.len()])?)
 }
 
+/// DLB of the (at most N) dual quaternions in `x` (8 numbers each), held on the stack.
+#[inline(always)]
+fn dlb_on<T: Num, const N: usize>(x: &[T], w: &[T], sf: bool) -> Result<DualQuat<T>, Fail> {
+    let mut buf = [DualQuat::new(chasles::Quat::zero(), chasles::Quat::zero()); N];
+    let n = x.len() / 8;
+    for (b, s) in buf.iter_mut().zip(x.chunks_exact(8)) {
+        *b = dq_in(s, sf);
+    }
+    dlb_item(&buf[..n], w)
+}
+
 /// Blends of rigid transformations with convex weights, every method of ``chasles blend``.
 ///
 /// ``transforms`` is (..., n, 8) unit dual quaternions or (..., n, 4, 4) rigid matrices
@@ -170,18 +181,15 @@ fn blend_t<'py, T: Num>(
                 out[..16].copy_from_slice(&b.matrix.to_row_major());
                 (b.rigid, b.iterations)
             } else if m == Method::Dlb {
-                let mut buf = [DualQuat::identity(); 16];
-                let held: Vec<DualQuat<T>>;
-                let q = if n <= 16 {
-                    for (b, s) in buf.iter_mut().zip(x.chunks_exact(8)) {
-                        *b = dq_in(s, sf);
-                    }
-                    &buf[..n]
-                } else {
-                    held = x.chunks_exact(8).map(|s| dq_in(s, sf)).collect();
-                    &held
+                let d = match n {
+                    0..=4 => dlb_on::<T, 4>(x, w, sf)?,
+                    5..=16 => dlb_on::<T, 16>(x, w, sf)?,
+                    _ => dlb_item(
+                        &x.chunks_exact(8).map(|s| dq_in(s, sf)).collect::<Vec<_>>(),
+                        w,
+                    )?,
                 };
-                dq_out(dlb_item(q, w)?, &mut out[..8], sf);
+                dq_out(d, &mut out[..8], sf);
                 (true, None)
             } else {
                 let q: Vec<DualQuat<T>> = x.chunks_exact(8).map(|s| dq_in(s, sf)).collect();

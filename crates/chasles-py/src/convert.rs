@@ -147,7 +147,7 @@ pub fn quat_to_matrix<'py>(
 fn to_matrix<'py, T: Num>(q: &Bound<'py, PyAny>, sf: bool) -> PyResult<Bound<'py, PyAny>> {
     let q = array::<T>(q, "q")?;
     let out = map(q.py(), [("q", &q, &[4])], &[3, 3], 20, |[q], out| {
-        let m = q_in(q, sf).normalize()?.to_rotation_matrix();
+        let m = crate::quat::unit_matrix(q_in(q, sf))?;
         out.copy_from_slice(&m.to_row_major());
         Ok(())
     })?;

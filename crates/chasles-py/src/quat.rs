@@ -8,6 +8,19 @@ use crate::arrays::{array, dispatch, map, q_in, q_out, v_in, v_out, Fail, Num};
 use chasles::Quat;
 use pyo3::prelude::*;
 
+/// The rotation matrix of a non-zero, finite quaternion (`to_rotation_matrix` treats a
+/// non-unit q as `q/|q|`, with one division and no square root); the library's error for
+/// a zero or non-finite one (and the normalized route where `|q|²` overflows).
+#[inline(always)]
+pub fn unit_matrix<T: Num>(q: Quat<T>) -> Result<chasles::Mat3<T>, Fail> {
+    let n2 = q.norm_squared();
+    if n2.is_finite() && n2 > T::ZERO {
+        Ok(q.to_rotation_matrix())
+    } else {
+        Ok(q.normalize()?.to_rotation_matrix())
+    }
+}
+
 /// Quaternion → quaternion, item by item.
 fn unary<'py, T: Num>(
     q: &Bound<'py, PyAny>,
@@ -178,7 +191,7 @@ fn pow<'py, T: Num>(
 }
 
 /// Vectors ``v`` (..., 3) rotated by quaternions ``q`` (..., 4): ``q v q⁻¹`` (Dam et al.
-/// Prop. 18/21; the scale of ``q`` does not matter). Leading dimensions broadcast. Zero or
+/// Prop. 18/21; the scale of ``q`` does not matter), by ``q``'s rotation matrix. Leading dimensions broadcast. Zero or
 /// non-finite ``q`` raises ``ValueError``.
 ///
 /// >>> import chasles, numpy as np
@@ -207,7 +220,7 @@ fn rotate_t<'py, T: Num>(
         &[3],
         20,
         |[q, v], out| {
-            v_out(q_in(q, sf).sandwich(v_in(v))?, out);
+            v_out(unit_matrix(q_in(q, sf))?.mul_vec(v_in(v)), out);
             Ok(())
         },
     )?;
