@@ -37,7 +37,8 @@ pub fn int_array<'py>(
 
 /// The names of the built-in models (``CesiumMan``, ``Fox``, …): real rigged characters
 /// (Khronos glTF samples) compiled into the package; load one with :meth:`Rig.model`.
-/// Each carries a licence and credit (see :func:`model_bytes`'s companion README).
+/// Each carries its licence and credit, to be shown with any picture of it (CesiumMan:
+/// CC-BY 4.0 with trademark limitations, © 2017 Cesium; see crates/chasles-models/README.md).
 ///
 /// >>> import chasles
 /// >>> "CesiumMan" in chasles.models()
