@@ -1,0 +1,434 @@
+//! Interpolation of rotations, wrapping `chasles::interp` (Dam et al. 1998, chapters 5–7):
+//! Slerp between pairs (batched, broadcast), and whole curves through key frames — every
+//! method of `chasles interp` by the same names (`lineuler`, `linmat`, `lerp`, `slerp`,
+//! `squad`, `spring`, `slerpsvupti`, `squadsvupti`, `justdoit`), with the Spring controls
+//! of its command line ([`crate::spring`]). Key sets are batched: keys (..., K, 4) give curves (..., frames, 4), one
+//! per item, on all cores.
+
+use crate::arrays::{
+    array, column, dispatch, finite, item_error, leading, part, q_in, q_out, value_error, Fail, Num,
+};
+use crate::spring::{spring_config, SpringOptions, DEFAULT_FRAMES};
+use chasles::interp::slerp::{slerp as slerp_as_given, slerp_shortest};
+use chasles::interp::{
+    interpolate as lib_interpolate, spring as lib_spring, Hemisphere, KeyFrames, Method,
+    SpringConfig, Timing,
+};
+use chasles::{EulerOrder, Quat};
+use numpy::{PyArrayDyn, PyArrayMethods, PyUntypedArrayMethods};
+use pyo3::prelude::*;
+use pyo3::types::PyTuple;
+
+/// Spherical linear interpolation (Dam et al. eq. 6.13) from ``q0`` to ``q1`` at ``t``.
+///
+/// ``q0``, ``q1`` are (..., 4) (normalized here), ``t`` is (...); all three broadcast, so
+/// one pair at many times is ``slerp(q0, q1, np.linspace(0, 1, 50)[:, None])``… or simply
+/// ``t`` of shape (N,) against (4,) keys. With ``shortest=True`` (the default, as scipy's
+/// ``Slerp``) the shorter rotation is taken (``-q1`` when ``q0·q1 < 0``); with ``False``
+/// the great arc between the two 4D points as given. ``t`` outside [0, 1] extrapolates.
+/// Exact for nearly equal keys; zero or non-finite input raises ``ValueError``.
+///
+/// >>> import chasles, numpy as np
+/// >>> q1 = chasles.quat_from_axis_angle([0.0, 0.0, 1.0], np.pi / 2)
+/// >>> q = chasles.slerp([1.0, 0.0, 0.0, 0.0], q1, [0.0, 0.5, 1.0])
+/// >>> np.round(chasles.quat_to_rotvec(q)[:, 2], 6)
+/// array([0.      , 0.785398, 1.570796])
+#[pyfunction]
+#[pyo3(signature = (q0, q1, t, *, shortest = true, scalar_first = true))]
+pub fn slerp<'py>(
+    q0: &Bound<'py, PyAny>,
+    q1: &Bound<'py, PyAny>,
+    t: &Bound<'py, PyAny>,
+    shortest: bool,
+    scalar_first: bool,
+) -> PyResult<Bound<'py, PyAny>> {
+    dispatch!([q0, q1, t], slerp_t(q0, q1, t, shortest, scalar_first))
+}
+
+fn slerp_t<'py, T: Num>(
+    q0: &Bound<'py, PyAny>,
+    q1: &Bound<'py, PyAny>,
+    t: &Bound<'py, PyAny>,
+    shortest: bool,
+    sf: bool,
+) -> PyResult<Bound<'py, PyAny>> {
+    let (a, b) = (array::<T>(q0, "q0")?, array::<T>(q1, "q1")?);
+    let t = array::<T>(t, "t")?;
+    let out = crate::arrays::map(
+        a.py(),
+        [("q0", &a, &[4]), ("q1", &b, &[4]), ("t", &t, &[])],
+        &[4],
+        30,
+        |[a, b, t], out| {
+            finite(t, "interpolation parameter")?;
+            let (p, q) = (q_in(a, sf).normalize()?, q_in(b, sf).normalize()?);
+            let r = if shortest {
+                slerp_shortest(p, q, t[0])
+            } else {
+                slerp_as_given(p, q, t[0])
+            };
+            q_out(r, out, sf);
+            Ok(())
+        },
+    )?;
+    Ok(out.into_any())
+}
+
+/// What a method name of `chasles interp` runs.
+#[derive(Debug, Clone)]
+enum Plan {
+    Piecewise(Method),
+    Spring(SpringConfig),
+}
+
+/// The plan of a method name; LinEuler in `order`.
+fn plan(method: &str, order: EulerOrder) -> PyResult<Plan> {
+    Ok(match method {
+        "lineuler" => Plan::Piecewise(Method::LinEuler(order)),
+        "linmat" => Plan::Piecewise(Method::LinMat),
+        "lerp" => Plan::Piecewise(Method::Nlerp),
+        "slerp" => Plan::Piecewise(Method::Slerp),
+        "squad" => Plan::Piecewise(Method::Squad),
+        "spring" => Plan::Spring(SpringConfig::spring()),
+        "slerpsvupti" => Plan::Spring(SpringConfig::slerpsvupti()),
+        "squadsvupti" => Plan::Spring(SpringConfig::squadsvupti()),
+        "justdoit" => Plan::Spring(SpringConfig::justdoit()),
+        other => {
+            return Err(value_error(format!(
+                "unknown method '{other}': lineuler, linmat, lerp, slerp, squad, spring, slerpsvupti, squadsvupti or justdoit"
+            )))
+        }
+    })
+}
+
+/// Everything [`interpolate`] is told besides the keys.
+#[derive(Debug, Clone)]
+pub struct Curve {
+    /// The method's name.
+    pub method: String,
+    /// Frames asked for.
+    pub frames: Option<usize>,
+    /// `uniform` or `angle`.
+    pub timing: String,
+    /// Keep the keys' signs instead of chaining hemispheres.
+    pub keep_signs: bool,
+    /// LinEuler's order.
+    pub order: String,
+    /// Also return the parameter and key index of each frame.
+    pub full_output: bool,
+    /// Quaternion layout.
+    pub scalar_first: bool,
+    /// The ceiling on frames.
+    pub max_frames: usize,
+    /// Spring's controls.
+    pub spring: SpringOptions,
+}
+
+/// Curves through key frames (..., K, 4) by `c.method`; see the Python docstring.
+pub fn curves<'py>(
+    keys: &Bound<'py, PyAny>,
+    times: Option<&Bound<'py, PyAny>>,
+    c: &Curve,
+) -> PyResult<Bound<'py, PyAny>> {
+    let mut arrays = vec![keys];
+    arrays.extend(times);
+    if crate::arrays::wants_f32(&arrays)? {
+        curves_t::<f32>(keys, times, c)
+    } else {
+        curves_t::<f64>(keys, times, c)
+    }
+}
+
+fn curves_t<'py, T: Num>(
+    keys: &Bound<'py, PyAny>,
+    times: Option<&Bound<'py, PyAny>>,
+    c: &Curve,
+) -> PyResult<Bound<'py, PyAny>> {
+    let py = keys.py();
+    let order: EulerOrder = crate::convert::order(&c.order)?;
+    let timing = match c.timing.as_str() {
+        "uniform" => Timing::Uniform,
+        "angle" => Timing::Angle,
+        other => {
+            return Err(value_error(format!(
+                "timing must be 'uniform' or 'angle', got '{other}'"
+            )))
+        }
+    };
+    let hemisphere = if c.keep_signs {
+        Hemisphere::AsGiven
+    } else {
+        Hemisphere::Chain
+    };
+    let k_arr = array::<T>(keys, "keys")?;
+    let shape = k_arr.shape().to_vec();
+    if shape.len() < 2 || shape[shape.len() - 1] != 4 {
+        return Err(value_error(format!(
+            "keys must have shape (..., K, 4), got {}",
+            crate::arrays::shape_text(&shape)
+        )));
+    }
+    let k = shape[shape.len() - 2];
+    let plan = plan(&c.method, order)?;
+    let (plan, frames) = match plan {
+        Plan::Piecewise(m) => {
+            if let Some(name) = c.spring.given().first() {
+                return Err(value_error(format!(
+                    "{name} is a Spring control: it applies to spring, slerpsvupti, squadsvupti and justdoit, not {}",
+                    c.method
+                )));
+            }
+            (Plan::Piecewise(m), c.frames.unwrap_or(DEFAULT_FRAMES))
+        }
+        Plan::Spring(preset) => {
+            let (cfg, total) = spring_config(preset, &c.spring, c.frames, k)?;
+            (Plan::Spring(cfg), total)
+        }
+    };
+    if frames > c.max_frames {
+        return Err(value_error(format!(
+            "{frames} frames is more than max_frames={} (raise it to make longer curves)",
+            c.max_frames
+        )));
+    }
+    let t_arr = times.map(|t| array::<T>(t, "times")).transpose()?;
+    let mut leads = vec![("keys", leading(&shape, &[k, 4], "keys")?)];
+    if let Some(t) = &t_arr {
+        leads.push(("times", leading(t.shape(), &[k], "times")?));
+    }
+    let lead = crate::arrays::broadcast(&leads)?;
+    let kidx = crate::arrays::Index::new(leads[0].1, &lead);
+    let tidx = t_arr
+        .as_ref()
+        .map(|_| crate::arrays::Index::new(leads[1].1, &lead));
+    let kd = k_arr.as_slice().map_err(|e| value_error(e.to_string()))?;
+    let td = match &t_arr {
+        Some(t) => Some(t.as_slice().map_err(|e| value_error(e.to_string()))?),
+        None => None,
+    };
+    let width = if c.full_output { 6 } else { 4 };
+    let mut out_shape = lead.clone();
+    out_shape.extend([frames, width]);
+    let out = PyArrayDyn::<T>::zeros(py, out_shape, false);
+    let sf = c.scalar_first;
+    let work = match &plan {
+        Plan::Piecewise(_) => frames * 60,
+        Plan::Spring(_) => 1_000_000,
+    };
+    {
+        let mut rw = out.readwrite();
+        let o = rw.as_slice_mut().map_err(|e| value_error(e.to_string()))?;
+        let item = |i: usize, out: &mut [T]| -> Result<(), Fail> {
+            let ks = &kd[kidx.at(i) * k * 4..][..k * 4];
+            let q: Vec<Quat<T>> = ks.chunks_exact(4).map(|s| q_in(s, sf)).collect();
+            let ts = match (&tidx, td) {
+                (Some(ix), Some(td)) => Some(&td[ix.at(i) * k..][..k]),
+                _ => None,
+            };
+            let kf = KeyFrames::new(&q, ts, hemisphere)?;
+            let fr = match &plan {
+                Plan::Piecewise(m) => lib_interpolate(*m, &kf, frames, timing)?,
+                Plan::Spring(cfg) => lib_spring(&kf, frames, timing, cfg, &mut |_| {})?.frames,
+            };
+            if fr.len() != frames {
+                return Err(Fail(format!(
+                    "{} frames made, {frames} asked for",
+                    fr.len()
+                )));
+            }
+            for (f, o) in fr.iter().zip(out.chunks_exact_mut(width)) {
+                q_out(f.q, o, sf);
+                if width == 6 {
+                    o[4] = f.t;
+                    o[5] = f.key.map_or(-T::ONE, |k| T::from_f64(k as f64));
+                }
+            }
+            Ok(())
+        };
+        py.detach(|| crate::arrays::for_items(o, frames * width, work, &item))
+            .map_err(|(i, m)| item_error(i, m, &lead))?;
+    }
+    let out = out.into_any();
+    if !c.full_output {
+        return Ok(out);
+    }
+    let np = py.import("numpy")?;
+    let key = column(&out, 5)?.call_method1("astype", (np.getattr("int64")?,))?;
+    Ok(PyTuple::new(py, [part(&out, 0, 4)?, column(&out, 4)?, key])?.into_any())
+}
+
+/// A curve of ``frames`` rotations through key frames by any method of ``chasles interp``.
+///
+/// ``keys`` is (..., K, 4), K ≥ 2 unit quaternions (normalized here); leading dimensions
+/// are a batch of key sets, one curve each, on all cores. ``method`` is ``lineuler``
+/// (Euler angles in ``order``, Dam et al. eq. 6.1), ``linmat`` (matrices, eq. 6.2),
+/// ``lerp`` (normalized, eq. 6.3), ``slerp`` (eq. 6.13), ``squad`` (Definition 17) or
+/// Spring — ``spring`` (§6.3.7), ``slerpsvupti``, ``squadsvupti``, ``justdoit`` (App. C
+/// presets) — whose controls are the keywords ``levels``, ``iterations``, ``step``
+/// (``"fixed:0.02"``, ``"normalized:E"``, ``"adaptive:E"``, ``"accelerated:E"``),
+/// ``penalty``, ``width`` (``one``, ``chord``, ``angle``), ``key_weight``,
+/// ``velocity_weight`` and ``start`` (``slerp``, ``squad``), as on the command line.
+/// Every key is one of the frames; ``timing`` shares the others among the intervals
+/// (``"angle"``, the default, in proportion to each interval's angle; ``"uniform"``
+/// equally, or by the key ``times`` (K,) when given). Keys are chained into one hemisphere
+/// unless ``keep_signs``. Returns (..., frames, 4); with ``full_output`` also the curve
+/// parameter (..., frames) and the key index of each frame (..., frames), -1 between keys.
+///
+/// >>> import chasles, numpy as np
+/// >>> keys = chasles.quat_from_euler([[0, 0, 0], [0, 0, 1.0], [0, 1.0, 1.0]], "xyz")
+/// >>> q = chasles.interpolate(keys, "squad", 9)
+/// >>> q.shape, bool(np.allclose(q[0], keys[0]))
+/// ((9, 4), True)
+#[pyfunction]
+#[pyo3(signature = (keys, method = "slerp", frames = None, *, timing = "angle", times = None,
+    keep_signs = false, order = "xyz", full_output = false, scalar_first = true,
+    max_frames = 1_000_000, levels = None, iterations = None, step = None, penalty = None,
+    width = None, key_weight = None, velocity_weight = None, start = None))]
+#[allow(clippy::too_many_arguments)]
+pub fn interpolate<'py>(
+    keys: &Bound<'py, PyAny>,
+    method: &str,
+    frames: Option<usize>,
+    timing: &str,
+    times: Option<&Bound<'py, PyAny>>,
+    keep_signs: bool,
+    order: &str,
+    full_output: bool,
+    scalar_first: bool,
+    max_frames: usize,
+    levels: Option<Vec<usize>>,
+    iterations: Option<Vec<usize>>,
+    step: Option<String>,
+    penalty: Option<f64>,
+    width: Option<String>,
+    key_weight: Option<f64>,
+    velocity_weight: Option<f64>,
+    start: Option<String>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let c = Curve {
+        method: method.to_string(),
+        frames,
+        timing: timing.to_string(),
+        keep_signs,
+        order: order.to_string(),
+        full_output,
+        scalar_first,
+        max_frames,
+        spring: SpringOptions {
+            levels,
+            iterations,
+            step,
+            penalty,
+            width,
+            key_weight,
+            velocity_weight,
+            start,
+        },
+    };
+    curves(keys, times, &c)
+}
+
+/// Squad through key frames (Dam et al. Definition 17: C¹ at every key): ``frames``
+/// rotations (..., frames, 4) through keys (..., K, 4); see :func:`interpolate` for
+/// ``timing`` (default ``"angle"``, §6.2), ``times``, ``keep_signs`` and ``full_output``.
+///
+/// >>> import chasles, numpy as np
+/// >>> keys = chasles.quat_from_euler([[0, 0, 0], [0, 0, 1.0], [0, 1.0, 1.0]], "xyz")
+/// >>> chasles.squad(keys, 50).shape
+/// (50, 4)
+#[pyfunction]
+#[pyo3(signature = (keys, frames, *, timing = "angle", times = None, keep_signs = false,
+    full_output = false, scalar_first = true, max_frames = 1_000_000))]
+#[allow(clippy::too_many_arguments)]
+pub fn squad<'py>(
+    keys: &Bound<'py, PyAny>,
+    frames: usize,
+    timing: &str,
+    times: Option<&Bound<'py, PyAny>>,
+    keep_signs: bool,
+    full_output: bool,
+    scalar_first: bool,
+    max_frames: usize,
+) -> PyResult<Bound<'py, PyAny>> {
+    let c = Curve {
+        method: "squad".into(),
+        frames: Some(frames),
+        timing: timing.to_string(),
+        keep_signs,
+        order: "xyz".into(),
+        full_output,
+        scalar_first,
+        max_frames,
+        spring: SpringOptions::default(),
+    };
+    curves(keys, times, &c)
+}
+
+/// Spring (Dam et al. §6.3.7): the curve through key frames (..., K, 4) whose curvature
+/// is minimized by gradient descent. ``preset`` is ``spring`` (the default: ``justdoit``
+/// with key weight 1.3 and the accelerated step), ``slerpsvupti``, ``squadsvupti`` or
+/// ``justdoit``; the keywords adjust it as ``chasles interp``'s flags do (``levels``:
+/// frames at each step, the last the total; ``iterations`` per step; ``step``;
+/// ``penalty``; ``width``; ``key_weight``; ``velocity_weight``; ``start``). ``frames``
+/// defaults to the last of ``levels``, else 200. See :func:`interpolate` for the rest.
+///
+/// >>> import chasles, numpy as np
+/// >>> keys = chasles.quat_from_euler([[0, 0, 0], [0, 0, 1.0], [0, 1.0, 1.0]], "xyz")
+/// >>> q = chasles.spring(keys, 40, iterations=[20, 20, 20])
+/// >>> q.shape, bool(np.allclose(np.linalg.norm(q, axis=-1), 1.0))
+/// ((40, 4), True)
+#[pyfunction]
+#[pyo3(signature = (keys, frames = None, *, preset = "spring", timing = "angle", times = None,
+    keep_signs = false, full_output = false, scalar_first = true, max_frames = 1_000_000,
+    levels = None, iterations = None, step = None, penalty = None, width = None,
+    key_weight = None, velocity_weight = None, start = None))]
+#[allow(clippy::too_many_arguments)]
+pub fn spring<'py>(
+    keys: &Bound<'py, PyAny>,
+    frames: Option<usize>,
+    preset: &str,
+    timing: &str,
+    times: Option<&Bound<'py, PyAny>>,
+    keep_signs: bool,
+    full_output: bool,
+    scalar_first: bool,
+    max_frames: usize,
+    levels: Option<Vec<usize>>,
+    iterations: Option<Vec<usize>>,
+    step: Option<String>,
+    penalty: Option<f64>,
+    width: Option<String>,
+    key_weight: Option<f64>,
+    velocity_weight: Option<f64>,
+    start: Option<String>,
+) -> PyResult<Bound<'py, PyAny>> {
+    if !matches!(
+        preset,
+        "spring" | "slerpsvupti" | "squadsvupti" | "justdoit"
+    ) {
+        return Err(value_error(format!(
+            "unknown preset '{preset}': spring, slerpsvupti, squadsvupti or justdoit"
+        )));
+    }
+    let c = Curve {
+        method: preset.to_string(),
+        frames,
+        timing: timing.to_string(),
+        keep_signs,
+        order: "xyz".into(),
+        full_output,
+        scalar_first,
+        max_frames,
+        spring: SpringOptions {
+            levels,
+            iterations,
+            step,
+            penalty,
+            width,
+            key_weight,
+            velocity_weight,
+            start,
+        },
+    };
+    curves(keys, times, &c)
+}

@@ -1,0 +1,345 @@
+//! Skinning, wrapping `chasles_skin` (Kavan et al. 2006, §6): every pose goes through the
+//! typed fast job — a rig laid out once (`fast::FastRig`, 4 or 8 influences), the
+//! method's `fast::Palette` made from the pose's skinning matrices, and a
+//! `fast::SkinningJob` writing straight into the numpy output (`fast::Output::Split`) —
+//! the path `chasles skin --device cpu` takes (`fast::Skinner`), so the numbers are the
+//! same; a rig with more than 8 influences on a vertex takes the reference path
+//! (`skinning::skin_joints`), as the CLI's does. Whole clips are skinned one frame per
+//! task on all cores; users' own arrays (positions, normals, joints, weights, joint
+//! matrices) are made into a checked `Rig` first ([`skin`]).
+
+use crate::arrays::{array, item_error, leading, value_error, Fail};
+use chasles::{Mat4, Vec3};
+use chasles_skin::fast::{FastRig, Output, Palette, SkinningJob};
+use chasles_skin::pose::rigid_of;
+use chasles_skin::{skin_joints, Influences, JointTransforms, Mesh, Method, Node, Rig, SkinError};
+use numpy::{PyArrayDyn, PyArrayMethods, PyUntypedArrayMethods};
+use pyo3::prelude::*;
+
+/// A rig laid out for skinning: the fast path's layout, or the reference path for more
+/// than 8 influences on a vertex (as `fast::Skinner` chooses).
+#[derive(Debug)]
+pub enum Layout {
+    /// Up to 4 influences.
+    Four(FastRig<4>),
+    /// Up to 8.
+    Eight(FastRig<8>),
+    /// More: the reference path.
+    Reference,
+}
+
+impl Layout {
+    /// The layout of `rig`.
+    pub fn of(rig: &Rig) -> Result<Self, SkinError> {
+        Ok(match rig.influences.max_per_vertex() {
+            0..=4 => Layout::Four(FastRig::new(rig)?),
+            5..=8 => Layout::Eight(FastRig::new(rig)?),
+            _ => Layout::Reference,
+        })
+    }
+}
+
+/// The method of a `chasles skin` name.
+pub fn method(name: &str) -> PyResult<Method> {
+    Method::from_name(name).ok_or_else(|| {
+        let all: Vec<&str> = Method::ALL.iter().map(|m| m.name()).collect();
+        value_error(format!("unknown method '{name}': {}", all.join(", ")))
+    })
+}
+
+/// Checks a device name: the CPU (`cpu`, or `auto`, which is the CPU in this build).
+pub fn device(name: &str) -> PyResult<()> {
+    match name {
+        "cpu" | "auto" => Ok(()),
+        "gpu" => Err(value_error(
+            "device='gpu': this build of chasles skins on the CPU only (the GPU path is the Rust crate's `gpu` feature, used by `chasles skin --device gpu`)",
+        )),
+        other => Err(value_error(format!(
+            "unknown device '{other}': cpu, gpu or auto"
+        ))),
+    }
+}
+
+/// One pose's skinning matrices `C_j` skinned by `method` into `pos` and `nrm` (one entry
+/// per vertex), on all threads when `parallel`; a non-finite vertex is an error, as in
+/// `fast::Skinner`.
+pub fn skin_into(
+    rig: &Rig,
+    layout: &Layout,
+    mats: &[Mat4<f32>],
+    method: Method,
+    pos: &mut [[f32; 3]],
+    nrm: &mut [[f32; 3]],
+    parallel: bool,
+) -> Result<(), SkinError> {
+    fn job<const K: usize>(
+        f: &FastRig<K>,
+        mats: &[Mat4<f32>],
+        method: Method,
+        pos: &mut [[f32; 3]],
+        nrm: &mut [[f32; 3]],
+        parallel: bool,
+    ) -> Result<(), SkinError> {
+        let palette = Palette::from_matrices(method, f, mats, parallel)?;
+        SkinningJob {
+            rig: f,
+            palette: &palette,
+            output: Output::Split {
+                positions: pos,
+                normals: nrm,
+            },
+            parallel,
+        }
+        .run()
+    }
+    match layout {
+        Layout::Four(f) => job(f, mats, method, pos, nrm, parallel)?,
+        Layout::Eight(f) => job(f, mats, method, pos, nrm, parallel)?,
+        Layout::Reference => {
+            let mut non_rigidity = 0f32;
+            let dual_quats = mats
+                .iter()
+                .map(|m| {
+                    let (d, off) = rigid_of(m);
+                    non_rigidity = non_rigidity.max(off);
+                    d
+                })
+                .collect();
+            let jt = JointTransforms {
+                matrices: mats.to_vec(),
+                dual_quats,
+                non_rigidity,
+            };
+            let s = skin_joints(rig, &jt, method)?;
+            for (o, p) in pos.iter_mut().zip(&s.positions) {
+                *o = p.to_array();
+            }
+            for (o, n) in nrm.iter_mut().zip(&s.normals) {
+                *o = n.to_array();
+            }
+        }
+    }
+    if let Some(v) = pos
+        .iter()
+        .zip(nrm.iter())
+        .position(|(p, n)| p.iter().chain(n).any(|x| !x.is_finite()))
+    {
+        return Err(SkinError::NonFiniteOutput {
+            rig: rig.name.clone(),
+            method: method.name(),
+            vertex: v,
+        });
+    }
+    Ok(())
+}
+
+/// Two float32 arrays of `frames` × V × 3 (no leading axis when `frames` is None), filled
+/// frame by frame by `frame(f, positions, normals)`: one frame per task on all cores when
+/// there are several, else the frame's job on all cores (`parallel` passed to `frame`).
+pub fn frames_out<'py>(
+    py: Python<'py>,
+    lead: &[usize],
+    vertices: usize,
+    frame: impl Fn(usize, &mut [[f32; 3]], &mut [[f32; 3]], bool) -> Result<(), Fail> + Sync,
+) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+    let mut shape = lead.to_vec();
+    shape.extend([vertices, 3]);
+    let pos = PyArrayDyn::<f32>::zeros(py, shape.clone(), false);
+    let nrm = PyArrayDyn::<f32>::zeros(py, shape, false);
+    {
+        let mut pw = pos.readwrite();
+        let mut nw = nrm.readwrite();
+        let p: &mut [[f32; 3]] =
+            bytemuck::cast_slice_mut(pw.as_slice_mut().map_err(|e| value_error(e.to_string()))?);
+        let n: &mut [[f32; 3]] =
+            bytemuck::cast_slice_mut(nw.as_slice_mut().map_err(|e| value_error(e.to_string()))?);
+        let count: usize = lead.iter().product();
+        let by_frame = count > 1;
+        py.detach(|| -> Result<(), (usize, String)> {
+            use rayon::prelude::*;
+            if vertices == 0 || count == 0 {
+                return Ok(());
+            }
+            if by_frame {
+                p.par_chunks_mut(vertices)
+                    .zip(n.par_chunks_mut(vertices))
+                    .enumerate()
+                    .filter_map(|(f, (p, n))| frame(f, p, n, false).err().map(|e| (f, e.0)))
+                    .min_by_key(|e| e.0)
+                    .map_or(Ok(()), Err)
+            } else {
+                frame(0, p, n, true).map_err(|e| (0, e.0))
+            }
+        })
+        .map_err(|(i, m)| item_error(i, m, lead))?;
+    }
+    Ok((pos.into_any(), nrm.into_any()))
+}
+
+/// Skins your own arrays: a mesh and its influences, posed by joint matrices.
+///
+/// ``positions`` and ``normals`` are (V, 3) bind-pose vertices; ``joints`` (V, K) integer
+/// joint indices and ``weights`` (V, K) their weights (zero weights are ignored; each
+/// vertex's are scaled to sum to 1; negative or non-finite weights, joints out of range
+/// and vertices with no weight raise ``ValueError`` naming the vertex);
+/// ``joint_matrices`` (..., J, 4, 4) are the skinning matrices ``C_j = World_j ·
+/// InverseBind_j`` of one pose, or of a batch of poses. ``method`` is ``lbs``, ``dqs`` (the
+/// default), ``dib``, ``log``, ``qlb`` or ``sbs``; ``centres`` (J, 3) are the joints'
+/// bind-pose origins, about which QLB and SBS blend rotations (default: the origin).
+/// Returns float32 ``(positions, normals)`` of shape (..., V, 3) — the skinning kernels
+/// work in float32. Runs through the fast job (up to 8 influences) on all cores.
+///
+/// >>> import chasles, numpy as np
+/// >>> p = np.array([[1.0, 0.0, 0.0]]); n = np.array([[0.0, 0.0, 1.0]])
+/// >>> m = np.stack([np.eye(4), np.eye(4)]); m[1, :3, 3] = [0.0, 2.0, 0.0]
+/// >>> pos, nrm = chasles.skin(p, n, [[0, 1]], [[0.5, 0.5]], m, "lbs")
+/// >>> pos
+/// array([[1., 1., 0.]], dtype=float32)
+#[pyfunction]
+#[pyo3(signature = (positions, normals, joints, weights, joint_matrices, method = "dqs", *,
+    centres = None))]
+pub fn skin<'py>(
+    positions: &Bound<'py, PyAny>,
+    normals: &Bound<'py, PyAny>,
+    joints: &Bound<'py, PyAny>,
+    weights: &Bound<'py, PyAny>,
+    joint_matrices: &Bound<'py, PyAny>,
+    method: &str,
+    centres: Option<&Bound<'py, PyAny>>,
+) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+    let py = positions.py();
+    let m = self::method(method)?;
+    let p = array::<f32>(positions, "positions")?;
+    let n = array::<f32>(normals, "normals")?;
+    let j = crate::rig::int_array(joints, "joints")?;
+    let w = array::<f32>(weights, "weights")?;
+    let mats = array::<f32>(joint_matrices, "joint_matrices")?;
+    let v = p.shape().first().copied().unwrap_or(0);
+    leading(p.shape(), &[v, 3], "positions")?;
+    let vl = leading(p.shape(), &[3], "positions")?;
+    if vl.len() != 1 {
+        return Err(value_error(format!(
+            "positions must have shape (V, 3), got {}",
+            crate::arrays::shape_text(p.shape())
+        )));
+    }
+    if n.shape() != p.shape() {
+        return Err(value_error(format!(
+            "normals must have shape ({v}, 3) like positions, got {}",
+            crate::arrays::shape_text(n.shape())
+        )));
+    }
+    let k = j.shape().get(1).copied().unwrap_or(0);
+    if j.shape() != [v, k] {
+        return Err(value_error(format!(
+            "joints must have shape ({v}, K), got {}",
+            crate::arrays::shape_text(j.shape())
+        )));
+    }
+    if w.shape() != [v, k] {
+        return Err(value_error(format!(
+            "weights must have shape ({v}, {k}) like joints, got {}",
+            crate::arrays::shape_text(w.shape())
+        )));
+    }
+    let ms = mats.shape().to_vec();
+    if ms.len() < 3 || ms[ms.len() - 2..] != [4, 4] {
+        return Err(value_error(format!(
+            "joint_matrices must have shape (..., J, 4, 4), got {}",
+            crate::arrays::shape_text(&ms)
+        )));
+    }
+    let nj = ms[ms.len() - 3];
+    let lead = ms[..ms.len() - 3].to_vec();
+    let c = centres.map(|c| array::<f32>(c, "centres")).transpose()?;
+    if let Some(c) = &c {
+        if c.shape() != [nj, 3] {
+            return Err(value_error(format!(
+                "centres must have shape ({nj}, 3), one per joint, got {}",
+                crate::arrays::shape_text(c.shape())
+            )));
+        }
+    }
+    let slice = |e: numpy::AsSliceError| value_error(e.to_string());
+    let (ps, ns, js, ws) = (
+        p.as_slice().map_err(slice)?,
+        n.as_slice().map_err(slice)?,
+        j.as_slice().map_err(slice)?,
+        w.as_slice().map_err(slice)?,
+    );
+    let cs = match &c {
+        Some(c) => Some(c.as_slice().map_err(slice)?),
+        None => None,
+    };
+    let rig = rig_of_arrays(ps, ns, js, ws, k, nj, cs).map_err(crate::arrays::skin_error)?;
+    let layout = Layout::of(&rig).map_err(crate::arrays::skin_error)?;
+    let md = mats.as_slice().map_err(slice)?;
+    frames_out(py, &lead, v, |f, pos, nrm, parallel| {
+        let mats: Vec<Mat4<f32>> = md[f * nj * 16..][..nj * 16]
+            .chunks_exact(16)
+            .map(|c| Mat4::from_row_major(c.try_into().unwrap_or([0.0; 16])))
+            .collect();
+        Ok(skin_into(&rig, &layout, &mats, m, pos, nrm, parallel)?)
+    })
+}
+
+/// A checked rig of users' arrays: one root node per joint, inverse bind matrices that put
+/// each joint's bind origin at its centre, no triangles, no clips.
+fn rig_of_arrays(
+    p: &[f32],
+    n: &[f32],
+    j: &[i64],
+    w: &[f32],
+    k: usize,
+    joints: usize,
+    centres: Option<&[f32]>,
+) -> Result<Rig, SkinError> {
+    let v = p.len() / 3;
+    let mut lists = Vec::with_capacity(v);
+    for vertex in 0..v {
+        let mut l = Vec::with_capacity(k);
+        for s in 0..k {
+            let (joint, weight) = (j[vertex * k + s], w[vertex * k + s]);
+            let joint = usize::try_from(joint).map_err(|_| SkinError::BadWeights {
+                vertex,
+                reason: format!("joint index {joint} is negative"),
+            })?;
+            l.push((joint, weight));
+        }
+        lists.push(l);
+    }
+    let influences = Influences::from_lists(&lists, joints)?;
+    let vecs = |a: &[f32]| -> Vec<Vec3<f32>> {
+        a.chunks_exact(3)
+            .map(|c| Vec3::new(c[0], c[1], c[2]))
+            .collect()
+    };
+    let nodes = (0..joints)
+        .map(|i| Node {
+            name: format!("joint {i}"),
+            parent: None,
+            rest: Default::default(),
+        })
+        .collect();
+    let inverse_bind = (0..joints)
+        .map(|i| {
+            let c = centres.map_or(Vec3::zero(), |c| {
+                Vec3::new(c[3 * i], c[3 * i + 1], c[3 * i + 2])
+            });
+            Mat4::from_rotation_translation(&chasles::Mat3::identity(), -c)
+        })
+        .collect();
+    Rig::new(
+        "arrays".into(),
+        Mesh {
+            positions: vecs(p),
+            normals: vecs(n),
+            triangles: Vec::new(),
+        },
+        nodes,
+        (0..joints).collect(),
+        inverse_bind,
+        influences,
+        Vec::new(),
+    )
+}

@@ -1,0 +1,175 @@
+"""Skinning through Python equals `chasles skin` (CesiumMan, every method, one pose and a
+whole clip, bit for bit); users' own arrays; pickling of rigs and poses; bad inputs."""
+
+import json
+import pickle
+
+import numpy as np
+import pytest
+
+import chasles
+
+SKIN_METHODS = ["lbs", "dqs", "dib", "log", "qlb", "sbs"]
+
+
+@pytest.fixture(scope="module")
+def cesium_path(tmp_path_factory):
+    p = tmp_path_factory.mktemp("models") / "CesiumMan.glb"
+    p.write_bytes(chasles.model_bytes("CesiumMan"))
+    return p
+
+
+@pytest.fixture(scope="module")
+def cesium(cesium_path):
+    return chasles.Rig.load(cesium_path)
+
+
+@pytest.mark.parametrize("method", SKIN_METHODS)
+def test_one_pose_equals_the_cli(method, cesium, cesium_path, cli, tmp_path):
+    out = tmp_path / "pose.json"
+    cli("skin", "--rig", cesium_path, "--anim", "0", "--time", "0.7", "--method", method, "--device", "cpu", "--out", out)
+    d = json.loads(out.read_text())
+    pos, nrm = cesium.skin(clip=0, time=0.7, method=method)
+    assert pos.dtype == np.float32 and pos.shape == (3273, 3)
+    assert np.array_equal(pos, np.array(d["positions"], dtype=np.float32))
+    assert np.array_equal(nrm, np.array(d["normals"], dtype=np.float32))
+    assert np.array_equal(cesium.triangles, np.array(d["triangles"]))
+
+
+def read_obj(path):
+    v, vn = [], []
+    for line in path.read_text().splitlines():
+        if line.startswith("v "):
+            v.append([float(x) for x in line.split()[1:]])
+        elif line.startswith("vn "):
+            vn.append([float(x) for x in line.split()[1:]])
+    return np.array(v, dtype=np.float32), np.array(vn, dtype=np.float32)
+
+
+@pytest.mark.parametrize("method", ["dqs", "sbs"])
+def test_a_whole_clip_equals_the_cli(method, cesium, cesium_path, cli, tmp_path):
+    out = tmp_path / "frames"
+    cli("skin", "--rig", cesium_path, "--all-frames", "--fps", "24", "--method", method, "--device", "cpu", "--out", out)
+    pos, nrm = cesium.skin_clip(0, fps=24, method=method)
+    files = sorted(out.glob("frame_*.obj"))
+    assert pos.shape == (len(files), 3273, 3) == nrm.shape
+    for f, path in enumerate(files):
+        p, n = read_obj(path)
+        assert np.array_equal(pos[f], p) and np.array_equal(nrm[f], n), (method, f)
+
+
+def test_clip_frames_are_single_poses(cesium):
+    times = np.array([0.0, 0.25, 1.5], dtype=np.float32)
+    pos, nrm = cesium.skin_clip("0", times=times, method="log")
+    for f, t in enumerate(times):
+        p, n = cesium.skin(cesium.pose(0, float(t)), "log")
+        assert np.array_equal(pos[f], p) and np.array_equal(nrm[f], n)
+
+
+def test_own_arrays_match_the_rig_and_numpy(cesium):
+    pose = cesium.pose(0, 0.4)
+    mats = cesium.skinning_matrices(pose)
+    joints, weights = cesium.influences()
+    for method in SKIN_METHODS:
+        ours = chasles.skin(cesium.positions, cesium.normals, joints, weights, mats, method,
+                            centres=np.linalg.inv(cesium.inverse_bind)[:, :3, 3])
+        rig = cesium.skin(pose, method)
+        assert np.abs(ours[0] - rig[0]).max() < 1e-5, method
+    # LBS is the weighted sum of the joints' matrices.
+    blended = np.einsum("vk,vkij->vij", weights, mats[joints])
+    lbs = np.einsum("vij,vj->vi", blended[:, :3, :3], cesium.positions) + blended[:, :3, 3]
+    pos, _ = chasles.skin(cesium.positions, cesium.normals, joints, weights, mats, "lbs")
+    assert np.abs(pos - lbs).max() < 1e-5
+    # A batch of poses at once, frame by frame the same.
+    batch = np.stack([mats, cesium.skinning_matrices(cesium.pose(0, 1.0))])
+    pb, nb = chasles.skin(cesium.positions, cesium.normals, joints, weights, batch, "dqs")
+    assert pb.shape == (2, 3273, 3)
+    one = chasles.skin(cesium.positions, cesium.normals, joints, weights, batch[1], "dqs")
+    assert np.array_equal(pb[1], one[0]) and np.array_equal(nb[1], one[1])
+
+
+def test_more_than_eight_influences_take_the_reference_path(rng):
+    v, j = 50, 12
+    p = rng.normal(size=(v, 3))
+    n = np.tile([0.0, 0.0, 1.0], (v, 1))
+    joints = np.tile(np.arange(j), (v, 1))
+    w = rng.uniform(0.1, 1.0, size=(v, j))
+    mats = np.tile(np.eye(4), (j, 1, 1))
+    mats[:, :3, 3] = rng.normal(size=(j, 3))
+    pos, _ = chasles.skin(p, n, joints, w, mats, "lbs")
+    expected = p + (w / w.sum(1, keepdims=True)) @ mats[:, :3, 3]
+    assert np.abs(pos - expected).max() < 1e-5
+
+
+def test_rigs_and_poses_pickle(cesium):
+    again = pickle.loads(pickle.dumps(cesium))
+    assert again.name == cesium.name and again.clips == cesium.clips
+    assert np.array_equal(again.positions, cesium.positions)
+    a = cesium.skin_clip(0, fps=10, method="sbs")
+    b = again.skin_clip(0, fps=10, method="sbs")
+    assert np.array_equal(a[0], b[0]) and np.array_equal(a[1], b[1])
+    pose = cesium.pose(0, 0.9)
+    p2 = pickle.loads(pickle.dumps(pose))
+    assert p2 == pose and np.array_equal(p2.rotations, pose.rotations)
+    assert np.array_equal(cesium.skin(p2)[0], cesium.skin(pose)[0])
+    for name in chasles.models():
+        r = chasles.Rig.model(name)
+        assert pickle.loads(pickle.dumps(r)).node_names == r.node_names
+    with pytest.raises(ValueError, match="not a pickled chasles rig"):
+        chasles.Rig._from_state(b"nonsense")
+    with pytest.raises(ValueError, match="truncated"):
+        chasles.Rig._from_state(cesium.__reduce__()[1][0][:100])
+
+
+def test_bad_skinning_inputs_raise(cesium, tmp_path, rng):
+    with pytest.raises(ValueError, match="unknown method 'bbw'"):
+        cesium.skin(method="bbw")
+    with pytest.raises(ValueError, match="device='gpu'"):
+        cesium.skin(device="gpu")
+    with pytest.raises(ValueError, match="no animation 'Dance'; there are: 0"):
+        cesium.pose("Dance", 0.0)
+    with pytest.raises(ValueError, match="no animation 3"):
+        cesium.skin_clip(3)
+    with pytest.raises(ValueError, match="give either pose or clip/time"):
+        cesium.skin(cesium.pose(), clip=0)
+    with pytest.raises(ValueError, match="the time NaN in clip 0 is not finite"):
+        cesium.pose(0, float("nan"))
+    with pytest.raises(ValueError, match="more than max_frames=5"):
+        cesium.skin_clip(0, fps=30, max_frames=5)
+    with pytest.raises(ValueError, match="fps must be in"):
+        cesium.skin_clip(0, fps=0.0)
+    other = chasles.Rig.model("RiggedSimple")
+    with pytest.raises(ValueError, match="node transforms in the pose"):
+        cesium.skin(other.pose())
+    with pytest.raises(ValueError, match="rotation is zero"):
+        chasles.Pose(np.zeros((2, 3)), np.zeros((2, 4)))
+    with pytest.raises(ValueError, match=r"rotations must have shape \(2, 4\)"):
+        chasles.Pose(np.zeros((2, 3)), np.zeros((3, 4)))
+    with pytest.raises(OSError, match="nothing.glb"):
+        chasles.Rig.load(tmp_path / "nothing.glb")
+    bad = tmp_path / "bad.glb"
+    bad.write_bytes(b"not a model")
+    with pytest.raises(ValueError, match="bad.glb"):
+        chasles.Rig.load(bad)
+    with pytest.raises(ValueError, match="no built-in model 'Bob'"):
+        chasles.Rig.model("Bob")
+    p, n = np.zeros((2, 3)), np.tile([0.0, 0.0, 1.0], (2, 1))
+    eye = np.tile(np.eye(4), (2, 1, 1))
+    with pytest.raises(ValueError, match="vertex 1: joint index 5 out of range"):
+        chasles.skin(p, n, [[0], [5]], [[1.0], [1.0]], eye)
+    with pytest.raises(ValueError, match="vertex 0: weight -1 for joint 0"):
+        chasles.skin(p, n, [[0], [1]], [[-1.0], [1.0]], eye)
+    with pytest.raises(ValueError, match="vertex 1: the weights sum to zero"):
+        chasles.skin(p, n, [[0], [1]], [[1.0], [0.0]], eye)
+    with pytest.raises(ValueError, match="joint index -1 is negative"):
+        chasles.skin(p, n, [[0], [-1]], [[1.0], [1.0]], eye)
+    with pytest.raises(ValueError, match="joints must be integers"):
+        chasles.skin(p, n, [[0.0], [1.0]], [[1.0], [1.0]], eye)
+    with pytest.raises(ValueError, match=r"joint_matrices must have shape \(\.\.\., J, 4, 4\)"):
+        chasles.skin(p, n, [[0], [1]], [[1.0], [1.0]], np.eye(3))
+    with pytest.raises(ValueError, match=r"weights must have shape \(2, 1\)"):
+        chasles.skin(p, n, [[0], [1]], [[1.0, 2.0], [1.0, 1.0]], eye)
+    with pytest.raises(ValueError, match="not finite"):
+        bad_m = eye.copy()
+        bad_m[1, 0, 3] = np.nan
+        chasles.skin(p, n, [[0], [1]], [[1.0], [1.0]], bad_m)
