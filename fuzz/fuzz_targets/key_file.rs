@@ -59,8 +59,27 @@ fuzz_target!(|data: &[u8]| {
         }
     }
     let preset = SpringConfig::spring();
+    if let Ok((cfg, total)) = spring_args::configure(
+        preset.clone(),
+        spring_args::SolverArg::Converged,
+        keys.spring.as_ref(),
+        &Default::default(),
+        None,
+        frames,
+        kf.len(),
+    ) {
+        if total <= 400 {
+            if let Ok(r) = spring(&kf, total, timing, &cfg, &mut |_| {}) {
+                assert!(
+                    r.frames.iter().all(|f| f.q.is_finite()),
+                    "converged Spring: a frame that is not finite"
+                );
+            }
+        }
+    }
     let Ok((mut cfg, total)) = spring_args::configure(
         preset,
+        spring_args::SolverArg::Report,
         keys.spring.as_ref(),
         &Default::default(),
         None,

@@ -5,12 +5,13 @@ use crate::choice::InterpMethod;
 use crate::keyfile;
 use crate::output::{check_frames_dir, extension, num, write_frames_dir, Pending};
 use crate::picture_args::{Pictures, MAX_GIF_FRAMES};
-use crate::spring_args::{configure, options, SpringArgs};
+use crate::spring_args::{configure, options, SolverArg, SpringArgs};
 use anyhow::{bail, Context, Result};
 use chasles::analysis::curvature::{curvature_energy, Width};
 use chasles::analysis::velocity::velocity_chord;
 use chasles::interp::{
-    interpolate, spring, Frame, Hemisphere, KeyFrames, Method, SpringConfig, Timing,
+    interpolate, spring, Frame, Hemisphere, KeyFrames, Method, Solver, SpringConfig, Stopped,
+    Timing,
 };
 use chasles::{EulerOrder, Quat};
 use indicatif::{ProgressBar, ProgressStyle};
@@ -48,7 +49,8 @@ const DEFAULT_FRAMES: usize = 200;
 
 enum Plan {
     Piecewise(Method),
-    Spring(SpringConfig),
+    /// A Spring preset and the solver it runs unless told otherwise.
+    Spring(SpringConfig, SolverArg),
 }
 
 /// What `method` runs; LinEuler in `order` (the keys' own when they were given as Euler
@@ -60,10 +62,10 @@ fn plan(method: InterpMethod, order: EulerOrder) -> Plan {
         InterpMethod::Lerp => Plan::Piecewise(Method::Nlerp),
         InterpMethod::Slerp => Plan::Piecewise(Method::Slerp),
         InterpMethod::Squad => Plan::Piecewise(Method::Squad),
-        InterpMethod::Spring => Plan::Spring(SpringConfig::spring()),
-        InterpMethod::SlerpSvupti => Plan::Spring(SpringConfig::slerpsvupti()),
-        InterpMethod::SquadSvupti => Plan::Spring(SpringConfig::squadsvupti()),
-        InterpMethod::JustDoIt => Plan::Spring(SpringConfig::justdoit()),
+        InterpMethod::Spring => Plan::Spring(SpringConfig::spring(), SolverArg::Converged),
+        InterpMethod::SlerpSvupti => Plan::Spring(SpringConfig::slerpsvupti(), SolverArg::Report),
+        InterpMethod::SquadSvupti => Plan::Spring(SpringConfig::squadsvupti(), SolverArg::Report),
+        InterpMethod::JustDoIt => Plan::Spring(SpringConfig::justdoit(), SolverArg::Report),
     }
 }
 
@@ -115,9 +117,10 @@ pub fn compute(args: &InterpArgs) -> Result<Run> {
             }
             interpolate(m, &kf, n, args.timing)?
         }
-        Plan::Spring(preset) => {
+        Plan::Spring(preset, solver) => {
             let (cfg, total) = configure(
                 preset,
+                solver,
                 keys.spring.as_ref(),
                 &args.spring,
                 args.frames,
@@ -134,7 +137,10 @@ pub fn compute(args: &InterpArgs) -> Result<Run> {
             n = total;
             let _ = writeln!(extra, "spring options    {}", options(&cfg, n, kf.len()));
             // At most MAX_ITERATIONS a step (checked): the sums cannot overflow.
-            let total: usize = cfg.levels.iter().map(|l| l.iterations).sum();
+            let total: usize = match cfg.solver {
+                Solver::Converged { max_iterations, .. } => max_iterations,
+                Solver::Report => cfg.levels.iter().map(|l| l.iterations).sum(),
+            };
             let bar = ProgressBar::new(total as u64);
             bar.set_style(
                 ProgressStyle::with_template(
@@ -163,11 +169,32 @@ pub fn compute(args: &InterpArgs) -> Result<Run> {
             bar.finish_and_clear();
             let last = r.history.last().map_or(0.0, |h| h.energy);
             let iters = r.history.iter().filter(|h| h.iteration > 0).count();
-            let _ = writeln!(
-                extra,
-                "spring            {iters} iterations over {} levels, final F {last:.4e}",
-                cfg.levels.len()
-            );
+            let _ = match cfg.solver {
+                Solver::Converged { .. } => {
+                    let (first, end) = (r.history.first(), r.history.last());
+                    let fall = match (first, end) {
+                        (Some(a), Some(b)) if a.gradient_norm > 0.0 => {
+                            b.gradient_norm / a.gradient_norm
+                        }
+                        _ => 0.0,
+                    };
+                    writeln!(
+                        extra,
+                        "spring            converged solver: {iters} Newton steps, final F {last:.6e}, gradient {fall:.1e} of the start's ({})",
+                        match r.stopped {
+                            Stopped::Converged => "converged",
+                            Stopped::Rounding => "stopped at f64's rounding",
+                            Stopped::MaxIterations => "iteration cap reached",
+                            Stopped::LevelsDone => "levels done",
+                        }
+                    )
+                }
+                Solver::Report => writeln!(
+                    extra,
+                    "spring            {iters} iterations over {} levels, final F {last:.4e}",
+                    cfg.levels.len()
+                ),
+            };
             r.frames
         }
     };

@@ -7,10 +7,17 @@
 //! of these: [`options`] writes any configuration back as the options that give it, and
 //! `chasles interp` prints it in its summary. A key file's `[spring]` table sets the same
 //! controls (names with `_`); the command line overrides the file, the file the preset.
+//!
+//! The solver: `--solver converged` (the default of `--method spring`) minimizes F to a
+//! stationary point by Newton's method on the unit quaternions (`chasles::interp::Solver`,
+//! §8.2's "more robust numerical solution"), with the start, width and weights as above and
+//! a gradient `--tolerance`; `--solver report` (the default of the report's programs
+//! `slerpsvupti`, `squadsvupti`, `justdoit`) runs the report's gradient descent, whose
+//! levels, iterations, step rule and unit penalty apply to it alone.
 
 use anyhow::{bail, Result};
 use chasles::analysis::curvature::Width;
-use chasles::interp::{Level, SpringConfig, Start, StepRule};
+use chasles::interp::{Level, Solver, SpringConfig, Start, StepRule};
 use clap::ValueEnum;
 use serde::Deserialize;
 
@@ -24,6 +31,16 @@ pub enum WidthArg {
     Chord,
     /// The centred average of the angles between neighbours (eq. 6.24's note).
     Angle,
+}
+
+/// Which minimization runs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum SolverArg {
+    /// Newton's method to a stationary point of F (the default of `spring`).
+    Converged,
+    /// The report's gradient descent (the default of its programs).
+    Report,
 }
 
 /// The curve the first step starts from.
@@ -105,6 +122,14 @@ pub struct SpringArgs {
     /// Spring methods: the curve the first step starts from.
     #[arg(long, value_enum)]
     pub start: Option<StartArg>,
+    /// Spring methods: converged (Newton to a stationary point; the default of spring) or
+    /// report (the report's gradient descent; the default of its programs).
+    #[arg(long, value_enum)]
+    pub solver: Option<SolverArg>,
+    /// Spring methods, converged solver: stop when the projected gradient has fallen to this
+    /// share of its start (default 1e-10).
+    #[arg(long, value_name = "T")]
+    pub tolerance: Option<f64>,
 }
 
 /// `step = "fixed:0.02"` in a key file.
@@ -125,6 +150,8 @@ impl SpringArgs {
             ("--key-weight", self.key_weight.is_some()),
             ("--velocity-weight", self.velocity_weight.is_some()),
             ("--start", self.start.is_some()),
+            ("--solver", self.solver.is_some()),
+            ("--tolerance", self.tolerance.is_some()),
         ]
         .into_iter()
         .filter_map(|(f, on)| on.then_some(f))
@@ -142,6 +169,8 @@ impl SpringArgs {
             key_weight: self.key_weight.or(other.key_weight),
             velocity_weight: self.velocity_weight.or(other.velocity_weight),
             start: self.start.or(other.start),
+            solver: self.solver.or(other.solver),
+            tolerance: self.tolerance.or(other.tolerance),
         }
     }
 }
@@ -152,13 +181,17 @@ pub const MAX_ITERATIONS: usize = 10_000_000;
 
 /// `preset` with the key file's `[spring]` table and then the command line's options
 /// applied (each control from the command line, else the file), for `keys` keys, and the total frame count: `frames` if given, else the last of
-/// the levels, else `default_frames`. Errors name the option (`--levels`, or the key file's
+/// the levels, else `default_frames`. The solver is the options' `solver`, else
+/// `default_solver`; with the converged solver the run is [`SpringConfig::converged`] from
+/// the preset's start, and the report's descent controls (levels, iterations, step,
+/// penalty) are refused. Errors name the option (`--levels`, or the key file's
 /// `spring.levels`): a step of fewer frames than Spring gives a coarse step
 /// (`4(keys − 1) + 1`) or more than the total, a total that disagrees with --frames,
 /// iterations not one per step or over [`MAX_ITERATIONS`]; the values' ranges are checked
 /// by the library's Spring.
 pub fn configure(
     mut cfg: SpringConfig,
+    default_solver: SolverArg,
     file: Option<&SpringArgs>,
     cli: &SpringArgs,
     frames: Option<usize>,
@@ -166,6 +199,35 @@ pub fn configure(
     keys: usize,
 ) -> Result<(SpringConfig, usize)> {
     let given = cli.clone().or(file.cloned().unwrap_or_default());
+    if given.solver.unwrap_or(default_solver) == SolverArg::Converged {
+        for (flag, on) in [
+            ("--levels", given.levels.is_some()),
+            ("--iterations", given.iterations.is_some()),
+            ("--step", given.step.is_some()),
+            ("--penalty", given.penalty.is_some()),
+        ] {
+            if on {
+                bail!("{flag} (or its key-file field) is a control of the report's gradient descent: add --solver report, or leave it out for the converged solver");
+            }
+        }
+        let start = cfg.start;
+        cfg = SpringConfig::converged();
+        cfg.start = start;
+        if let Some(t) = given.tolerance {
+            cfg.solver = Solver::Converged {
+                tolerance: t,
+                max_iterations: match cfg.solver {
+                    Solver::Converged { max_iterations, .. } => max_iterations,
+                    Solver::Report => 200,
+                },
+            };
+        }
+    } else {
+        cfg.solver = Solver::Report;
+        if given.tolerance.is_some() {
+            bail!("--tolerance (or spring.tolerance) is a control of the converged solver, not of --solver report");
+        }
+    }
     let (levels, iterations) = (given.levels, given.iterations);
     let total = match (&levels, frames) {
         (Some(l), Some(f)) if l.last() != Some(&f) => bail!(
@@ -260,10 +322,27 @@ pub fn configure(
 }
 
 /// `cfg` for `frames` frames through `keys` keys written as the options that give it, e.g.
-/// `--start slerp --levels 22,110,550 --iterations 200,150,100 --step accelerated:0.05
-/// --penalty 1 --width one --key-weight 1.3 --velocity-weight 0` (the levels as the frames
-/// each step really has, [`SpringConfig::level_frames`]).
+/// `--solver report --start slerp --levels 22,110,550 --iterations 200,150,100 --step
+/// accelerated:0.05 --penalty 1 --width one --key-weight 1.3 --velocity-weight 0` (the
+/// levels as the frames each step really has, [`SpringConfig::level_frames`]), or
+/// `--solver converged --start slerp --width one --key-weight 1 --velocity-weight 0
+/// --tolerance 1e-10`.
 pub fn options(cfg: &SpringConfig, frames: usize, keys: usize) -> String {
+    let start = match cfg.start {
+        Start::Slerp => "slerp",
+        Start::Squad => "squad",
+    };
+    let width = match cfg.width {
+        Width::Unit => "one",
+        Width::Centered => "chord",
+        Width::Angle => "angle",
+    };
+    if let Solver::Converged { tolerance, .. } = cfg.solver {
+        return format!(
+            "--solver converged --start {start} --width {width} --key-weight {} --velocity-weight {} --tolerance {tolerance:e}",
+            cfg.key_weight, cfg.velocity_penalty
+        );
+    }
     let levels: Vec<String> = cfg
         .level_frames(frames, keys)
         .iter()
@@ -275,20 +354,11 @@ pub fn options(cfg: &SpringConfig, frames: usize, keys: usize) -> String {
         .map(|l| l.iterations.to_string())
         .collect();
     format!(
-        "--start {} --levels {} --iterations {} --step {} --penalty {} --width {} --key-weight {} --velocity-weight {}",
-        match cfg.start {
-            Start::Slerp => "slerp",
-            Start::Squad => "squad",
-        },
+        "--solver report --start {start} --levels {} --iterations {} --step {} --penalty {} --width {width} --key-weight {} --velocity-weight {}",
         levels.join(","),
         iterations.join(","),
         step_text(cfg.step),
         cfg.unit_penalty,
-        match cfg.width {
-            Width::Unit => "one",
-            Width::Centered => "chord",
-            Width::Angle => "angle",
-        },
         cfg.key_weight,
         cfg.velocity_penalty
     )
@@ -323,9 +393,17 @@ mod tests {
         ] {
             let text = options(&preset, 550, 6);
             let given = args(&text.split(' ').collect::<Vec<_>>());
-            assert_eq!(given.given().len(), 8, "{text}");
-            let (cfg, total) =
-                configure(SpringConfig::squadsvupti(), None, &given, None, 200, 6).unwrap();
+            assert_eq!(given.given().len(), 9, "{text}");
+            let (cfg, total) = configure(
+                SpringConfig::squadsvupti(),
+                SolverArg::Report,
+                None,
+                &given,
+                None,
+                200,
+                6,
+            )
+            .unwrap();
             assert_eq!(total, 550);
             assert_eq!(cfg.start, preset.start, "{text}");
             assert_eq!(cfg.step, preset.step);
@@ -344,11 +422,87 @@ mod tests {
         let text = options(&SpringConfig::justdoit(), 200, 6);
         assert!(text.contains("--levels 21,40,200"), "{text}");
         let given = args(&text.split(' ').collect::<Vec<_>>());
-        assert!(configure(SpringConfig::justdoit(), None, &given, None, 200, 6).is_ok());
+        assert!(configure(
+            SpringConfig::justdoit(),
+            SolverArg::Report,
+            None,
+            &given,
+            None,
+            200,
+            6
+        )
+        .is_ok());
         assert_eq!(
             options(&SpringConfig::justdoit(), 550, 6),
-            "--start slerp --levels 22,110,550 --iterations 200,150,100 --step adaptive:0.02 --penalty 1 --width one --key-weight 1 --velocity-weight 0"
+            "--solver report --start slerp --levels 22,110,550 --iterations 200,150,100 --step adaptive:0.02 --penalty 1 --width one --key-weight 1 --velocity-weight 0"
         );
+        // The converged solver likewise, and its options refuse the descent's controls.
+        let mut c = SpringConfig::converged();
+        c.start = Start::Squad;
+        c.key_weight = 1.5;
+        c.width = Width::Angle;
+        let text = options(&c, 550, 6);
+        assert_eq!(
+            text,
+            "--solver converged --start squad --width angle --key-weight 1.5 --velocity-weight 0 --tolerance 1e-10"
+        );
+        let given = args(&text.split(' ').collect::<Vec<_>>());
+        let (cfg, _) = configure(
+            SpringConfig::spring(),
+            SolverArg::Report,
+            None,
+            &given,
+            None,
+            550,
+            6,
+        )
+        .unwrap();
+        assert_eq!(cfg, c);
+        let (cfg, _) = configure(
+            SpringConfig::spring(),
+            SolverArg::Converged,
+            None,
+            &args(&[]),
+            None,
+            550,
+            6,
+        )
+        .unwrap();
+        assert_eq!(cfg, SpringConfig::converged());
+        for flag in [
+            &["--levels", "22,550"][..],
+            &["--step", "fixed:0.1"],
+            &["--penalty", "2"],
+            &["--iterations", "3"],
+        ] {
+            let e = configure(
+                SpringConfig::spring(),
+                SolverArg::Converged,
+                None,
+                &args(flag),
+                None,
+                550,
+                6,
+            )
+            .unwrap_err()
+            .to_string();
+            assert!(
+                e.contains("control of the report's gradient descent"),
+                "{e}"
+            );
+        }
+        let e = configure(
+            SpringConfig::justdoit(),
+            SolverArg::Report,
+            None,
+            &args(&["--tolerance", "1e-8"]),
+            None,
+            550,
+            6,
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(e.contains("control of the converged solver"), "{e}");
     }
 
     #[test]
@@ -358,8 +512,16 @@ mod tests {
         )
         .unwrap();
         let cli = args(&["--key-weight", "4", "--step", "normalized:0.5"]);
-        let (cfg, total) =
-            configure(SpringConfig::spring(), Some(&file), &cli, None, 200, 3).unwrap();
+        let (cfg, total) = configure(
+            SpringConfig::spring(),
+            SolverArg::Report,
+            Some(&file),
+            &cli,
+            None,
+            200,
+            3,
+        )
+        .unwrap();
         assert_eq!(total, 100);
         assert_eq!(cfg.levels.len(), 2);
         assert_eq!((cfg.levels[0].fraction, cfg.levels[0].iterations), (0.2, 5));
@@ -370,6 +532,7 @@ mod tests {
         // Nothing given: the preset, at --frames or the default.
         let (cfg, total) = configure(
             SpringConfig::justdoit(),
+            SolverArg::Report,
             None,
             &args(&[]),
             Some(300),
@@ -383,9 +546,17 @@ mod tests {
     #[test]
     fn bad_controls_name_the_option() {
         let err = |a: &[&str], frames| {
-            configure(SpringConfig::justdoit(), None, &args(a), frames, 200, 6)
-                .unwrap_err()
-                .to_string()
+            configure(
+                SpringConfig::justdoit(),
+                SolverArg::Report,
+                None,
+                &args(a),
+                frames,
+                200,
+                6,
+            )
+            .unwrap_err()
+            .to_string()
         };
         assert!(err(&["--levels", "22,110,550"], Some(200)).contains("--frames is 200"));
         assert!(err(&["--levels", "22,0,550"], None).contains("21 to 550"));

@@ -104,7 +104,7 @@ fn spring_controls_on_the_command_line_and_in_the_key_file() {
         "550",
     ]));
     assert!(justdoit.1.contains(
-        "spring options    --start slerp --levels 22,110,550 --iterations 200,150,100 --step adaptive:0.02 --penalty 1 --width one --key-weight 1 --velocity-weight 0"
+        "spring options    --solver report --start slerp --levels 22,110,550 --iterations 200,150,100 --step adaptive:0.02 --penalty 1 --width one --key-weight 1 --velocity-weight 0"
     ), "{}", justdoit.1);
     let spelled = ok(&chasles(&[
         "interp",
@@ -189,7 +189,7 @@ fn spring_controls_on_the_command_line_and_in_the_key_file() {
         dir.path(),
         "keys.toml",
         "[[keys]]\nangle = 0.0\naxis = [1, 0, 0]\n[[keys]]\nangle = 1.5\naxis = [1, 2, 0]\n[[keys]]\nangle = 2.5\naxis = [0, 1, 0]\n\
-         [spring]\nlevels = [9, 40]\niterations = [30, 20]\nstep = \"normalized:0.001\"\nkey_weight = 1.2\nstart = \"squad\"\n",
+         [spring]\nsolver = \"report\"\nlevels = [9, 40]\niterations = [30, 20]\nstep = \"normalized:0.001\"\nkey_weight = 1.2\nstart = \"squad\"\n",
     );
     let (csv, err) = ok(&chasles(&[
         "interp",
@@ -202,19 +202,57 @@ fn spring_controls_on_the_command_line_and_in_the_key_file() {
     ]));
     assert_eq!(quats(&csv).len(), 40);
     assert!(
-        err.contains("--start squad --levels 9,40 --iterations 30,20 --step normalized:0.001"),
+        err.contains("--solver report --start squad --levels 9,40 --iterations 30,20 --step normalized:0.001"),
         "{err}"
     );
     assert!(err.contains("--key-weight 2 "), "{err}");
+    // Spring's default is the converged solver: Table 5.1 at 550 frames by angle comes to
+    // the minimum of eq. 6.23 (1.8465e-5), below the report's justdoit (1.9921e-5 above).
+    let (csv, err) = ok(&chasles(&[
+        "interp",
+        "--method",
+        "spring",
+        "--keys",
+        "builtin:table5.1",
+        "--frames",
+        "550",
+    ]));
+    assert_eq!(quats(&csv).len(), 550);
+    assert!(err.contains("--solver converged --start slerp --width one --key-weight 1 --velocity-weight 0 --tolerance 1e-10"), "{err}");
+    assert!(
+        err.contains("converged solver: ") && err.contains("(converged)"),
+        "{err}"
+    );
+    let e = summary_number(&err, "curvature energy");
+    assert!((e / 1.8465e-5 - 1.0).abs() < 1e-4, "{e}");
+    assert!(e < summary_number(&justdoit.1, "curvature energy"));
 }
 
 #[test]
 fn bad_spring_controls_are_one_line_errors() {
     let run = |extra: &[&str]| {
+        let mut a = vec![
+            "interp",
+            "--method",
+            "spring",
+            "--keys",
+            "builtin:table5.1",
+            "--solver",
+            "report",
+        ];
+        a.extend_from_slice(extra);
+        failed(&chasles(&a))
+    };
+    // The report's controls are refused by the converged solver, its tolerance by the report's.
+    let converged = |extra: &[&str]| {
         let mut a = vec!["interp", "--method", "spring", "--keys", "builtin:table5.1"];
         a.extend_from_slice(extra);
         failed(&chasles(&a))
     };
+    let e = converged(&["--levels", "22,550"]);
+    assert!(e.contains("--levels (or its key-file field) is a control of the report's gradient descent: add --solver report"), "{e}");
+    assert!(converged(&["--tolerance", "2"]).contains("tolerance"));
+    assert!(run(&["--tolerance", "1e-8"]).contains("control of the converged solver"));
     assert!(run(&["--levels", "22,110", "--frames", "100"]).contains("--frames is 100"));
     assert!(run(&["--iterations", "5"]).contains("1 counts but there are 3"));
     assert!(run(&["--step", "fixed"]).contains("RULE:LENGTH"));

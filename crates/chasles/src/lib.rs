@@ -61,6 +61,7 @@ extern crate self as chasles;
 mod test_common;
 
 pub mod analysis;
+mod banded;
 pub mod blend;
 pub mod convert;
 pub mod dual;

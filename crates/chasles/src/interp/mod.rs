@@ -16,11 +16,12 @@ pub mod lin_euler;
 pub mod lin_mat;
 pub mod slerp;
 pub mod spring;
+mod spring_converged;
 pub mod squad;
 pub mod timing;
 
 pub use keys::{Hemisphere, KeyFrames};
-pub use spring::{spring, Level, SpringConfig, SpringResult, Start, StepRule};
+pub use spring::{spring, Level, Solver, SpringConfig, SpringResult, Start, StepRule, Stopped};
 pub use squad::Squad;
 pub use timing::Timing;
 

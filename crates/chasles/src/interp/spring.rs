@@ -76,6 +76,38 @@ impl StepRule {
     }
 }
 
+/// Which minimization runs.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Solver {
+    /// The report's gradient descent (App. C): the [`SpringConfig::levels`], the
+    /// [`SpringConfig::step`] rule and the unit penalty c_g; frames normalized at the end.
+    Report,
+    /// Gauss–Newton on the unit quaternions to a stationary point of F (keys fixed): until
+    /// the projected gradient is `tolerance` times its start, or no step lowers F (the
+    /// rounding of f64), at most `max_iterations` steps. Needs no step length, penalty or
+    /// levels (§8.2's "more robust numerical solution"; `spring_converged`).
+    Converged {
+        /// The projected gradient's fall that ends the solve (1e-10 by default).
+        tolerance: f64,
+        /// The most Gauss–Newton steps.
+        max_iterations: usize,
+    },
+}
+
+/// Why a Spring run ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Stopped {
+    /// The report's solver ran its levels (to their iteration counts or thresholds).
+    LevelsDone,
+    /// The converged solver reached its gradient tolerance.
+    Converged,
+    /// The converged solver found no step that lowers F: a stationary point as far as f64
+    /// can tell.
+    Rounding,
+    /// The converged solver ran all its iterations.
+    MaxIterations,
+}
+
 /// One level of the multi-step scheme. A level never has fewer than `4(K − 1) + 1` frames
 /// for K keys (about four per interval), nor more than the final count.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -107,6 +139,8 @@ pub struct SpringConfig {
     pub min_energy_change: f64,
     /// Stop a level when `‖∇F‖` falls below this (0 = never).
     pub min_gradient_norm: f64,
+    /// The report's descent or the converged solver.
+    pub solver: Solver,
 }
 
 impl SpringConfig {
@@ -121,7 +155,26 @@ impl SpringConfig {
             width: Width::Unit,
             min_energy_change: 0.0,
             min_gradient_norm: 0.0,
+            solver: Solver::Report,
         }
+    }
+    /// Spring solved to its optimum ([`Solver::Converged`], gradient tolerance 1e-10, at
+    /// most 200 steps) from Slerp: the energy of eq. 6.23 on unit frames, keys fixed, c_k = 1,
+    /// no velocity penalty, width 1 — the minimum the report's descent approaches.
+    pub fn converged() -> Self {
+        let mut c = Self::base(
+            Start::Slerp,
+            vec![Level {
+                fraction: 1.0,
+                iterations: 0,
+            }],
+            1.0,
+        );
+        c.solver = Solver::Converged {
+            tolerance: 1e-10,
+            max_iterations: 200,
+        };
+        c
     }
     /// App. C `slerpsvupti`: one level, Slerp start, 500 iterations (Figure 6.15).
     pub fn slerpsvupti() -> Self {
@@ -196,6 +249,22 @@ impl SpringConfig {
     }
     fn validate(&self) -> Result<()> {
         let bad = |what, rule, value| Err(Error::BadParameter { what, rule, value });
+        if let Solver::Converged {
+            tolerance,
+            max_iterations,
+        } = self.solver
+        {
+            if !(0.0..1.0).contains(&tolerance) {
+                return bad("the converged Spring's tolerance", "in [0, 1[", tolerance);
+            }
+            if max_iterations > 100_000 {
+                return bad(
+                    "the converged Spring's iterations",
+                    "at most 100000",
+                    max_iterations as f64,
+                );
+            }
+        }
         if self.levels.is_empty() {
             return bad("the number of Spring levels", "at least 1", 0.0);
         }
@@ -243,8 +312,11 @@ pub struct EnergyRecord {
 pub struct SpringResult<T> {
     /// The final frames (normalized), keys flagged.
     pub frames: Vec<Frame<T>>,
-    /// F and ‖∇F‖ at the start of each level and after every iteration.
+    /// F and ‖∇F‖ at the start of each level and after every iteration (the converged
+    /// solver: one level, ‖∇F‖ projected onto the tangent spaces).
     pub history: Vec<EnergyRecord>,
+    /// Why it ended.
+    pub stopped: Stopped,
 }
 
 /// Progress report for long runs.
@@ -434,6 +506,7 @@ pub fn spring<T: Real>(
             })
             .collect(),
         history: r.history,
+        stopped: r.stopped,
     })
 }
 
@@ -449,6 +522,21 @@ fn spring_f64(
     let k = keys.len();
     if frames < k {
         return Err(Error::TooFewFrames { frames, keys: k });
+    }
+    if let Solver::Converged {
+        tolerance,
+        max_iterations,
+    } = cfg.solver
+    {
+        return super::spring_converged::spring_converged(
+            keys,
+            frames,
+            timing,
+            cfg,
+            tolerance,
+            max_iterations,
+            progress,
+        );
     }
     let mut history = Vec::new();
     let mut current: Vec<Frame<T>> = Vec::new();
@@ -532,12 +620,13 @@ fn spring_f64(
     Ok(SpringResult {
         frames: current,
         history,
+        stopped: Stopped::LevelsDone,
     })
 }
 
 /// The previous level's curve at `n` frames: within each key interval, new frames at
 /// equal fractions, each by Slerp between the two (normalized) old frames around it.
-fn resample<T: Real>(
+pub(super) fn resample<T: Real>(
     keys: &KeyFrames<T>,
     old: &[Frame<T>],
     n: usize,
