@@ -39,6 +39,11 @@
 //! of its F; with a velocity weight frames even jump to their neighbour's antipode (the same
 //! rotation, chord 2). With width 1 (eq. 6.43, the report's final choice) F is a
 //! fourth-difference energy with one minimum, which the solver reaches from any start.
+//!
+//! Past 500 lines because the residuals, their first and second derivatives and the Newton
+//! loop that assembles them are one algorithm whose parts change together (a term added to
+//! F needs its Jacobian and Hessian beside it), and the tests that hold the derivatives to
+//! finite differences belong with them.
 
 use super::spring::{EnergyRecord, Progress, SpringConfig, SpringResult, Start, Stopped};
 use super::{interpolate, KeyFrames, Method, Timing};
