@@ -40,6 +40,14 @@ fuzz_target!(|data: &[u8]| {
         None => KeyFrames::new(&keys.quats, keys.times.as_deref(), Hemisphere::Chain),
     };
     let Ok(kf) = kf else { return };
+    // Key velocities, where the file gives them (Squad and the converged Spring honour them).
+    let kf = match &keys.velocities {
+        Some(v) => match kf.with_velocities(v) {
+            Ok(k) => k,
+            Err(_) => return,
+        },
+        None => kf,
+    };
     let frames = 4 * kf.len() + 1 + usize::from(pick >> 4);
     let timing = [Timing::Uniform, Timing::Angle][usize::from(pick >> 1) % 2];
     let order = keys.euler.as_ref().map_or(EulerOrder::DAM, |e| e.0);

@@ -100,6 +100,19 @@ pub fn compute(args: &InterpArgs) -> Result<Run> {
         None => KeyFrames::new(&keys.quats, keys.times.as_deref(), hemisphere),
     }
     .with_context(|| keys.source.clone())?;
+    let kf = match &keys.velocities {
+        Some(v) => {
+            if !matches!(args.method, InterpMethod::Squad | InterpMethod::Spring) {
+                bail!(
+                    "{}: key velocities are honoured by squad and by spring (the converged solver), not by {}",
+                    keys.source,
+                    args.method.name()
+                );
+            }
+            kf.with_velocities(v).with_context(|| keys.source.clone())?
+        }
+        None => kf,
+    };
     let plan = plan(
         args.method,
         keys.euler.as_ref().map_or(EulerOrder::DAM, |e| e.0),

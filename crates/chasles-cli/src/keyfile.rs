@@ -6,6 +6,8 @@
 //! angle = 1.0              # radians, about `axis` (Dam et al. Table 5.1)
 //! axis = [1, 3, 0]
 //! time = 0.0               # optional, on every key or on none
+//! velocity = [0, 0.5, 0]   # optional: angular velocity at this key (rad per unit time,
+//!                          # world axes); squad and spring (converged) honour it
 //! [[keys]]
 //! quat = [1, 0, 0, 0]      # [w, x, y, z]
 //! [[keys]]
@@ -99,6 +101,8 @@ struct Spec {
     order: Option<Order>,
     /// The key's time.
     time: Option<f64>,
+    /// The angular velocity at this key (rad per unit of time, world axes).
+    velocity: Option<[f64; 3]>,
 }
 
 /// Key frames as read: rotations, optional times, and where they came from.
@@ -112,6 +116,8 @@ pub struct Keys {
     pub euler: Option<(EulerOrder, Vec<[f64; 3]>)>,
     /// The file's `[spring]` table, if any.
     pub spring: Option<SpringArgs>,
+    /// The angular velocity at each key that gives one.
+    pub velocities: Option<Vec<Option<Vec3<f64>>>>,
     /// A name for messages: the file or `builtin:NAME`.
     pub source: String,
 }
@@ -131,6 +137,7 @@ pub fn load(spec: &str) -> Result<Keys> {
             times: None,
             euler: None,
             spring: None,
+            velocities: None,
             source: spec.to_string(),
         });
     }
@@ -207,6 +214,9 @@ fn parse(doc: Doc, source: &str) -> Result<Keys> {
                 bail!("{} is not a finite number", at(field));
             }
         }
+        if k.velocity.is_some_and(|v| v.iter().any(|x| !x.is_finite())) {
+            bail!("{} is not finite", at("velocity"));
+        }
         let q = match (k.angle, k.axis, k.quat, k.euler) {
             (Some(angle), Some(axis), None, None) => {
                 Quat::from_axis_angle(Vec3::from_array(axis), angle).with_context(|| at("axis"))?
@@ -235,11 +245,18 @@ fn parse(doc: Doc, source: &str) -> Result<Keys> {
         }
         _ => None,
     };
+    let velocities = doc.keys.iter().any(|k| k.velocity.is_some()).then(|| {
+        doc.keys
+            .iter()
+            .map(|k| k.velocity.map(Vec3::from_array))
+            .collect()
+    });
     Ok(Keys {
         quats,
         times,
         euler,
         spring: doc.spring,
+        velocities,
         source: source.to_string(),
     })
 }

@@ -343,3 +343,47 @@ fn frames_dir_holds_every_frame_as_a_numbered_png_or_nothing() {
     ok(&run(empty.to_str().unwrap(), "12"));
     assert_eq!(std::fs::read_dir(&empty).unwrap().count(), 12);
 }
+
+#[test]
+fn key_velocities_in_the_key_file() {
+    // A key that asks to be passed at rest: Squad and Spring slow to a stop there (the
+    // frames beside it a second-order distance away), the other methods refuse the field.
+    let dir = tempfile::tempdir().unwrap();
+    let body = |velocity: &str| {
+        format!(
+            "[[keys]]\nangle = 0.0\naxis = [1, 0, 0]\n[[keys]]\nangle = 1.0\naxis = [0, 1, 0]\n{velocity}[[keys]]\nangle = 2.0\naxis = [0, 0, 1]\n"
+        )
+    };
+    let still = write(dir.path(), "still.toml", &body("velocity = [0, 0, 0]\n"));
+    let free = write(dir.path(), "free.toml", &body(""));
+    let step_beside_key = |keys: &str, method: &str| {
+        let (csv, _) = ok(&chasles(&[
+            "interp", "--method", method, "--keys", keys, "--frames", "201", "--timing", "uniform",
+        ]));
+        let q = quats(&csv);
+        let d: f64 = (0..4).map(|k| (q[101][k] - q[100][k]).powi(2)).sum();
+        d.sqrt()
+    };
+    for method in ["squad", "spring"] {
+        let (s, f) = (
+            step_beside_key(&still, method),
+            step_beside_key(&free, method),
+        );
+        assert!(s < 1e-3 && f > 4e-3, "{method}: {s} at rest, {f} free");
+    }
+    let e = failed(&chasles(&["interp", "--method", "slerp", "--keys", &still]));
+    assert!(
+        e.contains("key velocities are honoured by squad and by spring"),
+        "{e}"
+    );
+    let e = failed(&chasles(&[
+        "interp", "--method", "spring", "--solver", "report", "--keys", &still,
+    ]));
+    assert!(
+        e.contains("key frame 1's angular velocity: only the converged Spring solver"),
+        "{e}"
+    );
+    let bad = write(dir.path(), "bad.toml", &body("velocity = [0, nan, 0]\n"));
+    let e = failed(&chasles(&["interp", "--method", "squad", "--keys", &bad]));
+    assert!(e.contains("keys[1].velocity is not finite"), "{e}");
+}

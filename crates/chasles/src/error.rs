@@ -166,6 +166,14 @@ pub enum Error {
         /// The other's.
         b: usize,
     },
+    /// A key's angular velocity that a method cannot honour where it is.
+    #[error("key frame {index}'s angular velocity: {why}")]
+    KeyVelocity {
+        /// The key.
+        index: usize,
+        /// Why it cannot be honoured.
+        why: &'static str,
+    },
     /// Unknown name for an Euler-angle order.
     #[error("unknown Euler order {0:?}: use three of x, y, z with no two neighbours equal, lower case for extrinsic (fixed axes, e.g. \"xyz\"), upper case for intrinsic (e.g. \"XYZ\")")]
     UnknownEulerOrder(String),

@@ -1,6 +1,8 @@
-//! Key frames: the rotations a curve must pass through, with optional times.
+//! Key frames: the rotations a curve must pass through, with optional times and optional
+//! angular velocities (Barr et al. 1992; Dam et al. §8.2's "supply the angular velocity at an
+//! arbitrary key frame").
 
-use crate::{Error, EulerOrder, Quat, Real, Result};
+use crate::{Error, EulerOrder, Quat, Real, Result, Vec3};
 
 /// Validated key frames: unit quaternions (at least two), optionally with strictly
 /// increasing times, and optionally the Euler-angle triples they were given as.
@@ -9,6 +11,7 @@ pub struct KeyFrames<T> {
     q: Vec<Quat<T>>,
     times: Option<Vec<T>>,
     euler: Option<(EulerOrder, Vec<[T; 3]>)>,
+    velocities: Option<Vec<Option<Vec3<T>>>>,
 }
 
 /// Which signs the keys keep. q and −q are the same rotation but not the same point of the
@@ -70,7 +73,54 @@ impl<T: Real> KeyFrames<T> {
             q,
             times: times.map(|t| t.to_vec()),
             euler: None,
+            velocities: None,
         })
+    }
+    /// The keys with angular velocities at some of them: `ω` (rad per unit of the curve
+    /// parameter — the key times, or one per interval without times) in world coordinates,
+    /// `q̇ = ½ (0, ω) q`; `None` where the curve chooses. Squad ([`super::Squad`]) and the
+    /// converged Spring ([`super::Solver::Converged`]) honour them. Errors: not one entry per
+    /// key, or a velocity that is not finite (naming its key).
+    pub fn with_velocities(mut self, velocities: &[Option<Vec3<T>>]) -> Result<Self> {
+        if velocities.len() != self.q.len() {
+            return Err(Error::WrongLength {
+                what: "key velocities",
+                expected: "one per key (None where free)",
+                got: velocities.len(),
+            });
+        }
+        for (index, v) in velocities.iter().enumerate() {
+            if let Some(v) = v {
+                crate::error::check_finite("angular velocity", &v.to_array()).map_err(|e| {
+                    Error::BadKey {
+                        index,
+                        source: Box::new(e),
+                    }
+                })?;
+            }
+        }
+        self.velocities = velocities
+            .iter()
+            .any(Option::is_some)
+            .then(|| velocities.to_vec());
+        Ok(self)
+    }
+    /// The keys' angular velocities ([`KeyFrames::with_velocities`]), if any is given.
+    pub fn velocities(&self) -> Option<&[Option<Vec3<T>>]> {
+        self.velocities.as_deref()
+    }
+    /// The angular velocity given at key `i`, if any.
+    pub fn velocity(&self, i: usize) -> Option<Vec3<T>> {
+        self.velocities
+            .as_ref()
+            .and_then(|v| v.get(i).copied().flatten())
+    }
+    /// The parameter length of interval `i`: the difference of its key times, or 1.
+    pub fn duration(&self, interval: usize) -> T {
+        match &self.times {
+            Some(t) => t[interval + 1] - t[interval],
+            None => T::ONE,
+        }
     }
     /// Keys given as Euler-angle triples in `order` (radians, any size: `(0, 0, 4)` stays
     /// 4 rad about the last axis, not its principal value): the rotations are made from

@@ -493,7 +493,11 @@ pub fn spring<T: Real>(
 ) -> Result<SpringResult<T>> {
     let q64: Vec<Quat<f64>> = keys.quats().iter().map(|q| q.cast()).collect();
     let t64: Option<Vec<f64>> = keys.times().map(|t| t.iter().map(|v| v.to_f64()).collect());
-    let keys64 = KeyFrames::new(&q64, t64.as_deref(), super::Hemisphere::AsGiven)?;
+    let mut keys64 = KeyFrames::new(&q64, t64.as_deref(), super::Hemisphere::AsGiven)?;
+    if let Some(v) = keys.velocities() {
+        let v64: Vec<Option<crate::Vec3<f64>>> = v.iter().map(|w| w.map(|w| w.cast())).collect();
+        keys64 = keys64.with_velocities(&v64)?;
+    }
     let r = spring_f64(&keys64, frames, timing, cfg, progress)?;
     Ok(SpringResult {
         frames: r
@@ -522,6 +526,12 @@ fn spring_f64(
     let k = keys.len();
     if frames < k {
         return Err(Error::TooFewFrames { frames, keys: k });
+    }
+    if let (Solver::Report, Some(v)) = (cfg.solver, keys.velocities()) {
+        return Err(Error::KeyVelocity {
+            index: v.iter().position(Option::is_some).unwrap_or(0),
+            why: "only the converged Spring solver honours key velocities (Solver::Converged)",
+        });
     }
     if let Solver::Converged {
         tolerance,

@@ -46,7 +46,7 @@
 //! finite differences belong with them.
 
 use super::spring::{EnergyRecord, Progress, SpringConfig, SpringResult, Start, Stopped};
-use super::{interpolate, KeyFrames, Method, Timing};
+use super::{interpolate, Frame, KeyFrames, Method, Timing};
 use crate::analysis::curvature::Width;
 use crate::banded::Band;
 use crate::{Error, Quat, Result};
@@ -269,11 +269,13 @@ fn energy(q: &[Quat<f64>], is_key: &[bool], cfg: &SpringConfig) -> f64 {
     f
 }
 
-/// `JᵀJ` (into `h`) and `Jᵀr` (into `g`) at unit frames `q`, key frames held fixed (their
+/// `JᵀJ + S` (into `h`) and `Jᵀr` (into `g`) at unit frames `q`: key frames weighted by
+/// c_k, `fixed` frames (the keys, and the neighbours of keys with a velocity) held (their
 /// unknowns get the identity and no gradient); returns F.
 fn normal_equations(
     q: &[Quat<f64>],
     is_key: &[bool],
+    fixed: &[bool],
     cfg: &SpringConfig,
     h: &mut Band,
     g: &mut [f64],
@@ -299,7 +301,7 @@ fn normal_equations(
         // velocity residual's entry), so that each band row takes one run of sums.
         let base = (i - 1) * DIM;
         let free: [f64; T9] =
-            core::array::from_fn(|p| if is_key[i - 1 + p / DIM] { 0.0 } else { 1.0 });
+            core::array::from_fn(|p| if fixed[i - 1 + p / DIM] { 0.0 } else { 1.0 });
         let mut m = [[0.0f64; T9]; 5];
         for p in 0..T9 {
             let [cw, cx, cy, cz] = jr[p].to_array();
@@ -325,8 +327,8 @@ fn normal_equations(
             }
         }
     }
-    for (i, key) in is_key.iter().enumerate() {
-        if *key {
+    for (i, held) in fixed.iter().enumerate() {
+        if *held {
             for k in 0..DIM {
                 h.add(i * DIM + k, i * DIM + k, 1.0);
             }
@@ -350,6 +352,37 @@ fn retract(q: &[Quat<f64>], delta: &[f64]) -> Vec<Quat<f64>> {
             moved / moved.norm()
         })
         .collect()
+}
+
+/// Honours the keys' angular velocities (§8.2; [`KeyFrames::with_velocities`]) on the frames:
+/// each neighbour of a key with velocity ω is set to `exp(½ Δt (0, ω)) q_key` (Δt its
+/// parameter offset from the key) and held, so that the one-sided differences of the curve
+/// at the key are ω on both sides. Returns which frames are held (keys included). Errors:
+/// a neighbour that is itself a key or held by another key's velocity.
+fn pin_velocities(keys: &KeyFrames<f64>, frames: &mut [Frame<f64>]) -> Result<Vec<bool>> {
+    let mut fixed: Vec<bool> = frames.iter().map(|f| f.key.is_some()).collect();
+    if keys.velocities().is_none() {
+        return Ok(fixed);
+    }
+    for i in 0..frames.len() {
+        let Some(k) = frames[i].key else { continue };
+        let Some(w) = keys.velocity(k) else { continue };
+        for j in [i.wrapping_sub(1), i + 1] {
+            if j >= frames.len() {
+                continue;
+            }
+            if fixed[j] {
+                return Err(Error::KeyVelocity {
+                    index: k,
+                    why: "the frame beside it is a key or held by another velocity: ask for more frames",
+                });
+            }
+            let dt = frames[j].t - frames[i].t;
+            frames[j].q = Quat::pure(w * (0.5 * dt)).exp() * frames[i].q;
+            fixed[j] = true;
+        }
+    }
+    Ok(fixed)
 }
 
 /// Frame counts above which the solve starts from a coarser solution.
@@ -387,6 +420,8 @@ pub(super) fn spring_converged(
     };
     let initial = interpolate(method, keys, frames, timing)?;
     let is_key: Vec<bool> = initial.iter().map(|f| f.key.is_some()).collect();
+    let mut initial = initial;
+    let fixed = pin_velocities(keys, &mut initial)?;
     let n = initial.len();
     let unknowns = n.checked_mul(DIM).ok_or(Error::TooManyFrames { frames })?;
     let mut h = Band::zeros(unknowns, BAND)?;
@@ -397,7 +432,7 @@ pub(super) fn spring_converged(
     let mut g0 = None;
     let (mut current, mut history) = if frames > SINGLE_LEVEL && coarse < frames {
         let q0: Vec<Quat<f64>> = initial.iter().map(|f| f.q).collect();
-        normal_equations(&q0, &is_key, cfg, &mut h, &mut g);
+        normal_equations(&q0, &is_key, &fixed, cfg, &mut h, &mut g);
         g0 = Some(2.0 * norm(&g));
         let c = spring_converged(
             keys,
@@ -408,10 +443,9 @@ pub(super) fn spring_converged(
             max_iterations,
             progress,
         )?;
-        (
-            super::spring::resample(keys, &c.frames, frames, timing)?,
-            c.history,
-        )
+        let mut fine = super::spring::resample(keys, &c.frames, frames, timing)?;
+        pin_velocities(keys, &mut fine)?;
+        (fine, c.history)
     } else {
         (initial, Vec::new())
     };
@@ -423,7 +457,7 @@ pub(super) fn spring_converged(
     let mut polished = false;
     let mut last_gradient = f64::INFINITY;
     for it in 0..=max_iterations {
-        let f = normal_equations(&q, &is_key, cfg, &mut h, &mut g);
+        let f = normal_equations(&q, &is_key, &fixed, cfg, &mut h, &mut g);
         let gn = 2.0 * norm(&g);
         history.push(EnergyRecord {
             level,
@@ -465,7 +499,7 @@ pub(super) fn spring_converged(
         let mut accepted = None;
         for attempt in 0..40 {
             if attempt > 0 {
-                normal_equations(&q, &is_key, cfg, &mut h, &mut g);
+                normal_equations(&q, &is_key, &fixed, cfg, &mut h, &mut g);
             }
             if mu > 0.0 {
                 for (i, d) in diagonal.iter().enumerate() {
@@ -553,7 +587,7 @@ mod tests {
             cfg.velocity_penalty = 0.4;
             let mut h = Band::zeros(q.len() * DIM, BAND).unwrap();
             let mut g = vec![0.0; q.len() * DIM];
-            let f = normal_equations(&q, &is_key, &cfg, &mut h, &mut g);
+            let f = normal_equations(&q, &is_key, &is_key, &cfg, &mut h, &mut g);
             let (f_report, grad) = energy_and_gradient(&q, &is_key, &cfg);
             assert!(
                 (f - f_report).abs() <= 1e-12 * f_report,
@@ -597,7 +631,7 @@ mod tests {
             cfg.velocity_penalty = 0.4;
             let mut h = Band::zeros(n, BAND).unwrap();
             let mut g = vec![0.0; n];
-            normal_equations(&q, &is_key, &cfg, &mut h, &mut g);
+            normal_equations(&q, &is_key, &is_key, &cfg, &mut h, &mut g);
             let at = |d: &[(usize, f64)]| {
                 let mut delta = vec![0.0; n];
                 for (i, v) in d {
