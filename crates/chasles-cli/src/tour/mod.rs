@@ -12,8 +12,8 @@ mod skinning;
 
 use crate::report::Report;
 use chasles_paper::experiments::{
-    algebra, blending_claims::blending_claims, dam_figures, identities::identities, interpolation,
-    kavan_figures, squad_and_spring, table_1::table_1,
+    algebra, beyond_the_report, blending_claims::blending_claims, dam_figures,
+    identities::identities, interpolation, kavan_figures, squad_and_spring, table_1::table_1,
 };
 use chasles_paper::{render, Experiment, Figures};
 use std::io::{IsTerminal, Write};
@@ -62,6 +62,9 @@ pub fn run(args: TourArgs) -> anyhow::Result<()> {
         }),
         Experiment::new("Dam et al. Figures 7.1–7.12", || {
             squad_and_spring::chapter_7_section(Figures::Draw)
+        }),
+        Experiment::new("beyond Dam et al. (§8.2)", || {
+            beyond_the_report::beyond_the_report(Figures::Draw)
         }),
         Experiment::new("skinning: Figure 1(c)", skinning::figure_1c),
         Experiment::new("dual quaternions", algebra::dual_quaternion),

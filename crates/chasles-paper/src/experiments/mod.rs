@@ -13,8 +13,11 @@
 //! * [`table_1`]: Kavan et al. Table 1 measured, with FLOP counts.
 //! * [`blending_claims`]: Kavan et al. §4, §5, Lemmas 2–3, Appendix B / Figure 7.
 //! * [`identities`]: both papers' identities on random inputs, f64 and f32.
+//! * [`beyond_the_report`]: Dam et al. §8.2's future work (Spring solved to its optimum,
+//!   §7.6's remark tested, angular velocities at keys).
 
 pub mod algebra;
+pub mod beyond_the_report;
 pub mod blending_claims;
 pub mod captions;
 pub mod dam_figures;
