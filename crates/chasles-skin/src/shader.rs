@@ -7,9 +7,10 @@
 //!
 //! It declares the structs `Rows` (an [`crate::fast::Affine3x4`]), `Dq` (a
 //! [`crate::fast::UnitDualQuat`]) and `Moved` (a position and a normal), and the functions
-//! `lbs_blend(array<Rows, 4>, vec4<f32>) -> Rows`, `lbs_move(Rows, p, n) -> Moved`,
-//! `dqs_blend(array<Dq, 4>, vec4<f32>) -> Dq` and `rigid_move(Dq, p, n) -> Moved` (with
-//! the helpers `unit_or` and `rotate`), for four influences a vertex, heaviest first.
+//! `lbs_blend(Rows, Rows, Rows, Rows, vec4<f32>) -> Rows`, `lbs_move(Rows, p, n) -> Moved`,
+//! `dqs_blend(Dq, Dq, Dq, Dq, vec4<f32>) -> Dq` and `rigid_move(Dq, p, n) -> Moved` (with
+//! the helpers `lbs_add`, `dqs_add`, `unit_or` and `rotate`), for four influences a vertex,
+//! heaviest first, the weights in a `vec4`.
 
 /// The WGSL source of the shared skinning functions (no bindings, no entry points).
 pub const SKINNING_WGSL: &str = include_str!("gpu/skinning.wgsl");

@@ -37,12 +37,13 @@ fn lbs(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let v = vertices[i];
-    var m: array<Rows, 4>;
-    for (var k = 0u; k < 4u; k = k + 1u) {
-        let j = v.j[k] * 3u;
-        m[k] = Rows(matrices[j], matrices[j + 1u], matrices[j + 2u]);
-    }
-    store(i, lbs_move(lbs_blend(m, v.w), v.p.xyz, v.n.xyz));
+    let m = lbs_blend(rows(v.j.x), rows(v.j.y), rows(v.j.z), rows(v.j.w), v.w);
+    store(i, lbs_move(m, v.p.xyz, v.n.xyz));
+}
+
+// Joint j's rows.
+fn rows(j: u32) -> Rows {
+    return Rows(matrices[j * 3u], matrices[j * 3u + 1u], matrices[j * 3u + 2u]);
 }
 
 @compute @workgroup_size(64)
@@ -52,12 +53,13 @@ fn dqs(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let v = vertices[i];
-    var q: array<Dq, 4>;
-    for (var k = 0u; k < 4u; k = k + 1u) {
-        let j = v.j[k] * 2u;
-        q[k] = Dq(dual_quats[j], dual_quats[j + 1u]);
-    }
-    store(i, rigid_move(dqs_blend(q, v.w), v.p.xyz, v.n.xyz));
+    let b = dqs_blend(dq(v.j.x), dq(v.j.y), dq(v.j.z), dq(v.j.w), v.w);
+    store(i, rigid_move(b, v.p.xyz, v.n.xyz));
+}
+
+// Joint j's dual quaternion.
+fn dq(j: u32) -> Dq {
+    return Dq(dual_quats[j * 2u], dual_quats[j * 2u + 1u]);
 }
 
 fn store(i: u32, m: Moved) {

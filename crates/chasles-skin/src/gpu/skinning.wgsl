@@ -33,19 +33,19 @@ fn unit_or(v: vec3<f32>, fallback: vec3<f32>) -> vec3<f32> {
     return fallback;
 }
 
-// LBS: the weighted sum of the joints' rows.
-fn lbs_blend(joints: array<Rows, 4>, weights: vec4<f32>) -> Rows {
-    var m = joints;
-    var a = vec4<f32>(0.0);
-    var b = vec4<f32>(0.0);
-    var c = vec4<f32>(0.0);
-    for (var k = 0u; k < 4u; k = k + 1u) {
-        let w = weights[k];
-        a = a + m[k].a * w;
-        b = b + m[k].b * w;
-        c = c + m[k].c * w;
-    }
-    return Rows(a, b, c);
+// LBS: the weighted sum of the joints' rows (joint k with weight w[k]). Written out joint by
+// joint: no array to index, which software rasterizers run much faster.
+fn lbs_blend(j0: Rows, j1: Rows, j2: Rows, j3: Rows, w: vec4<f32>) -> Rows {
+    var m = Rows(vec4<f32>(0.0), vec4<f32>(0.0), vec4<f32>(0.0));
+    m = lbs_add(m, j0, w.x);
+    m = lbs_add(m, j1, w.y);
+    m = lbs_add(m, j2, w.z);
+    m = lbs_add(m, j3, w.w);
+    return m;
+}
+
+fn lbs_add(sum: Rows, j: Rows, w: f32) -> Rows {
+    return Rows(sum.a + j.a * w, sum.b + j.b * w, sum.c + j.c * w);
 }
 
 // A vertex moved by LBS's blended rows; its normal by the cofactor matrix, whose rows are
@@ -67,24 +67,25 @@ fn rotate(r: vec4<f32>, p: vec3<f32>) -> vec3<f32> {
 }
 
 // DQS (DLB, §4): the joints' dual quaternions blended with the antipodality fix against
-// the heaviest influence (a joint whose rotation is more than 180° from the pivot's
+// the heaviest influence j0 (a joint whose rotation is more than 180° from the pivot's
 // enters with the opposite sign), then divided by the real part's norm.
-fn dqs_blend(joints: array<Dq, 4>, weights: vec4<f32>) -> Dq {
-    var q = joints;
-    let pivot = q[0].r;
-    var real = vec4<f32>(0.0);
-    var dual = vec4<f32>(0.0);
-    for (var k = 0u; k < 4u; k = k + 1u) {
-        let r = q[k].r;
-        var w = weights[k];
-        if (dot(r, pivot) < 0.0) {
-            w = -w;
-        }
-        real = real + r * w;
-        dual = dual + q[k].d * w;
+fn dqs_blend(j0: Dq, j1: Dq, j2: Dq, j3: Dq, w: vec4<f32>) -> Dq {
+    let pivot = j0.r;
+    var sum = Dq(vec4<f32>(0.0), vec4<f32>(0.0));
+    sum = dqs_add(sum, j0, w.x, pivot);
+    sum = dqs_add(sum, j1, w.y, pivot);
+    sum = dqs_add(sum, j2, w.z, pivot);
+    sum = dqs_add(sum, j3, w.w, pivot);
+    let len = length(sum.r);
+    return Dq(sum.r / len, sum.d / len);
+}
+
+fn dqs_add(sum: Dq, j: Dq, weight: f32, pivot: vec4<f32>) -> Dq {
+    var w = weight;
+    if (dot(j.r, pivot) < 0.0) {
+        w = -w;
     }
-    let len = length(real);
-    return Dq(real / len, dual / len);
+    return Dq(sum.r + j.r * w, sum.d + j.d * w);
 }
 
 // A vertex moved by the unit dual quaternion b: rotation, then the translation 2 d r*
