@@ -21,7 +21,8 @@
 //!   ([`chasles_skin::cylinder`]), a heat map of LBS's local volume loss (the det of the
 //!   blended 3×3 per vertex, as [`chasles_skin::volume`] measures it), orbit, pan and zoom,
 //!   and the model's credits; the URL fragment sets the state
-//!   (`#method=lbs|dqs|both&clip=NAME&time=T&heat=1`, `twist=DEG&bend=DEG` for the cylinder).
+//!   (`#method=lbs|dqs|both&clip=NAME&time=T&heat=1`, `twist=DEG&bend=DEG` for the cylinder;
+//!   also `speed=S`, `checker=0|1`, `play=0|1`, and `ui=0`, the canvas alone, for pictures).
 //!
 //! The page loads nothing — no URL, no server, no network — and exposes what the tests read
 //! (`window.__chasles`, and `#debug=readback` / `#debug=bench` write a JSON report into the
@@ -33,6 +34,7 @@
 pub mod page;
 pub mod scene;
 pub mod shader;
+pub mod synthetic;
 
 use chasles_skin::{Rig, SkinError};
 pub use scene::Scene;

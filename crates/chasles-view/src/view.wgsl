@@ -82,22 +82,15 @@ fn shade(m: Moved, bind: vec3<f32>, det: f32) -> Shaded {
 
 @vertex
 fn lbs(v: Bind) -> Shaded {
-    var m: array<Rows, 4>;
-    for (var k = 0u; k < 4u; k = k + 1u) {
-        m[k] = rows_of(v.j[k]);
-    }
-    let b = lbs_blend(m, v.w);
+    let b = lbs_blend(rows_of(v.j.x), rows_of(v.j.y), rows_of(v.j.z), rows_of(v.j.w), v.w);
     let det = determinant(mat3x3<f32>(b.a.xyz, b.b.xyz, b.c.xyz));
     return shade(lbs_move(b, v.p, v.n), v.p, det);
 }
 
 @vertex
 fn dqs(v: Bind) -> Shaded {
-    var q: array<Dq, 4>;
-    for (var k = 0u; k < 4u; k = k + 1u) {
-        q[k] = dq_of(v.j[k]);
-    }
-    return shade(rigid_move(dqs_blend(q, v.w), v.p, v.n), v.p, 1.0);
+    let b = dqs_blend(dq_of(v.j.x), dq_of(v.j.y), dq_of(v.j.z), dq_of(v.j.w), v.w);
+    return shade(rigid_move(b, v.p, v.n), v.p, 1.0);
 }
 
 // Two lights fixed to the camera, both faces lit; the checker of the bind pose darkens

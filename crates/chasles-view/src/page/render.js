@@ -42,8 +42,8 @@ const M4 = {
 };
 
 class Renderer {
-  constructor(canvas, data) {
-    const gl = canvas.getContext('webgl2', { antialias: true, preserveDrawingBuffer: true });
+  constructor(canvas, data, antialias) {
+    const gl = canvas.getContext('webgl2', { antialias, preserveDrawingBuffer: true });
     if (!gl) throw new Error('this browser has no WebGL2');
     this.gl = gl;
     this.canvas = canvas;

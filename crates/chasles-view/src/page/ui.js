@@ -121,6 +121,7 @@ function readFragment() {
   if (p.has('checker')) state.checker = p.get('checker') === '1';
   if (p.get('play') === '1') state.playing = true;
   if (p.get('play') === '0') state.playing = false;
+  document.body.classList.toggle('bare', p.get('ui') === '0');
   return p;
 }
 
@@ -290,7 +291,10 @@ if (grid) state.playing = false; // the candy wrapper at 180° first; "sweep" pl
 const fragment = readFragment();
 controls();
 try {
-  renderer = new Renderer($('view'), data);
+  // Multisampling costs a software rasterizer about 2.5× a frame: on by default below 10⁵
+  // triangles, else off; #aa=0|1 decides.
+  const aa = fragment.has('aa') ? fragment.get('aa') === '1' : data.triangles < 100000;
+  renderer = new Renderer($('view'), data, aa);
 } catch (e) {
   errors.push(String(e.message || e));
   $('message').textContent = String(e.message || e);
