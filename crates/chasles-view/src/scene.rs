@@ -293,7 +293,9 @@ impl Scene {
                 min_det.push(p.push(&rig, &fast, &cylinder_pose(&rig, t, b), &mut palettes)?);
             }
         }
-        let corners = [(0.0, 0.0), (90.0, 0.0), (180.0, 0.0), (0.0, 90.0)];
+        // Centred on the joint: the twisted poses' bounds (the bent end stays within their
+        // sphere).
+        let corners = [(0.0, 0.0), (180.0, 0.0)];
         let poses: Vec<Pose> = corners
             .iter()
             .map(|&(t, b)| cylinder_pose(&rig, t, b))

@@ -37,13 +37,18 @@ function minDet() {
   return grid ? grid.min_det[frame()] : data.clips[state.clip].min_det[frame()];
 }
 
+/** The camera that frames the bounds' sphere in a pane, looking from the front and above. */
 function resetCamera() {
-  const [lo, hi] = data.bounds;
+  const [lo, hi] = data.bounds, c = $('view');
   camera.target = [0, 1, 2].map((i) => (lo[i] + hi[i]) / 2);
   const radius = Math.hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]) / 2 || 1;
-  camera.distance = radius / Math.sin(Math.PI / 9) * (state.method === 'both' ? 1.05 : 0.8);
+  const panes = state.method === 'both' ? 2 : 1;
+  const aspect = c.clientWidth / panes / Math.max(1, c.clientHeight) || 1;
+  const half = Math.PI / 9, halfX = Math.atan(aspect * Math.tan(half));
+  camera.distance = (radius / Math.sin(Math.min(half, halfX))) * 0.92;
   camera.yaw = grid ? 0.35 : 0.6;
   camera.pitch = grid ? 0.35 : 0.15;
+  camera.moved = false;
 }
 
 function matrices(aspect) {
@@ -198,6 +203,7 @@ function orbit(canvas) {
     const dx = e.clientX - last.x, dy = e.clientY - last.y;
     last.x = e.clientX;
     last.y = e.clientY;
+    camera.moved = true;
     if (last.pan) {
       const s = camera.distance / canvas.clientHeight, v = matrices(1).view;
       for (let i = 0; i < 3; i++) camera.target[i] += s * (-dx * v[i * 4] + dy * v[i * 4 + 1]);
@@ -209,6 +215,7 @@ function orbit(canvas) {
   });
   canvas.addEventListener('wheel', (e) => {
     camera.distance *= Math.exp(e.deltaY * 0.001);
+    camera.moved = true;
     e.preventDefault();
     draw();
   }, { passive: false });
@@ -219,6 +226,7 @@ function resize() {
   const c = $('view'), r = window.devicePixelRatio || 1;
   const w = Math.max(1, Math.round(c.clientWidth * r)), h = Math.max(1, Math.round(c.clientHeight * r));
   if (c.width !== w || c.height !== h) { c.width = w; c.height = h; }
+  if (!camera.moved) resetCamera();
   draw();
 }
 
@@ -254,6 +262,7 @@ function report(p) {
     out.time = data.clips[state.clip].times[out.frame];
   }
   out.min_det = minDet();
+  out.load_ms = window.__chasles.loadMs;
   if (renderer && p.get('debug') === 'readback') {
     for (const m of state.method === 'both' ? ['lbs', 'dqs'] : [state.method]) {
       const r = window.__chasles.skinned(m);
