@@ -115,7 +115,9 @@ function writeFragment() {
 function readFragment() {
   const p = new URLSearchParams(location.hash.slice(1));
   if (['lbs', 'dqs', 'both'].includes(p.get('method'))) state.method = p.get('method');
-  const c = data.clips.findIndex((x) => x.name === p.get('clip'));
+  // A clip by name, or by index.
+  let c = data.clips.findIndex((x) => x.name === p.get('clip'));
+  if (c < 0 && /^\d+$/.test(p.get('clip') || '') && +p.get('clip') < data.clips.length) c = +p.get('clip');
   if (c >= 0) state.clip = c;
   const num = (k) => (p.has(k) && isFinite(+p.get(k)) ? +p.get(k) : null);
   if (num('time') !== null) { state.time = Math.max(0, num('time')); state.playing = false; }
@@ -181,8 +183,9 @@ function controls() {
   };
   window.addEventListener('hashchange', () => { readFragment(); changed(); });
   window.addEventListener('keydown', (e) => {
-    if (e.target.tagName === 'INPUT' && e.target.type !== 'checkbox' && e.key !== ' ') return;
-    if (e.key === ' ') { state.playing = !state.playing; e.preventDefault(); changed(); }
+    // Space on a focused button or checkbox is that control's own click.
+    const own = e.target.tagName === 'BUTTON' || e.target.tagName === 'SELECT' || e.target.type === 'checkbox';
+    if (e.key === ' ' && !own) { state.playing = !state.playing; e.preventDefault(); changed(); }
     if (e.key === 'h' || e.key === 'H') { state.heat = !state.heat; changed(); }
     if (e.key === 'c' || e.key === 'C') { state.checker = !state.checker; changed(); }
   });
