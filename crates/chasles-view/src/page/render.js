@@ -59,10 +59,14 @@ class Renderer {
     gl.bindTexture(gl.TEXTURE_2D, this.palette);
     gl.texStorage2D(gl.TEXTURE_2D, 1, gl.RGBA32F, 5, Math.max(1, this.joints));
     for (const p of [gl.TEXTURE_MIN_FILTER, gl.TEXTURE_MAG_FILTER]) gl.texParameteri(gl.TEXTURE_2D, p, gl.NEAREST);
-    this.ubo = gl.createBuffer();
-    gl.bindBuffer(gl.UNIFORM_BUFFER, this.ubo);
-    gl.bufferData(gl.UNIFORM_BUFFER, 40 * 4, gl.DYNAMIC_DRAW);
-    gl.bindBufferBase(gl.UNIFORM_BUFFER, 0, this.ubo);
+    // One uniform buffer a pane (and one for the read-back): a buffer rewritten between two
+    // draws of a frame would make the second wait for the first.
+    this.ubos = [0, 1, 2].map(() => {
+      const b = gl.createBuffer();
+      gl.bindBuffer(gl.UNIFORM_BUFFER, b);
+      gl.bufferData(gl.UNIFORM_BUFFER, 40 * 4, gl.DYNAMIC_DRAW);
+      return b;
+    });
     gl.enable(gl.DEPTH_TEST);
   }
 
@@ -121,15 +125,16 @@ class Renderer {
   }
 
   /** The View uniform: clip and camera matrices, colour (a: heat map), checker cells a unit. */
-  uniforms(clip, camera, colour, checker) {
+  uniforms(slot, clip, camera, colour, checker) {
     const u = new Float32Array(40);
     u.set(clip, 0);
     u.set(camera, 16);
     u.set(colour, 32);
     u[36] = checker;
     const gl = this.gl;
-    gl.bindBuffer(gl.UNIFORM_BUFFER, this.ubo);
+    gl.bindBuffer(gl.UNIFORM_BUFFER, this.ubos[slot]);
     gl.bufferSubData(gl.UNIFORM_BUFFER, 0, u);
+    gl.bindBufferBase(gl.UNIFORM_BUFFER, 0, this.ubos[slot]);
   }
 
   /** Clears the canvas to the background. */
@@ -141,11 +146,11 @@ class Renderer {
     gl.clear(gl.COLOR_BUFFER_BIT | gl.DEPTH_BUFFER_BIT);
   }
 
-  /** Draws the mesh skinned by `method` into the pane `[x, y, w, h]` (pixels). */
-  draw(method, pane, clip, camera, colour, checker) {
+  /** Draws the mesh skinned by `method` into pane number `slot`, `[x, y, w, h]` (pixels). */
+  draw(method, slot, pane, clip, camera, colour, checker) {
     const gl = this.gl;
     gl.viewport(...pane);
-    this.uniforms(clip, camera, colour, checker);
+    this.uniforms(slot, clip, camera, colour, checker);
     gl.useProgram(this.programs[method]);
     gl.activeTexture(gl.TEXTURE0);
     gl.bindTexture(gl.TEXTURE_2D, this.palette);
@@ -165,7 +170,7 @@ class Renderer {
       gl.bufferData(gl.TRANSFORM_FEEDBACK_BUFFER, a.byteLength, gl.STREAM_READ);
       return b;
     });
-    this.uniforms(new Float32Array(16), new Float32Array(16), [0, 0, 0, 0], 0);
+    this.uniforms(2, new Float32Array(16), new Float32Array(16), [0, 0, 0, 0], 0);
     gl.useProgram(this.programs[method]);
     gl.activeTexture(gl.TEXTURE0);
     gl.bindTexture(gl.TEXTURE_2D, this.palette);

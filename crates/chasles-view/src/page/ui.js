@@ -72,7 +72,7 @@ function draw() {
   methods.forEach((method, i) => {
     const colour = COLOURS[method].slice();
     if (state.heat) colour[3] = 1;
-    renderer.draw(method, [i * paneW, 0, paneW, h], m.clip, m.view, colour, state.checker ? checkerCells : 0);
+    renderer.draw(method, i, [i * paneW, 0, paneW, h], m.clip, m.view, colour, state.checker ? checkerCells : 0);
   });
   $('left-label').textContent = NAMES[methods[0]];
   $('right-label').textContent = methods[1] ? NAMES[methods[1]] : '';
@@ -168,7 +168,11 @@ function controls() {
   data.clips.forEach((c, i) => $('clip').add(new Option(c.name, String(i))));
   $('method').onchange = () => { state.method = $('method').value; resetCamera(); changed(); };
   $('clip').onchange = () => { state.clip = +$('clip').value; state.time = 0; changed(); };
-  $('play').onclick = $('sweep').onclick = () => { state.playing = !state.playing; changed(); };
+  $('play').onclick = $('sweep').onclick = () => {
+    state.playing = !state.playing;
+    state.sweep = state.twist; // a sweep goes on from the twist shown
+    changed();
+  };
   $('speed').onchange = () => { state.speed = +$('speed').value; changed(); };
   $('time').oninput = () => { state.time = +$('time').value; state.playing = false; changed(); };
   $('twist').oninput = () => { state.twist = +$('twist').value; state.playing = false; changed(); };
