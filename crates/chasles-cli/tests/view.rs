@@ -384,9 +384,9 @@ fn a_large_model_loads_and_plays() {
         assert_eq!(bench["frames"], 12);
         let fps = bench["fps"].as_f64().unwrap();
         assert!(fps > 0.0);
-        eprintln!(
+        browser::say(&format!(
             "the 10^5-vertex snake, {method}, headless Chromium (SwiftShader): {fps:.1} frames a second at {}×{}, the page ready after {:.1} s",
             bench["width"], bench["height"], report["load_ms"].as_f64().unwrap_or(f64::NAN) / 1e3
-        );
+        ));
     }
 }

@@ -83,9 +83,7 @@ impl Browser {
                 }
             }
         }
-        eprintln!(
-            "skipping the browser tests: no chromium on the PATH (Debian: apt-get install chromium; .ci/run installs it)"
-        );
+        say("skipping this browser test: no chromium on the PATH (Debian: apt-get install chromium; .ci/run installs it)");
         None
     }
 
@@ -167,6 +165,13 @@ impl Browser {
             rgb,
         }
     }
+}
+
+/// `line` on stderr even when the test harness captures output (it captures the print
+/// macros, not the stream): a skip or a measurement must be seen.
+pub fn say(line: &str) {
+    use std::io::Write;
+    let _ = writeln!(std::io::stderr(), "{line}");
 }
 
 /// The `file://` URL of `path` with `fragment`.
