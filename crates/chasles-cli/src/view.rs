@@ -45,12 +45,21 @@ fn credit_of(path: &Path) -> String {
     let copyright = gltf::Gltf::from_slice(&bytes)
         .ok()
         .and_then(|g| g.document.as_json().asset.copyright.clone())
-        .map(|c| {
-            let c = c.replace("https://", "").replace("http://", "");
-            format!(", {c}")
-        })
+        .map(|c| format!(", {}", without_schemes(&c)))
         .unwrap_or_default();
     format!("{name}{copyright} (its own licence applies)")
+}
+
+/// `text` with every `scheme://` taken out (`https://example.org/x` → `example.org/x`).
+fn without_schemes(text: &str) -> String {
+    let mut out = text.to_string();
+    while let Some(i) = out.find("://") {
+        let start = out[..i]
+            .rfind(|c: char| !c.is_ascii_alphanumeric() && c != '+' && c != '-' && c != '.')
+            .map_or(0, |j| j + 1);
+        out.replace_range(start..i + 3, "");
+    }
+    out
 }
 
 /// Runs `chasles view`.
@@ -83,4 +92,17 @@ pub fn run(args: ViewArgs) -> Result<()> {
         println!("{line}");
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn credits_keep_addresses_as_text_without_schemes() {
+        assert_eq!(
+            super::without_schemes("© 2020 Someone, https://example.org/model and HTTP://x.y"),
+            "© 2020 Someone, example.org/model and x.y"
+        );
+        assert_eq!(super::without_schemes("no address"), "no address");
+        assert_eq!(super::without_schemes("://odd"), "odd");
+    }
 }

@@ -336,6 +336,7 @@ fn the_candy_wrapper_at_a_half_turn() {
             "{m}: middle radius {r}"
         );
     }
+    assert_antipodality_fix(&browser, dir.path());
     // In the pictures: LBS's silhouette is pinched to nothing in the middle, DQS's is not.
     for m in ["lbs", "dqs"] {
         let shot = browser.screenshot(
@@ -362,6 +363,48 @@ fn the_candy_wrapper_at_a_half_turn() {
             assert!(ratio > 0.6, "DQS's middle is {thinnest} px of {widest}");
         }
     }
+}
+
+/// Kavan et al.'s Figure 6(c)–(d) pose as a clip: the cylinder's first bone turned 170°
+/// about its axis, the second a further 20° (190° in all). Their unit quaternions (w ≥ 0)
+/// are then more than 180° apart, so DQS blends the right way only with the antipodality
+/// fix against the heaviest influence: the page's vertex shader must agree with the CPU.
+fn assert_antipodality_fix(browser: &Browser, dir: &Path) {
+    use chasles_skin::animation::{Animation, Channel, Interpolation, Path as Property};
+    let mut rig = chasles_skin::cylinder::twisted_cylinder();
+    let turn = |node: usize, deg: f32| Channel {
+        node,
+        path: Property::Rotation,
+        interpolation: Interpolation::Step,
+        times: vec![0.0, 1.0],
+        values: vec![
+            [1.0, 0.0, 0.0, 0.0],
+            chasles::Quat::from_axis_index(0, deg.to_radians()).to_array(),
+        ],
+    };
+    rig.animations = vec![Animation {
+        name: "long way".into(),
+        channels: vec![turn(0, 170.0), turn(1, 20.0)],
+    }];
+    let page = dir.join("long-way.html");
+    std::fs::write(
+        &page,
+        chasles_view::character(&rig, None, 30.0, "").unwrap().html,
+    )
+    .unwrap();
+    let report = browser.report(&url(&page, "method=dqs&time=1&debug=readback"), (800, 600));
+    assert_ready(&report);
+    let pose = chasles_skin::Pose::animated(&rig, 0, 1.0).unwrap();
+    let m = chasles_skin::pose::skinning_matrices(&rig, &pose).unwrap();
+    let q = |j: usize| chasles_skin::pose::rigid_of(&m[j]).0.real;
+    assert!(q(0).dot(q(1)) < 0.0, "the pose does not need the fix");
+    let cpu = chasles_skin::skin(&rig, &pose, chasles_skin::Method::Dqs).unwrap();
+    let reference: Vec<[f32; 3]> = cpu.positions.iter().map(|p| p.to_array()).collect();
+    let err = relative_error(&numbers(&report["dqs"]), &reference);
+    assert!(
+        err < 1e-4,
+        "DQS 170° + 20°: the page is {err:e} of the size from the CPU"
+    );
 }
 
 #[test]

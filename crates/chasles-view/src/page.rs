@@ -97,17 +97,45 @@ pub fn html(scene: &Scene, glsl: &Glsl) -> Result<String, ViewError> {
         .map_err(|e| ViewError::Page(e.to_string()))?
         .replace('<', "\\u003c");
     let script = format!("{RENDER_JS}\n{UI_JS}");
-    let page = TEMPLATE
-        .replace("{{STYLE}}", STYLE)
-        .replace("{{TITLE}}", &esc(&scene.title))
-        .replace("{{SCRIPT}}", &script)
-        .replacen("{{DATA}}", &json, 1);
+    let title = esc(&scene.title);
+    let page = fill(
+        TEMPLATE,
+        &[
+            ("STYLE", STYLE),
+            ("TITLE", &title),
+            ("SCRIPT", &script),
+            ("DATA", &json),
+        ],
+    )?;
     if let Some(what) = external_reference(&page) {
         return Err(ViewError::Page(format!(
             "the page would refer outside itself ({what})"
         )));
     }
     Ok(page)
+}
+
+/// `template` with every `{{NAME}}` replaced by its value, in one pass: what is put in is
+/// never searched again (a model named `{{DATA}}` stays a name).
+fn fill(template: &str, values: &[(&str, &str)]) -> Result<String, ViewError> {
+    let mut out =
+        String::with_capacity(template.len() + values.iter().map(|v| v.1.len()).sum::<usize>());
+    let mut rest = template;
+    while let Some(start) = rest.find("{{") {
+        let end = rest[start..]
+            .find("}}")
+            .ok_or_else(|| ViewError::Page("an unclosed {{ in the template".into()))?;
+        let name = &rest[start + 2..start + end];
+        let value = values
+            .iter()
+            .find(|(n, _)| *n == name)
+            .ok_or_else(|| ViewError::Page(format!("no value for {{{{{name}}}}}")))?;
+        out.push_str(&rest[..start]);
+        out.push_str(value.1);
+        rest = &rest[start + end + 2..];
+    }
+    out.push_str(rest);
+    Ok(out)
 }
 
 /// The first thing in `page` that could make a browser reach outside the file — a URL with

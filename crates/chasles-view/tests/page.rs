@@ -119,6 +119,20 @@ fn every_built_in_page_refers_to_nothing_outside_itself() {
 }
 
 #[test]
+fn a_name_is_text_wherever_it_goes() {
+    let mut rig = model(chasles_models::SIMPLE_SKIN);
+    rig.name = "{{DATA}} <i>x</i> & {{SCRIPT}}".into();
+    let page = chasles_view::character(&rig, None, 30.0, "{{STYLE}}").unwrap();
+    assert!(page
+        .html
+        .contains("<title>chasles view: {{DATA}} &lt;i&gt;x&lt;/i&gt; &amp; {{SCRIPT}}, LBS"));
+    let d = data(&page.html);
+    assert_eq!(d["title"], "{{DATA}} <i>x</i> & {{SCRIPT}}");
+    assert_eq!(d["credit"], "{{STYLE}}");
+    assert_eq!(page.html.matches("id=\"chasles-data\"").count(), 1);
+}
+
+#[test]
 fn external_references_are_found() {
     for bad in [
         "<img src=\"a.png\">",
