@@ -9,6 +9,8 @@
 //!   measured Table 1 (Kavan et al. 2006, §4–5).
 //! * `chasles skin` — skinning a glTF or JSON rig with any method, on the CPU or the GPU,
 //!   to meshes, pictures and benchmarks (Kavan et al. 2006, §6).
+//! * `chasles view` — one self-contained HTML page showing a rig (or the twisted cylinder)
+//!   skinned by LBS and DQS in the browser, WebGL2 (Kavan et al. 2006, §6).
 //!
 //! Output piped into a program that stops reading (`chasles interp … | head -1`) ends the
 //! process quietly, as it does for other Unix tools: SIGPIPE is restored to its default.
@@ -34,6 +36,7 @@ mod repr;
 mod skin;
 mod spring_args;
 mod tour;
+mod view;
 
 use clap::{Parser, Subcommand};
 use repr::Repr;
@@ -157,6 +160,21 @@ enum Command {
     ///   chasles skin --artifacts      (the candy-wrapper table on a twisted cylinder)
     #[command(verbatim_doc_comment)]
     Skin(skin::SkinArgs),
+    /// Write one self-contained HTML page showing a rig skinned by LBS and DQS, live (WebGL2).
+    ///
+    /// The page embeds the mesh, its skin and every clip sampled into per-frame joint
+    /// palettes; JavaScript and shaders inline, no network, no server: open it by
+    /// double-click. LBS and DQS side by side or one at a time, a clip scrubber, play/pause,
+    /// speed, a heat map of LBS's volume loss, orbit/pan/zoom, the model's credits. The URL
+    /// fragment sets the state: #method=lbs|dqs|both&clip=NAME&time=T&heat=1 (and
+    /// twist=DEG&bend=DEG for --artifacts).
+    ///
+    /// Examples:
+    ///   chasles view CesiumMan.glb --out cesiumman.html
+    ///   chasles view Fox.glb --clip Run --out fox.html
+    ///   chasles view --artifacts --out cylinder.html   (the candy wrapper, twist and bend sliders)
+    #[command(verbatim_doc_comment)]
+    View(view::ViewArgs),
     /// Convert one rotation or rigid motion between representations.
     ///
     /// Representations: quat (w x y z), matrix (9 or 16 numbers, row-major), matrix3,
@@ -285,6 +303,7 @@ fn run(cli: Cli) -> anyhow::Result<i32> {
             tour::run(tour::TourArgs { samples, seed, out }).map(|_| 0)
         }
         Command::Skin(args) => skin::run(args).map(|_| 0),
+        Command::View(args) => view::run(args).map(|_| 0),
         Command::Blend {
             method,
             input,

@@ -417,6 +417,23 @@ fn tour_prints_computed_numbers_and_writes_the_report() {
     assert!(!out.contains("not found"), "the tour missed its data");
     // The page names files, never the folders they came from.
     let html = std::fs::read_to_string(report.join("index.html")).unwrap();
+    // A viewer beside the report for each character and the cylinder, linked from it.
+    for page in [
+        "cesiumman-viewer.html",
+        "fox-viewer.html",
+        "cylinder-viewer.html",
+    ] {
+        let text = std::fs::read_to_string(report.join(page)).expect(page);
+        assert_eq!(
+            chasles_view::page::external_reference(&text),
+            None,
+            "{page}"
+        );
+        assert!(
+            html.contains(&format!("href=\"{page}\"")),
+            "{page} not linked"
+        );
+    }
     let here = env!("CARGO_MANIFEST_DIR");
     let tmp = dir.path().to_str().unwrap();
     assert!(

@@ -32,7 +32,8 @@ impl PaperFigure {
     }
 }
 
-/// A picture: the file it is written to (a bare name, its extension the kind), its
+/// A picture: the file it is written to (a bare name, its extension the kind: `.html`, a
+/// page of its own such as the viewer, is linked rather than shown), its
 /// caption, the paper's figure it reproduces (if it does), and its bytes (not serialized:
 /// JSON carries the file name and the captions).
 #[derive(Debug, Clone, PartialEq, Serialize)]

@@ -52,6 +52,13 @@ pub enum GpuError {
 
 const WORKGROUP: u32 = 64;
 
+/// The compute shaders: the shared skinning math ([`crate::shader::SKINNING_WGSL`]), then
+/// the entry points that fetch each vertex's joints and store its result.
+const SHADER: &str = concat!(
+    include_str!("gpu/skinning.wgsl"),
+    include_str!("gpu/skin.wgsl")
+);
+
 /// The WGSL override constants of DIB's shader: the CPU's precision, stall factor and most
 /// updates (`skin.wgsl` writes none of them).
 fn dib_constants() -> [(&'static str, f64); 3] {
@@ -269,7 +276,10 @@ impl GpuSkinner {
             bind_group_layouts: &[&layout],
             push_constant_ranges: &[],
         });
-        let module = device.create_shader_module(wgpu::include_wgsl!("gpu/skin.wgsl"));
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("skin.wgsl"),
+            source: wgpu::ShaderSource::Wgsl(SHADER.into()),
+        });
         // DIB's stopping rule, from the constants the CPU paths read.
         let constants = dib_constants();
         let pipeline = |entry: &str| {

@@ -12,7 +12,8 @@
 //!   [`fast::SkinningJob`] into the caller's buffers (packed, interleaved, split), AVX2+FMA
 //!   kernels chosen at run time with a portable fallback, all cores;
 //! * `gpu` (feature `gpu`) — WGSL compute shaders for LBS, DQS and DIB through wgpu, taking
-//!   the same palette and output.
+//!   the same palette and output; their per-vertex math ([`shader`]) is shared with the
+//!   browser viewer's vertex shaders.
 //!
 //! The candy-wrapper artifact is measured on a twisted cylinder built in code
 //! ([`cylinder`]), linear blending's volume loss by [`volume`]; deformed meshes are written
@@ -37,6 +38,7 @@ pub mod pose;
 pub mod reach;
 pub mod rig;
 pub mod rotation_centre;
+pub mod shader;
 pub mod skinning;
 pub mod synthetic;
 pub mod volume;

@@ -1,6 +1,7 @@
 //! The tour's skinning (Kavan et al. 2006, §6, Figure 6(a)–(b)): the candy wrapper on a
 //! two-bone cylinder, and linear blending's volume loss on the real characters
-//! (CesiumMan's walk and Fox's run, built in; more from `$CHASLES_DATA`).
+//! (CesiumMan's walk and Fox's run, built in; more from `$CHASLES_DATA`), each with a
+//! viewer page beside the report (`chasles-view`: LBS and DQS live in the browser).
 
 use crate::pictures;
 use chasles_paper::Paper::Kavan2006;
@@ -57,6 +58,11 @@ pub fn candy_wrapper() -> Section {
         "cylinder-twist.png",
         pictures::methods_side_by_side(&rig, &pose, &Method::ALL).map(|i| i.png()),
         "The cylinder's second bone twisted 180° about its axis, every method: LBS collapses to a point, the others keep the radius",
+    );
+    s.try_figure(
+        "cylinder-viewer.html",
+        chasles_view::cylinder().map(|p| p.html.into_bytes()),
+        "The candy wrapper live in the browser (one self-contained page, WebGL2): LBS and DQS side by side under one camera, twist and bend sliders, a sweep of the twist, the heat map of LBS's lost volume",
     );
     let pose = cylinder::pose(&rig, Motion::Bend, 120f32.to_radians());
     s.try_figure(
@@ -320,6 +326,12 @@ pub fn characters() -> Section {
             ),
             Err(e) => s.text(format!("picture {name}-sphere.png failed: {e}")),
         }
+        s.try_figure(
+            &format!("{name}-viewer.html"),
+            chasles_view::character(rig, Some(&c.to_string()), chasles_view::DEFAULT_FPS, credit)
+                .map(|p| p.html.into_bytes()),
+            &format!("{file} in the browser (one self-contained page, WebGL2): LBS and DQS side by side under one camera, the clip to play or scrub (its button jumps to where LBS loses the most volume), the heat map of LBS's lost volume, orbit, pan and zoom. Credit: {credit}"),
+        );
         let Some((t, worst)) = worst_t else { continue };
         let pose = match Pose::animated(rig, c, t) {
             Ok(p) => p,

@@ -14,7 +14,7 @@ pub fn esc(s: &str) -> String {
         .replace('"', "&quot;")
 }
 
-const HEAD: &str = "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n<title>chasles tour: the two papers, reproduced</title>\n<style>\nbody{font-family:sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;line-height:1.45;color:#222}\ntable{border-collapse:collapse;margin:.6em 0}td,th{border:1px solid #ccc;padding:.25em .5em;vertical-align:top}\ntable.claims td:nth-child(3){text-align:center;font-weight:bold}\n.yes{color:#1b7f2a}.no{color:#b3261e}.where{color:#555}\ntd.differs{outline:2px solid #b3261e}\nfigure{margin:1em 0}figure img{max-width:100%;border:1px solid #ddd}figcaption{font-size:.9em;color:#555}\ntable.data td{font-family:monospace;font-size:.85em}caption{text-align:left;font-size:.9em;color:#555}\n</style></head><body>\n<h1>chasles tour</h1>\n<p>Dam, Koch &amp; Lillholm 1998, <i>Quaternions, Interpolation and Animation</i>, and Kavan, Collins, Žára &amp; O'Sullivan 2006, <i>Dual Quaternions for Rigid Transformation Blending</i>, reproduced on built-in data. Every number below was computed when this page was written.</p>\n";
+const HEAD: &str = "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n<title>chasles tour: the two papers, reproduced</title>\n<style>\nbody{font-family:sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;line-height:1.45;color:#222}\ntable{border-collapse:collapse;margin:.6em 0}td,th{border:1px solid #ccc;padding:.25em .5em;vertical-align:top}\ntable.claims td:nth-child(3){text-align:center;font-weight:bold}\n.yes{color:#1b7f2a}.no{color:#b3261e}.where{color:#555}\ntd.differs{outline:2px solid #b3261e}\nfigure{margin:1em 0}a.page{font-weight:bold}figure img{max-width:100%;border:1px solid #ddd}figcaption{font-size:.9em;color:#555}\ntable.data td{font-family:monospace;font-size:.85em}caption{text-align:left;font-size:.9em;color:#555}\n</style></head><body>\n<h1>chasles tour</h1>\n<p>Dam, Koch &amp; Lillholm 1998, <i>Quaternions, Interpolation and Animation</i>, and Kavan, Collins, Žára &amp; O'Sullivan 2006, <i>Dual Quaternions for Rigid Transformation Blending</i>, reproduced on built-in data. Every number below was computed when this page was written.</p>\n";
 
 fn cell(c: &Cell) -> String {
     match c {
@@ -69,7 +69,7 @@ fn anchor(file: &str) -> String {
 }
 
 /// A picture with its caption; one that reproduces a paper's figure shows the paper's
-/// caption first, then ours.
+/// caption first, then ours. A figure that is an HTML page (`.html`, the viewer) is a link.
 fn figure(f: &crate::section::Figure, h: &mut String) {
     let caption = match &f.of {
         Some(o) => format!(
@@ -80,6 +80,16 @@ fn figure(f: &crate::section::Figure, h: &mut String) {
         ),
         None => esc(&f.caption),
     };
+    if f.file.ends_with(".html") {
+        // A page of its own (the viewer): a link to open it, not a picture.
+        h.push_str(&format!(
+            "<figure id=\"{}\"><p><a class=\"page\" href=\"{}\">open {}</a></p><figcaption>{caption}</figcaption></figure>\n",
+            anchor(&f.file),
+            esc(&f.file),
+            esc(&f.file),
+        ));
+        return;
+    }
     h.push_str(&format!(
         "<figure id=\"{}\"><img src=\"{}\" alt=\"{}\" loading=\"lazy\"><figcaption>{caption}</figcaption></figure>\n",
         anchor(&f.file),

@@ -57,7 +57,9 @@ pub fn section(s: &Section) -> String {
                 if let Some(o) = &f.of {
                     out.push_str(&format!("**{}.** The paper: *{}*\n\n", o.cite(), o.caption));
                 }
-                out.push_str(&format!("![{}]({})\n\n", f.caption, f.file));
+                // An HTML page (the viewer) is linked, a picture shown.
+                let bang = if f.file.ends_with(".html") { "" } else { "!" };
+                out.push_str(&format!("{bang}[{}]({})\n\n", f.caption, f.file));
             }
         }
     }

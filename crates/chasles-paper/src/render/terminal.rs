@@ -63,10 +63,18 @@ pub fn section(s: &Section) -> String {
                 c.words,
                 c.measured()
             )),
-            Item::Figure(f) => match &f.of {
-                Some(o) => out.push_str(&format!("  picture: {} ({})\n", f.file, o.cite())),
-                None => out.push_str(&format!("  picture: {}\n", f.file)),
-            },
+            Item::Figure(f) => {
+                // An HTML page (the viewer) is a page to open, not a picture.
+                let kind = if f.file.ends_with(".html") {
+                    "page"
+                } else {
+                    "picture"
+                };
+                match &f.of {
+                    Some(o) => out.push_str(&format!("  {kind}: {} ({})\n", f.file, o.cite())),
+                    None => out.push_str(&format!("  {kind}: {}\n", f.file)),
+                }
+            }
         }
     }
     out

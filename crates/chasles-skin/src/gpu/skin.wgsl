@@ -1,4 +1,6 @@
 // Kavan et al. 2006, §6: linear blend skinning and dual quaternion skinning on the GPU.
+// The per-vertex math is skinning.wgsl's (put before this file), shared with the viewer's
+// vertex shaders; here each entry point fetches a vertex's joints and stores the result.
 // One invocation per vertex. Each vertex carries up to four influences, the heaviest first
 // (it is DQS's antipodality pivot). Joint transforms: 3 rows of the 4×4 matrix (12 floats)
 // for LBS, the unit dual quaternion (8 floats, w x y z) for DQS.
@@ -28,15 +30,6 @@ struct Params {
 @group(0) @binding(3) var<storage, read_write> skinned: array<Skinned>;
 @group(0) @binding(4) var<uniform> params: Params;
 
-// A unit vector along v, or the fallback when v is zero (as the CPU reference does).
-fn unit_or(v: vec3<f32>, fallback: vec3<f32>) -> vec3<f32> {
-    let l = length(v);
-    if (l > 0.0) {
-        return v / l;
-    }
-    return fallback;
-}
-
 @compute @workgroup_size(64)
 fn lbs(@builtin(global_invocation_id) id: vec3<u32>) {
     let i = id.x + id.y * params.stride;
@@ -44,34 +37,13 @@ fn lbs(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let v = vertices[i];
-    var a = vec4<f32>(0.0);
-    var b = vec4<f32>(0.0);
-    var c = vec4<f32>(0.0);
-    for (var k = 0u; k < 4u; k = k + 1u) {
-        let j = v.j[k] * 3u;
-        let w = v.w[k];
-        a = a + matrices[j] * w;
-        b = b + matrices[j + 1u] * w;
-        c = c + matrices[j + 2u] * w;
-    }
-    let p = vec4<f32>(v.p.xyz, 1.0);
-    // Normals by the cofactor matrix, whose rows are b×c, c×a, a×b.
-    let nrm = v.n.xyz;
-    let cn = vec3<f32>(
-        dot(cross(b.xyz, c.xyz), nrm),
-        dot(cross(c.xyz, a.xyz), nrm),
-        dot(cross(a.xyz, b.xyz), nrm),
-    );
-    skinned[i] = Skinned(
-        vec4<f32>(dot(a, p), dot(b, p), dot(c, p), 1.0),
-        vec4<f32>(unit_or(cn, nrm), 0.0),
-    );
+    let m = lbs_blend(rows(v.j.x), rows(v.j.y), rows(v.j.z), rows(v.j.w), v.w);
+    store(i, lbs_move(m, v.p.xyz, v.n.xyz));
 }
 
-// r p r* for a unit quaternion r = (w, x, y, z).
-fn rotate(r: vec4<f32>, p: vec3<f32>) -> vec3<f32> {
-    let u = r.yzw;
-    return p + 2.0 * cross(u, cross(u, p) + r.x * p);
+// Joint j's rows.
+fn rows(j: u32) -> Rows {
+    return Rows(matrices[j * 3u], matrices[j * 3u + 1u], matrices[j * 3u + 2u]);
 }
 
 @compute @workgroup_size(64)
@@ -81,31 +53,17 @@ fn dqs(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let v = vertices[i];
-    let pivot = dual_quats[v.j[0] * 2u];
-    var real = vec4<f32>(0.0);
-    var dual = vec4<f32>(0.0);
-    for (var k = 0u; k < 4u; k = k + 1u) {
-        let j = v.j[k] * 2u;
-        let r = dual_quats[j];
-        var w = v.w[k];
-        if (dot(r, pivot) < 0.0) {
-            w = -w;
-        }
-        real = real + r * w;
-        dual = dual + dual_quats[j + 1u] * w;
-    }
-    let len = length(real);
-    store_rigid(i, v, real / len, dual / len);
+    let b = dqs_blend(dq(v.j.x), dq(v.j.y), dq(v.j.z), dq(v.j.w), v.w);
+    store(i, rigid_move(b, v.p.xyz, v.n.xyz));
 }
 
-// Vertex v moved by the unit dual quaternion (r, d): rotation, then the translation
-// 2 d r* (its vector part); the normal turned by r.
-fn store_rigid(i: u32, v: Vertex, r: vec4<f32>, d: vec4<f32>) {
-    let t = 2.0 * (r.x * d.yzw - d.x * r.yzw + cross(r.yzw, d.yzw));
-    skinned[i] = Skinned(
-        vec4<f32>(rotate(r, v.p.xyz) + t, 1.0),
-        vec4<f32>(unit_or(rotate(r, v.n.xyz), v.n.xyz), 0.0),
-    );
+// Joint j's dual quaternion.
+fn dq(j: u32) -> Dq {
+    return Dq(dual_quats[j * 2u], dual_quats[j * 2u + 1u]);
+}
+
+fn store(i: u32, m: Moved) {
+    skinned[i] = Skinned(vec4<f32>(m.p, 1.0), vec4<f32>(m.n, 0.0));
 }
 
 // Dual quaternion iterative blending (Kavan et al. §5): start at DLB, then repeatedly move
@@ -117,11 +75,6 @@ fn store_rigid(i: u32, v: Vertex, r: vec4<f32>, d: vec4<f32>) {
 override dib_precision: f32;
 override dib_stall: f32;
 override dib_updates: u32;
-
-struct Dq {
-    r: vec4<f32>,
-    d: vec4<f32>,
-};
 
 fn qmul(a: vec4<f32>, b: vec4<f32>) -> vec4<f32> {
     return vec4<f32>(a.x * b.x - dot(a.yzw, b.yzw), a.x * b.yzw + b.x * a.yzw + cross(a.yzw, b.yzw));
@@ -245,5 +198,5 @@ fn dib(@builtin(global_invocation_id) id: vec3<u32>) {
         b = dqnormalize(dqmul(b, dqexp(x)));
     }
     b = dqnormalize(b);
-    store_rigid(i, v, b.r, b.d);
+    store(i, rigid_move(b, v.p.xyz, v.n.xyz));
 }
