@@ -123,6 +123,25 @@ fn tangents_follow_eq_8_and_9() {
 }
 
 #[test]
+fn continuity_minus_one_everywhere_is_slerp() {
+    // Each side takes its own chord at both ends: the segment is the great arc.
+    let kf = keys(&wild::<f64>(), None);
+    let c = KochanekBartels::new(&kf, tcb(0.0, -1.0, 0.0)).unwrap();
+    let q = kf.quats();
+    let mut worst = 0.0f64;
+    for i in 0..kf.len() - 1 {
+        for j in 0..=20 {
+            let h = j as f64 / 20.0;
+            worst = worst.max(diff(
+                c.eval(i, h),
+                chasles::interp::slerp::slerp(q[i], q[i + 1], h),
+            ));
+        }
+    }
+    assert!(worst < 1e-12, "{worst}");
+}
+
+#[test]
 fn uneven_times_weight_the_chords_like_catmull_rom() {
     let t = uneven(7);
     let kf = keys(&wild::<f64>(), Some(&t));
