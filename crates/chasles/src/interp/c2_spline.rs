@@ -43,7 +43,7 @@ use crate::real::sinc;
 use crate::{Error, Mat3, Quat, Real, Result, Vec3};
 
 /// The most iterations on the quadratic term (SciPy stops at 10 and 1e-9; we go on to
-/// rounding, which takes 10–30 on ordinary keys).
+/// rounding, which took 13 and 14 on the tests' seven keys).
 pub const MAX_ITERATIONS: usize = 200;
 
 /// A C² spline through key frames (module docs).
