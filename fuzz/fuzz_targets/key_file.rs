@@ -1,7 +1,8 @@
 //! Text as a key file (the first byte picks TOML or JSON), read by the CLI's own module
 //! (`crates/chasles-cli/src/keyfile.rs`, compiled in by path: the binary's modules are not
 //! a library): keys or a typed error, never a panic. Keys that load are interpolated by
-//! every piecewise method and by Spring (its iterations and frames clamped so that one
+//! every piecewise method (the curves past the report too, with the keys' own
+//! Kochanek–Bartels parameters) and by Spring (its iterations and frames clamped so that one
 //! input stays well under libFuzzer's timeout); every frame must be finite or an error.
 #![no_main]
 
@@ -15,7 +16,9 @@ mod keyfile;
 #[path = "../../crates/chasles-cli/src/spring_args.rs"]
 mod spring_args;
 
-use chasles::interp::{interpolate, spring, Hemisphere, KeyFrames, Method, SpringConfig, Timing};
+use chasles::interp::{
+    interpolate, spring, Hemisphere, KeyFrames, Method, SpringConfig, Tcb, Timing,
+};
 use chasles::EulerOrder;
 use libfuzzer_sys::fuzz_target;
 
@@ -48,6 +51,11 @@ fuzz_target!(|data: &[u8]| {
         },
         None => kf,
     };
+    // The keys' own Kochanek–Bartels parameters were checked by the reader.
+    let kf = match keys.tcb.clone() {
+        Some(per_key) => kf.with_tcb(per_key).expect("checked by the key file reader"),
+        None => kf,
+    };
     let frames = 4 * kf.len() + 1 + usize::from(pick >> 4);
     let timing = [Timing::Uniform, Timing::Angle][usize::from(pick >> 1) % 2];
     let order = keys.euler.as_ref().map_or(EulerOrder::DAM, |e| e.0);
@@ -58,6 +66,10 @@ fuzz_target!(|data: &[u8]| {
         Method::Nlerp,
         Method::Slerp,
         Method::Squad,
+        Method::CatmullRom,
+        Method::KochanekBartels(Tcb::CATMULL_ROM),
+        Method::Bezier,
+        Method::C2,
     ] {
         if let Ok(f) = interpolate(m, &kf, frames, timing) {
             assert!(

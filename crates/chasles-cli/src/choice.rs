@@ -41,7 +41,8 @@ choice!(
 );
 
 /// An interpolation method of Dam et al. 1998 by its name in the report and App. C: the
-/// five piecewise methods, Spring, and the App. C presets of Spring.
+/// five piecewise methods, Spring, and the App. C presets of Spring; then the curves past
+/// the report (issue 21): Kochanek–Bartels, Catmull–Rom, Bézier and the C² spline.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum InterpMethod {
     /// LinEuler (§6.1.1): Euler angles interpolated linearly.
@@ -69,6 +70,16 @@ pub enum InterpMethod {
     /// 550 frames of 550 (Figures 6.16–6.17).
     #[value(name = "justdoit")]
     JustDoIt,
+    /// Kochanek–Bartels (1984): tension, continuity and bias (`--tension`, `--continuity`,
+    /// `--bias`, or per key in the key file); all 0 is Catmull–Rom.
+    Tcb,
+    /// Schlag's spherical Catmull–Rom spline (C¹).
+    #[value(name = "catmull-rom")]
+    CatmullRom,
+    /// Shoemake's spherical Bézier spline, de Casteljau by Slerp (1985).
+    Bezier,
+    /// A C² spline: continuous angular acceleration (SciPy's `RotationSpline`).
+    C2,
 }
 
 impl InterpMethod {
@@ -84,6 +95,10 @@ impl InterpMethod {
             InterpMethod::SlerpSvupti => "slerpsvupti",
             InterpMethod::SquadSvupti => "squadsvupti",
             InterpMethod::JustDoIt => "justdoit",
+            InterpMethod::Tcb => "tcb",
+            InterpMethod::CatmullRom => "catmull-rom",
+            InterpMethod::Bezier => "bezier",
+            InterpMethod::C2 => "c2",
         }
     }
 }

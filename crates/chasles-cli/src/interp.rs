@@ -1,5 +1,6 @@
 //! `chasles interp`: interpolate key frames with any of the report's methods (Dam et al.
-//! 1998, chapters 5–7) and write one row per frame.
+//! 1998, chapters 5–7) or the curves past it (Kochanek–Bartels, Catmull–Rom, Bézier, the C²
+//! spline), optionally as a camera path with a stable horizon, and write one row per frame.
 
 use crate::choice::InterpMethod;
 use crate::keyfile;
@@ -9,9 +10,11 @@ use crate::spring_args::{configure, options, SolverArg, SpringArgs};
 use anyhow::{bail, Context, Result};
 use chasles::analysis::curvature::{curvature_energy, Width};
 use chasles::analysis::velocity::velocity_chord;
+use chasles::interp::horizon::{check_keys, level_frames};
+use chasles::interp::tcb::check_parameter;
 use chasles::interp::{
-    interpolate, spring, Frame, Hemisphere, KeyFrames, Method, Solver, SpringConfig, Stopped,
-    Timing,
+    interpolate, spring, Frame, Hemisphere, KeyFrames, Method, Solver, SpringConfig, Stopped, Tcb,
+    Timing, Up,
 };
 use chasles::{EulerOrder, Quat};
 use indicatif::{ProgressBar, ProgressStyle};
@@ -38,10 +41,101 @@ pub struct InterpArgs {
     pub keep_signs: bool,
     /// Spring's controls given on the command line.
     pub spring: SpringArgs,
+    /// Kochanek–Bartels' parameters and the horizon.
+    pub curve: CurveArgs,
     /// A folder for the frames as numbered PNGs.
     pub frames_dir: Option<PathBuf>,
     /// The pictures asked for (`--plot` SVG or PNG).
     pub pictures: Pictures,
+}
+
+/// The world's up axis on the command line.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum HorizonArg {
+    /// z up (yaw–pitch–roll intrinsic ZYX).
+    #[value(name = "Z")]
+    Z,
+    /// y up (yaw–pitch–roll intrinsic YZX).
+    #[value(name = "Y")]
+    Y,
+}
+
+/// The options of the curves past the report: Kochanek–Bartels' parameters for every key
+/// without its own, and a stable horizon.
+#[derive(clap::Args, Clone, Debug, Default)]
+pub struct CurveArgs {
+    /// Kochanek–Bartels tension in [-1, 1] (--method tcb; 1 stops at the keys, -1 doubles
+    /// the tangents; a key's own `tension` in the key file wins).
+    #[arg(long, allow_negative_numbers = true)]
+    pub tension: Option<f64>,
+    /// Kochanek–Bartels continuity in [-1, 1] (--method tcb; 0 is C1, -1 a corner).
+    #[arg(long, allow_negative_numbers = true)]
+    pub continuity: Option<f64>,
+    /// Kochanek–Bartels bias in [-1, 1] (--method tcb; 1 follows the incoming chord, -1
+    /// the outgoing one).
+    #[arg(long, allow_negative_numbers = true)]
+    pub bias: Option<f64>,
+    /// A camera path with a stable horizon, any method: the keys are cameras looking along
+    /// their x axis with this world axis up and no roll (yaw-pitch-roll intrinsic ZYX for Z,
+    /// YZX for Y); every frame is turned about its viewing axis so that it does not roll.
+    #[arg(long, value_enum, ignore_case = true)]
+    pub horizon: Option<HorizonArg>,
+}
+
+impl CurveArgs {
+    /// `--tension`, `--continuity`, `--bias` checked (each named in its error), 0 where
+    /// not given.
+    fn tcb(&self) -> Result<Tcb> {
+        let mut t = Tcb::CATMULL_ROM;
+        for (flag, v, slot) in [
+            ("--tension", self.tension, &mut t.tension),
+            ("--continuity", self.continuity, &mut t.continuity),
+            ("--bias", self.bias, &mut t.bias),
+        ] {
+            if let Some(v) = v {
+                if check_parameter("", v).is_err() {
+                    bail!("{flag} must be a finite number in [-1, 1], got {v}");
+                }
+                *slot = v;
+            }
+        }
+        Ok(t)
+    }
+    /// The flags given of Kochanek–Bartels'.
+    fn tcb_given(&self) -> Option<&'static str> {
+        [
+            ("--tension", self.tension),
+            ("--continuity", self.continuity),
+            ("--bias", self.bias),
+        ]
+        .into_iter()
+        .find_map(|(f, v)| v.map(|_| f))
+    }
+}
+
+/// The up axis of a run: `--horizon`, else the key file's `horizon`; an error when they
+/// differ, or when camera keys made with the file's axis (z when it names none) would be
+/// levelled about another.
+fn up_axis(arg: Option<HorizonArg>, keys: &keyfile::Keys) -> Result<Option<Up>> {
+    let arg = arg.map(|h| match h {
+        HorizonArg::Z => Up::Z,
+        HorizonArg::Y => Up::Y,
+    });
+    match (arg, keys.horizon) {
+        (Some(a), Some(f)) if a != f => bail!(
+            "--horizon {} and the key file's horizon = \"{}\" differ ({})",
+            a.name(),
+            f.name(),
+            keys.source
+        ),
+        (Some(a), None) if keys.cameras && a != Up::Z => bail!(
+            "--horizon {}: the yaw/pitch keys of {} are cameras with z up (the file names no horizon); write horizon = \"{}\" in it",
+            a.name(),
+            keys.source,
+            a.name()
+        ),
+        (a, f) => Ok(a.or(f)),
+    }
 }
 
 /// Frames when neither `--frames` nor `--levels` says.
@@ -66,6 +160,10 @@ fn plan(method: InterpMethod, order: EulerOrder) -> Plan {
         InterpMethod::SlerpSvupti => Plan::Spring(SpringConfig::slerpsvupti(), SolverArg::Report),
         InterpMethod::SquadSvupti => Plan::Spring(SpringConfig::squadsvupti(), SolverArg::Report),
         InterpMethod::JustDoIt => Plan::Spring(SpringConfig::justdoit(), SolverArg::Report),
+        InterpMethod::Tcb => Plan::Piecewise(Method::KochanekBartels(Tcb::CATMULL_ROM)),
+        InterpMethod::CatmullRom => Plan::Piecewise(Method::CatmullRom),
+        InterpMethod::Bezier => Plan::Piecewise(Method::Bezier),
+        InterpMethod::C2 => Plan::Piecewise(Method::C2),
     }
 }
 
@@ -113,12 +211,52 @@ pub fn compute(args: &InterpArgs) -> Result<Run> {
         }
         None => kf,
     };
-    let plan = plan(
+    let started = Instant::now();
+    let mut extra = String::new();
+    let up = up_axis(args.curve.horizon, &keys)?;
+    if let Some(up) = up {
+        check_keys(&kf, up).with_context(|| {
+            format!(
+                "{}: a camera path with a stable horizon ({} up)",
+                keys.source,
+                up.name()
+            )
+        })?;
+    }
+    let mut plan = plan(
         args.method,
         keys.euler.as_ref().map_or(EulerOrder::DAM, |e| e.0),
     );
-    let started = Instant::now();
-    let mut extra = String::new();
+    let kf = match (&mut plan, &keys.tcb) {
+        (Plan::Piecewise(Method::KochanekBartels(p)), per_key) => {
+            *p = args.curve.tcb()?;
+            let own = per_key.as_ref().map_or(0, |k| {
+                k.iter()
+                    .filter(|k| k.tension.or(k.continuity).or(k.bias).is_some())
+                    .count()
+            });
+            let _ = writeln!(
+                extra,
+                "tcb               tension {}, continuity {}, bias {} ({own} keys with their own)",
+                p.tension, p.continuity, p.bias
+            );
+            match per_key {
+                Some(k) => kf
+                    .with_tcb(k.clone())
+                    .with_context(|| keys.source.clone())?,
+                None => kf,
+            }
+        }
+        _ => {
+            if let Some(flag) = args.curve.tcb_given() {
+                bail!(
+                    "{flag} is a Kochanek-Bartels control: it applies to tcb, not {}",
+                    args.method.name()
+                );
+            }
+            kf
+        }
+    };
     let mut n = args.frames.unwrap_or(DEFAULT_FRAMES);
     let frames = match plan {
         Plan::Piecewise(m) => {
@@ -211,6 +349,16 @@ pub fn compute(args: &InterpArgs) -> Result<Run> {
             r.frames
         }
     };
+    let mut frames = frames;
+    if let Some(up) = up {
+        let removed = level_frames(&mut frames, up);
+        let _ = writeln!(
+            extra,
+            "horizon           {} up: every frame turned about its viewing axis to roll 0 (the method's frames rolled up to {:.4}°)",
+            up.name(),
+            removed.to_degrees()
+        );
+    }
     let elapsed = started.elapsed();
     let q: Vec<Quat<f64>> = frames.iter().map(|f| f.q).collect();
     let velocity = velocity_chord(&q);

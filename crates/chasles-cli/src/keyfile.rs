@@ -13,6 +13,13 @@
 //! [[keys]]
 //! euler = [0.1, 0.2, 0.3]  # radians
 //! order = "ZYX"            # optional per key
+//! tension = 0.3            # optional on any key, for --method tcb: its own tension,
+//! continuity = -0.2        #   continuity and bias, each in [-1, 1] (Kochanek–Bartels);
+//! bias = 0.5               #   those left out are --tension/--continuity/--bias (or 0)
+//! [[keys]]
+//! yaw = 0.5                # a camera (radians): yaw about the up axis, pitch, and an
+//! pitch = -0.1             #   optional roll (default 0), looking along its x axis, with
+//!                          #   the file's `horizon` axis up (z when it names none)
 //! [spring]                 # optional: Spring's controls, as `chasles interp`'s options
 //! levels = [22, 110, 550]  # frames per step; the last is the total
 //! iterations = [200, 150, 100]
@@ -24,6 +31,9 @@
 //! start = "slerp"          # or squad
 //! ```
 //!
+//! A top-level `horizon = "Z"` (or `"Y"`) names the up axis of the camera keys and asks for
+//! a path with a stable horizon, as `chasles interp --horizon` does.
+//!
 //! JSON takes the same shape, `{"order": "xyz", "keys": [{"angle": 1, "axis": [1, 3, 0]}, …]}`,
 //! or just the array of keys. Both are serde-derived types read through
 //! `serde_path_to_error`: syntax errors name the line and column, every other error the
@@ -33,7 +43,8 @@
 use crate::json::{from_json, Order};
 use crate::spring_args::SpringArgs;
 use anyhow::{anyhow, bail, Context, Result};
-use chasles::interp::examples;
+use chasles::interp::tcb::check_parameter;
+use chasles::interp::{examples, TcbKey, Up};
 use chasles::{EulerOrder, Quat, Vec3};
 use serde::de::value::{MapAccessDeserializer, SeqAccessDeserializer};
 use serde::de::{Deserializer, MapAccess, SeqAccess, Visitor};
@@ -53,6 +64,27 @@ struct Doc {
     /// Spring's controls ([`SpringArgs`]).
     #[serde(default)]
     spring: Option<SpringArgs>,
+    /// The up axis of camera keys, and a stable horizon.
+    #[serde(default)]
+    horizon: Option<HorizonName>,
+}
+
+/// An up axis as written: `"Z"` or `"Y"` (either case).
+#[derive(Deserialize, Clone, Copy)]
+enum HorizonName {
+    #[serde(alias = "z")]
+    Z,
+    #[serde(alias = "y")]
+    Y,
+}
+
+impl HorizonName {
+    fn up(self) -> Up {
+        match self {
+            HorizonName::Z => Up::Z,
+            HorizonName::Y => Up::Y,
+        }
+    }
 }
 
 /// A JSON key file: a [`Doc`], or just its array of keys. (Not an untagged enum, which
@@ -74,6 +106,7 @@ impl<'de> Deserialize<'de> for JsonDoc {
                     order: None,
                     keys,
                     spring: None,
+                    horizon: None,
                 }))
             }
             fn visit_map<A: MapAccess<'de>>(self, map: A) -> Result<JsonDoc, A::Error> {
@@ -84,8 +117,9 @@ impl<'de> Deserialize<'de> for JsonDoc {
     }
 }
 
-/// One key: `angle` and `axis`, `quat` or `euler` (with an optional `order`), and an
-/// optional `time`.
+/// One key: `angle` and `axis`, `quat`, `euler` (with an optional `order`) or a camera's
+/// `yaw` and `pitch` (and optional `roll`); an optional `time`; optional Kochanek–Bartels
+/// `tension`, `continuity` and `bias`.
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct Spec {
@@ -103,6 +137,18 @@ struct Spec {
     time: Option<f64>,
     /// The angular velocity at this key (rad per unit of time, world axes).
     velocity: Option<[f64; 3]>,
+    /// A camera's yaw about the up axis (radians).
+    yaw: Option<f64>,
+    /// A camera's pitch (radians).
+    pitch: Option<f64>,
+    /// A camera's roll (radians; 0 when left out).
+    roll: Option<f64>,
+    /// Kochanek–Bartels tension at this key.
+    tension: Option<f64>,
+    /// Kochanek–Bartels continuity at this key.
+    continuity: Option<f64>,
+    /// Kochanek–Bartels bias at this key.
+    bias: Option<f64>,
 }
 
 /// Key frames as read: rotations, optional times, and where they came from.
@@ -118,6 +164,12 @@ pub struct Keys {
     pub spring: Option<SpringArgs>,
     /// The angular velocity at each key that gives one.
     pub velocities: Option<Vec<Option<Vec3<f64>>>>,
+    /// Each key's own tension, continuity and bias, when some key has one.
+    pub tcb: Option<Vec<TcbKey>>,
+    /// The file's `horizon`: the up axis of its camera keys and a stable horizon.
+    pub horizon: Option<Up>,
+    /// Whether some key is a camera given by yaw and pitch.
+    pub cameras: bool,
     /// A name for messages: the file or `builtin:NAME`.
     pub source: String,
 }
@@ -138,6 +190,9 @@ pub fn load(spec: &str) -> Result<Keys> {
             euler: None,
             spring: None,
             velocities: None,
+            tcb: None,
+            horizon: None,
+            cameras: false,
             source: spec.to_string(),
         });
     }
@@ -205,17 +260,60 @@ fn parse(doc: Doc, source: &str) -> Result<Keys> {
         let i = doc.keys.iter().position(|k| k.time.is_none()).unwrap_or(0);
         bail!("{source}: keys[{i}].time is missing: give a time on every key or on none");
     }
+    let up = doc.horizon.map_or(Up::Z, HorizonName::up);
     let mut quats = Vec::with_capacity(doc.keys.len());
     let mut triples: Vec<(EulerOrder, [f64; 3])> = Vec::new();
+    let mut tcb = Vec::with_capacity(doc.keys.len());
+    let mut cameras = false;
     for (i, k) in doc.keys.iter().enumerate() {
         let at = |field: &str| format!("{source}: keys[{i}].{field}");
-        for (field, v) in [("angle", k.angle), ("time", k.time)] {
+        for (field, v) in [
+            ("angle", k.angle),
+            ("time", k.time),
+            ("yaw", k.yaw),
+            ("pitch", k.pitch),
+            ("roll", k.roll),
+        ] {
             if v.is_some_and(|v| !v.is_finite()) {
                 bail!("{} is not a finite number", at(field));
             }
         }
         if k.velocity.is_some_and(|v| v.iter().any(|x| !x.is_finite())) {
             bail!("{} is not finite", at("velocity"));
+        }
+        for (field, v) in [
+            ("tension", k.tension),
+            ("continuity", k.continuity),
+            ("bias", k.bias),
+        ] {
+            if let Some(v) = v.filter(|v| check_parameter("", *v).is_err()) {
+                bail!("{} must be a finite number in [-1, 1], got {v}", at(field));
+            }
+        }
+        tcb.push(TcbKey {
+            tension: k.tension,
+            continuity: k.continuity,
+            bias: k.bias,
+        });
+        let camera = match (k.yaw, k.pitch, k.roll) {
+            (None, None, None) => None,
+            (Some(yaw), Some(pitch), roll) => Some([yaw, pitch, roll.unwrap_or(0.0)]),
+            (None, _, _) => bail!(
+                "{} is missing (a camera key needs yaw and pitch)",
+                at("yaw")
+            ),
+            (_, None, _) => bail!(
+                "{} is missing (a camera key needs yaw and pitch)",
+                at("pitch")
+            ),
+        };
+        if let Some(ypr) = camera {
+            if k.angle.is_some() || k.axis.is_some() || k.quat.is_some() || k.euler.is_some() {
+                bail!("{source}: keys[{i}] must have exactly one of {{angle, axis}}, {{quat}}, {{euler}} or {{yaw, pitch}}");
+            }
+            cameras = true;
+            quats.push(Quat::from_euler(up.order(), ypr));
+            continue;
         }
         let q = match (k.angle, k.axis, k.quat, k.euler) {
             (Some(angle), Some(axis), None, None) => {
@@ -232,7 +330,7 @@ fn parse(doc: Doc, source: &str) -> Result<Keys> {
             }
             (Some(_), None, None, None) => bail!("{} is missing (angle needs an axis)", at("axis")),
             (None, Some(_), None, None) => bail!("{} is missing (axis needs an angle)", at("angle")),
-            _ => bail!("{source}: keys[{i}] must have exactly one of {{angle, axis}}, {{quat}} or {{euler}}"),
+            _ => bail!("{source}: keys[{i}] must have exactly one of {{angle, axis}}, {{quat}}, {{euler}} or {{yaw, pitch}}"),
         };
         quats.push(q);
     }
@@ -251,12 +349,18 @@ fn parse(doc: Doc, source: &str) -> Result<Keys> {
             .map(|k| k.velocity.map(Vec3::from_array))
             .collect()
     });
+    let any_tcb = tcb
+        .iter()
+        .any(|k| k.tension.is_some() || k.continuity.is_some() || k.bias.is_some());
     Ok(Keys {
         quats,
         times,
         euler,
         spring: doc.spring,
         velocities,
+        tcb: any_tcb.then_some(tcb),
+        horizon: doc.horizon.map(HorizonName::up),
+        cameras,
         source: source.to_string(),
     })
 }

@@ -66,7 +66,8 @@ enum Command {
         #[arg(long, default_value = "report")]
         out: std::path::PathBuf,
     },
-    /// Interpolate key frames: LinEuler, LinMat, Lerp, Slerp, Squad, Spring (Dam et al. 1998).
+    /// Interpolate key frames: LinEuler, LinMat, Lerp, Slerp, Squad, Spring (Dam et al. 1998),
+    /// Kochanek–Bartels, Catmull–Rom, Bézier, a C² spline; cameras with a stable horizon.
     ///
     /// Writes one row per frame — index,t,w,x,y,z,velocity,key — to --out (.csv or .json) or
     /// as CSV to stdout, and a summary (curvature energy, velocity range, time) to the
@@ -76,13 +77,17 @@ enum Command {
     /// _ for -); or builtin:NAME with NAME one of table5.1, semicircle, soft, cusp,
     /// pendulum, perturbed, global. LinEuler interpolates keys given as Euler triples as
     /// given (eq. 6.1). The summary prints the Spring options a run used: the presets are
-    /// named sets of them.
+    /// named sets of them. Keys may carry their own tension, continuity and bias for tcb,
+    /// or be cameras {yaw, pitch} (radians, with the file's `horizon = "Z"|"Y"` up, z when
+    /// it names none); --horizon (or the file's horizon) levels every frame of any method.
     ///
     /// Examples:
     ///   chasles interp --method squad --keys builtin:table5.1 --frames 550 --out squad.csv
     ///   chasles interp --method spring --keys keys.toml --frames 200 --out spring.json
     ///   chasles interp --method slerpsvupti --keys builtin:table5.1 --levels 350 \
     ///       --iterations 500 --frames-dir frames/     (Figure 6.15, as the tour makes it)
+    ///   chasles interp --method tcb --tension 0.3 --bias=-0.5 --keys builtin:table5.1
+    ///   chasles interp --method c2 --keys camera.toml --horizon Z --out path.csv
     #[command(verbatim_doc_comment)]
     Interp {
         /// The method, by its name in the report and App. C.
@@ -109,6 +114,8 @@ enum Command {
         keep_signs: bool,
         #[command(flatten)]
         spring: spring_args::SpringArgs,
+        #[command(flatten)]
+        curve: interp::CurveArgs,
         /// Also write every frame as a numbered PNG of the turned R (frame-0000.png, …) into
         /// this new or empty folder, like the report's program's frame dumps (App. C).
         #[arg(long, value_name = "DIR")]
@@ -333,6 +340,7 @@ fn run(cli: Cli) -> anyhow::Result<i32> {
             out,
             keep_signs,
             spring,
+            curve,
             frames_dir,
             pictures,
         } => interp::run(interp::InterpArgs {
@@ -347,6 +355,7 @@ fn run(cli: Cli) -> anyhow::Result<i32> {
             out,
             keep_signs,
             spring,
+            curve,
             frames_dir,
             pictures,
         })

@@ -704,8 +704,8 @@ fn interp_key_files_json_output_and_errors() {
     }
     for (args, needle) in [
         (
-            vec!["--method", "bezier", "--keys", "builtin:cusp"],
-            "invalid value 'bezier' for '--method <METHOD>' [possible values: lineuler, linmat, lerp, slerp, squad, spring, slerpsvupti, squadsvupti, justdoit]",
+            vec!["--method", "nurbs", "--keys", "builtin:cusp"],
+            "invalid value 'nurbs' for '--method <METHOD>' [possible values: lineuler, linmat, lerp, slerp, squad, spring, slerpsvupti, squadsvupti, justdoit, tcb, catmull-rom, bezier, c2]",
         ),
         (
             vec!["--method", "slerp", "--keys", "builtin:nothing"],

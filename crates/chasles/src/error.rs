@@ -116,6 +116,14 @@ pub enum Error {
         /// The frames asked for.
         frames: usize,
     },
+    /// An iteration that did not settle within its cap.
+    #[error("{what} did not converge in {iterations} iterations")]
+    NotConverged {
+        /// What was iterated.
+        what: &'static str,
+        /// The iterations run.
+        iterations: usize,
+    },
     /// A parameter outside its allowed range.
     #[error("{what} must be {rule}, got {value}")]
     BadParameter {

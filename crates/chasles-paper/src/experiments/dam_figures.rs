@@ -223,6 +223,10 @@ fn method_name(c: &Curve) -> String {
         Curve::Piecewise(Method::Nlerp) => "Lerp".into(),
         Curve::Piecewise(Method::Slerp) => "Slerp".into(),
         Curve::Piecewise(Method::Squad) => "Squad".into(),
+        Curve::Piecewise(Method::CatmullRom) => "Catmull-Rom".into(),
+        Curve::Piecewise(Method::KochanekBartels(_)) => "Kochanek-Bartels".into(),
+        Curve::Piecewise(Method::Bezier) => "Bezier".into(),
+        Curve::Piecewise(Method::C2) => "C2 spline".into(),
         Curve::Spring(cfg) => {
             let steps: Vec<String> = cfg
                 .levels

@@ -1,17 +1,21 @@
-//! Key frames: the rotations a curve must pass through, with optional times and optional
+//! Key frames: the rotations a curve must pass through, with optional times, optional
 //! angular velocities (Barr et al. 1992; Dam et al. §8.2's "supply the angular velocity at an
-//! arbitrary key frame").
+//! arbitrary key frame") and per-key parameters (Kochanek–Bartels' tension, continuity and
+//! bias).
 
+use super::tcb::TcbKey;
 use crate::{Error, EulerOrder, Quat, Real, Result, Vec3};
 
 /// Validated key frames: unit quaternions (at least two), optionally with strictly
-/// increasing times, and optionally the Euler-angle triples they were given as.
+/// increasing times, optionally the Euler-angle triples they were given as, and optionally
+/// each key's own tension, continuity and bias ([`KeyFrames::with_tcb`]).
 #[derive(Debug, Clone, PartialEq)]
 pub struct KeyFrames<T> {
     q: Vec<Quat<T>>,
     times: Option<Vec<T>>,
     euler: Option<(EulerOrder, Vec<[T; 3]>)>,
     velocities: Option<Vec<Option<Vec3<T>>>>,
+    tcb: Option<Vec<TcbKey>>,
 }
 
 /// Which signs the keys keep. q and −q are the same rotation but not the same point of the
@@ -74,6 +78,7 @@ impl<T: Real> KeyFrames<T> {
             times: times.map(|t| t.to_vec()),
             euler: None,
             velocities: None,
+            tcb: None,
         })
     }
     /// The keys with angular velocities at some of them: `ω` (rad per unit of the curve
@@ -164,6 +169,41 @@ impl<T: Real> KeyFrames<T> {
     /// Always false: there are at least two keys.
     pub fn is_empty(&self) -> bool {
         false
+    }
+    /// The keys with their own Kochanek–Bartels parameters, one [`TcbKey`] per key (a
+    /// parameter a key leaves out is the method's, [`super::Method::KochanekBartels`]).
+    /// Errors: not one per key ([`Error::WrongLength`]); a value that is not finite or
+    /// outside [−1, 1] ([`Error::BadKey`] naming the key, with [`Error::BadParameter`]
+    /// naming the field).
+    pub fn with_tcb(mut self, per_key: Vec<TcbKey>) -> Result<Self> {
+        if per_key.len() != self.q.len() {
+            return Err(Error::WrongLength {
+                what: "per-key tension, continuity and bias",
+                expected: "one per key",
+                got: per_key.len(),
+            });
+        }
+        for (index, k) in per_key.iter().enumerate() {
+            k.check().map_err(|e| Error::BadKey {
+                index,
+                source: Box::new(e),
+            })?;
+        }
+        self.tcb = Some(per_key);
+        Ok(self)
+    }
+    /// Each key's own tension, continuity and bias, if given ([`KeyFrames::with_tcb`]).
+    pub fn tcb(&self) -> Option<&[TcbKey]> {
+        self.tcb.as_deref()
+    }
+    /// The length of interval `i` in the curve's parameter: `t_{i+1} − t_i` with key
+    /// times, else 1 (clamped to the last interval).
+    pub fn span(&self, interval: usize) -> T {
+        let i = interval.min(self.q.len() - 2);
+        match &self.times {
+            Some(t) => t[i + 1] - t[i],
+            None => T::ONE,
+        }
     }
     /// The parameter value of a point `h` into interval `i`: the key time interpolated
     /// linearly, or `i + h` without times.

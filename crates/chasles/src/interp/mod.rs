@@ -6,10 +6,20 @@
 //! gradient descent). [`timing`] shares the frames among the intervals (§6.2). The
 //! report's example key sets are in [`examples`].
 //!
+//! Past the report (issue 21, §8.2's "more specialized curves"): [`catmull_rom`] (Schlag's
+//! spherical Catmull–Rom, C¹), [`tcb`] (Kochanek–Bartels: tension, continuity and bias per
+//! key; all 0 is Catmull–Rom), [`bezier`] (Shoemake's spherical Bézier by de Casteljau),
+//! [`c2_spline`] (continuous angular acceleration, SciPy's `RotationSpline`), and
+//! [`horizon`]: camera paths whose frames never roll, after any method.
+//!
 //! [`interpolate`] samples a whole curve: every key appears exactly once among the frames,
 //! flagged in [`Frame::key`].
 
+pub mod bezier;
+pub mod c2_spline;
+pub mod catmull_rom;
 pub mod examples;
+pub mod horizon;
 pub mod keys;
 pub mod lerp;
 pub mod lin_euler;
@@ -18,11 +28,17 @@ pub mod slerp;
 pub mod spring;
 mod spring_converged;
 pub mod squad;
+pub mod tcb;
 pub mod timing;
 
+pub use bezier::Bezier;
+pub use c2_spline::C2Spline;
+pub use catmull_rom::CatmullRom;
+pub use horizon::Up;
 pub use keys::{Hemisphere, KeyFrames};
 pub use spring::{spring, Level, Solver, SpringConfig, SpringResult, Start, StepRule, Stopped};
 pub use squad::Squad;
+pub use tcb::{KochanekBartels, Tcb, TcbKey};
 pub use timing::Timing;
 
 use crate::{Error, EulerOrder, Mat3, Quat, Real, Result};
@@ -53,11 +69,53 @@ pub enum Method {
     Slerp,
     /// Definition 17.
     Squad,
+    /// Schlag's spherical Catmull–Rom spline ([`catmull_rom`]).
+    CatmullRom,
+    /// Kochanek–Bartels ([`tcb`]): these parameters for every key that has none of its own
+    /// ([`KeyFrames::with_tcb`]).
+    KochanekBartels(Tcb),
+    /// Shoemake's spherical Bézier spline ([`bezier`]).
+    Bezier,
+    /// The C² spline of [`c2_spline`] (SciPy's `RotationSpline`).
+    C2,
+}
+
+/// A many-key curve, built once per call of [`interpolate`].
+enum Curve<T> {
+    Squad(Squad<T>),
+    CatmullRom(CatmullRom<T>),
+    KochanekBartels(KochanekBartels<T>),
+    Bezier(Bezier<T>),
+    C2(C2Spline<T>),
+}
+
+impl<T: Real> Curve<T> {
+    fn new(method: Method, keys: &KeyFrames<T>) -> Result<Option<Self>> {
+        Ok(Some(match method {
+            Method::Squad => Curve::Squad(Squad::new(keys)?),
+            Method::CatmullRom => Curve::CatmullRom(CatmullRom::new(keys)?),
+            Method::KochanekBartels(p) => Curve::KochanekBartels(KochanekBartels::new(keys, p)?),
+            Method::Bezier => Curve::Bezier(Bezier::new(keys)?),
+            Method::C2 => Curve::C2(C2Spline::new(keys)?),
+            _ => return Ok(None),
+        }))
+    }
+    fn eval(&self, interval: usize, h: T) -> Quat<T> {
+        match self {
+            Curve::Squad(c) => c.eval(interval, h),
+            Curve::CatmullRom(c) => c.eval(interval, h),
+            Curve::KochanekBartels(c) => c.eval(interval, h),
+            Curve::Bezier(c) => c.eval(interval, h),
+            Curve::C2(c) => c.eval(interval, h),
+        }
+    }
 }
 
 /// Samples `frames` frames of a piecewise curve through the keys. Errors: fewer frames
-/// than keys; LinMat through keys 180° apart (singular matrix); a frame that comes out not
-/// finite (LinEuler on angles near the top of T's range).
+/// than keys; LinMat through keys 180° apart (singular matrix); Kochanek–Bartels
+/// parameters out of range; the C² spline through keys a full turn apart or with a system
+/// that does not settle; a frame that comes out not finite (LinEuler on angles near the top
+/// of T's range, key times too far apart in scale).
 pub fn interpolate<T: Real>(
     method: Method,
     keys: &KeyFrames<T>,
@@ -74,10 +132,7 @@ pub fn interpolate<T: Real>(
     drop(probe);
     let grid = timing::samples::<T>(&counts);
     let q = keys.quats();
-    let squad = match method {
-        Method::Squad => Some(Squad::new(keys)?),
-        _ => None,
-    };
+    let curve = Curve::new(method, keys)?;
     let mats: Vec<Mat3<T>> = match method {
         Method::LinMat => q.iter().map(|k| k.to_rotation_matrix()).collect(),
         _ => Vec::new(),
@@ -112,7 +167,7 @@ pub fn interpolate<T: Real>(
                 (None, Method::Lerp) => lerp::lerp(a, b, s.h),
                 (None, Method::Nlerp) => lerp::nlerp(a, b, s.h),
                 (None, Method::Slerp) => slerp::slerp(a, b, s.h),
-                (None, Method::Squad) => squad.as_ref().map_or(a, |sq| sq.eval(s.interval, s.h)),
+                (None, _) => curve.as_ref().map_or(a, |c| c.eval(s.interval, s.h)),
             };
             Frame {
                 q: r,
