@@ -1,0 +1,250 @@
+//! The batch functions against their per-item functions: `quats_to_euler` against
+//! `Quat::to_euler` (a few ulp; exactly at gimbal lock and wherever it defers to it) and
+//! `quats_from_rotation_matrices` against `Quat::from_rotation_matrix` (bit for bit), over
+//! random inputs and the special cases, in f32 and f64; their errors name the first failing
+//! item.
+
+use chasles::convert::euler::quats_to_euler;
+use chasles::convert::matrix::quats_from_rotation_matrices;
+use chasles::convert::BatchError;
+use chasles::{Error, EulerOrder, Mat3, Quat, Real, Vec3};
+use rand::rngs::StdRng;
+use rand::{Rng, SeedableRng};
+use std::f64::consts::{FRAC_PI_2, PI};
+
+fn rng(seed: u64) -> StdRng {
+    StdRng::seed_from_u64(seed)
+}
+
+/// A random quaternion, any sign, of norm between 1e-3 and 1e3 (its scale does not matter
+/// to the rotation).
+fn any_quat<T: Real>(r: &mut StdRng) -> Quat<T> {
+    let s = 10f64.powf(r.random_range(-3.0..3.0));
+    let mut v = [0.0; 4];
+    for x in &mut v {
+        *x = r.random_range(-1.0..1.0) * s;
+    }
+    Quat::new(
+        T::from_f64(v[0]),
+        T::from_f64(v[1]),
+        T::from_f64(v[2]),
+        T::from_f64(v[3]),
+    )
+}
+
+/// Special quaternions: rotations about one axis and about none (components exactly 0,
+/// either sign), half turns, Euler angles at and next to gimbal lock in `order`, and the
+/// tiny and huge scales the normalization must rescale.
+fn special<T: Real>(order: EulerOrder) -> Vec<Quat<T>> {
+    let f = T::from_f64;
+    let mut v = vec![Quat::identity(), -Quat::identity()];
+    for axis in 0..3 {
+        for a in [0.3, -2.0, PI, -PI, FRAC_PI_2] {
+            let q = Quat::from_axis_index(axis, f(a));
+            v.extend([q, -q]);
+        }
+    }
+    let mid = if order.is_proper_euler() {
+        [0.0, PI]
+    } else {
+        [FRAC_PI_2, -FRAC_PI_2]
+    };
+    for m in mid {
+        for near in [0.0, 1e-15, -1e-15, 1e-12, 1e-9, 1e-6, 1e-3] {
+            for (a, c) in [(0.4, -1.1), (2.9, 3.0), (-3.1, 0.2)] {
+                v.push(Quat::from_euler(order, [f(a), f(m + near), f(c)]));
+            }
+        }
+    }
+    // Squared norms past the ends of T's range: normalize rescales first.
+    let base: Quat<f64> = Quat::new(0.5, -0.1, 0.7, 0.2);
+    let scales = if T::EPSILON.to_f64() > 1e-10 {
+        [1e-30, 1e-20, 1e20, 1e30]
+    } else {
+        [1e-200, 1e-160, 1e160, 1e200]
+    };
+    for s in scales {
+        v.push((base * s).cast());
+    }
+    v.push(Quat::new(f(-0.0), f(0.6), f(-0.0), f(0.8)));
+    v.push(Quat::new(f(0.0), f(-0.0), f(0.0), f(1.0)));
+    v
+}
+
+/// Difference of two angles, through the wrap at ±π (π and −π are the same angle).
+fn angle_diff(a: f64, b: f64) -> f64 {
+    let d = (a - b).abs();
+    d.min((d - 2.0 * PI).abs())
+}
+
+/// `quats_to_euler` against `Quat::to_euler` in every order: within 8 ε·π of each angle;
+/// bit for bit where gimbal lock was met (the batch defers to `to_euler` there).
+fn euler_agrees<T: Real>(seed: u64) -> f64 {
+    let mut r = rng(seed);
+    let mut worst: f64 = 0.0;
+    for order in EulerOrder::all() {
+        let mut q: Vec<Quat<T>> = (0..1000).map(|_| any_quat(&mut r)).collect();
+        q.extend(special::<T>(order));
+        let mut out = vec![[T::ZERO; 3]; q.len()];
+        quats_to_euler(&q, order, &mut out).unwrap();
+        for (qi, got) in q.iter().zip(&out) {
+            let want = qi.to_euler(order).unwrap();
+            if want.gimbal_lock {
+                assert_eq!(*got, want.angles, "{order} at gimbal lock: {qi:?}");
+                continue;
+            }
+            for (g, w) in got.iter().zip(&want.angles) {
+                let d = angle_diff(g.to_f64(), w.to_f64()) / (T::EPSILON.to_f64() * PI);
+                assert!(d <= 4.0, "{order}: {qi:?}: {got:?} vs {:?}", want.angles);
+                worst = worst.max(d);
+            }
+        }
+    }
+    worst
+}
+
+#[test]
+fn quats_to_euler_agrees_with_to_euler_in_every_order() {
+    let w64 = euler_agrees::<f64>(1);
+    let w32 = euler_agrees::<f32>(2);
+    // Most items agree far better than the bound: not every angle is exact by accident.
+    assert!(w64 > 0.0 && w32 > 0.0, "{w64} {w32}");
+}
+
+#[test]
+fn quats_to_euler_gives_the_angles_back() {
+    // Closed form: the angles a rotation was made of, in the canonical ranges.
+    for order in EulerOrder::all() {
+        let mid = if order.is_proper_euler() { 1.2 } else { -0.7 };
+        let angles = [[0.3, mid, -2.5], [-3.0, mid * 0.5, 3.0], [1.0, -mid, 0.0]].map(|a| {
+            if order.is_proper_euler() {
+                [a[0], a[1].abs(), a[2]]
+            } else {
+                a
+            }
+        });
+        let q: Vec<Quat<f64>> = angles.iter().map(|a| Quat::from_euler(order, *a)).collect();
+        let mut out = vec![[0.0; 3]; 3];
+        quats_to_euler(&q, order, &mut out).unwrap();
+        for (got, want) in out.iter().zip(&angles) {
+            for (g, w) in got.iter().zip(want) {
+                assert!((g - w).abs() < 1e-14, "{order}: {got:?} vs {want:?}");
+            }
+        }
+    }
+    // Gimbal lock, as Dam et al. App. B.2 has it: the third angle is 0.
+    let q = [Quat::from_euler(
+        EulerOrder::DAM,
+        [0.4f32, std::f32::consts::FRAC_PI_2, -1.1],
+    )];
+    let mut out = [[0.0f32; 3]];
+    quats_to_euler(&q, EulerOrder::DAM, &mut out).unwrap();
+    assert_eq!(out[0][2], 0.0);
+    assert!((out[0][0] - 1.5).abs() < 1e-6, "{out:?}");
+}
+
+#[test]
+fn quats_to_euler_reports_the_first_bad_item() {
+    let mut q = vec![Quat::<f64>::new(1.0, 0.2, 0.3, 0.4); 300];
+    q[200] = Quat::zero();
+    q[250] = Quat::new(f64::NAN, 0.0, 0.0, 1.0);
+    let mut out = vec![[9.0; 3]; 300];
+    let e = quats_to_euler(&q, EulerOrder::DAM, &mut out).unwrap_err();
+    assert_eq!(e.index, 200);
+    assert!(matches!(e.error, Error::ZeroNorm { .. }), "{e}");
+    let want = q[199].to_euler(EulerOrder::DAM).unwrap().angles;
+    assert!(
+        (0..3).all(|k| (out[199][k] - want[k]).abs() < 1e-15),
+        "{out:?}"
+    );
+    q[200] = Quat::identity();
+    let e = quats_to_euler(&q, EulerOrder::DAM, &mut out).unwrap_err();
+    assert_eq!(e.index, 250);
+    assert!(matches!(e.error, Error::NonFinite { .. }), "{e}");
+    assert!(e.to_string().starts_with("item 250: "), "{e}");
+    let e = quats_to_euler(&q, EulerOrder::DAM, &mut out[..10]).unwrap_err();
+    assert!(
+        matches!(e.error, Error::BatchLengths { a: 300, b: 10, .. }),
+        "{e}"
+    );
+    assert_eq!(quats_to_euler::<f32>(&[], EulerOrder::DAM, &mut []), Ok(()));
+}
+
+/// Rotation matrices of random rotations and of each of Shepperd's four pivots' ranges
+/// (half turns about each axis and between them), identity, and rotations rounded to f32.
+fn rotations<T: Real>(seed: u64) -> Vec<Mat3<T>> {
+    let mut r = rng(seed);
+    let mut m: Vec<Mat3<T>> = (0..2000)
+        .map(|_| any_quat::<T>(&mut r).to_rotation_matrix())
+        .collect();
+    m.push(Mat3::identity());
+    for axis in [
+        [1.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [0.0, 0.0, 1.0],
+        [1.0, 1.0, 0.0],
+        [1.0, -2.0, 3.0],
+    ] {
+        for angle in [PI, PI - 1e-7, 3.0, 1.0, 1e-9] {
+            let q = Quat::from_axis_angle(Vec3::from_array(axis), angle).unwrap();
+            m.push(q.cast::<T>().to_rotation_matrix());
+        }
+    }
+    m
+}
+
+#[test]
+fn quats_from_rotation_matrices_is_from_rotation_matrix_bit_for_bit() {
+    fn check<T: Real>(seed: u64) {
+        let m = rotations::<T>(seed);
+        let mut out = vec![Quat::zero(); m.len()];
+        quats_from_rotation_matrices(&m, &mut out).unwrap();
+        for (mi, q) in m.iter().zip(&out) {
+            assert_eq!(*q, Quat::from_rotation_matrix(mi).unwrap(), "{mi:?}");
+        }
+    }
+    check::<f64>(3);
+    check::<f32>(4);
+    // Closed form: a half turn about z.
+    let m = [Mat3::from_rows([
+        [-1.0f64, 0.0, 0.0],
+        [0.0, -1.0, 0.0],
+        [0.0, 0.0, 1.0],
+    ])];
+    let mut q = [Quat::zero()];
+    quats_from_rotation_matrices(&m, &mut q).unwrap();
+    assert_eq!(q[0], Quat::new(0.0, 0.0, 0.0, 1.0));
+}
+
+#[test]
+fn quats_from_rotation_matrices_reports_the_first_bad_item() {
+    let mut m = rotations::<f64>(5);
+    let mut out = vec![Quat::zero(); m.len()];
+    let good = m.clone();
+    m[700] = Mat3::from_rows([[-1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]);
+    m[900].m[1][1] = f64::INFINITY;
+    m[1000].m[0][0] = 3.0;
+    let e = quats_from_rotation_matrices(&m, &mut out).unwrap_err();
+    assert_eq!(e.index, 700);
+    assert!(e.error.to_string().contains("reflection"), "{e}");
+    assert_eq!(out[699], Quat::from_rotation_matrix(&good[699]).unwrap());
+    m[700] = good[700];
+    let e = quats_from_rotation_matrices(&m, &mut out).unwrap_err();
+    assert_eq!(
+        e,
+        BatchError {
+            index: 900,
+            error: Quat::from_rotation_matrix(&m[900]).unwrap_err()
+        }
+    );
+    m[900] = good[900];
+    let e = quats_from_rotation_matrices(&m, &mut out).unwrap_err();
+    assert_eq!(e.index, 1000);
+    assert!(matches!(e.error, Error::NotRotation { .. }), "{e}");
+    // A matrix a hair off a rotation is accepted, as the per-item function does.
+    let mut near = [good[5]];
+    near[0].m[0][1] += 1e-10;
+    let mut q = [Quat::zero()];
+    quats_from_rotation_matrices(&near, &mut q).unwrap();
+    assert_eq!(q[0], Quat::from_rotation_matrix(&near[0]).unwrap());
+}
