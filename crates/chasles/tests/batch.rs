@@ -1,13 +1,14 @@
 //! The batch functions against their per-item functions: `quats_to_euler` against
-//! `Quat::to_euler` (a few ulp; exactly at gimbal lock and wherever it defers to it) and
-//! `quats_from_rotation_matrices` against `Quat::from_rotation_matrix` (bit for bit), over
-//! random inputs and the special cases, in f32 and f64; their errors name the first failing
-//! item.
+//! `Quat::to_euler` (a few ulp; exactly at gimbal lock and wherever it defers to it),
+//! `quats_from_rotation_matrices` against `Quat::from_rotation_matrix` and `dlb_batch`
+//! against `dlb` (bit for bit), over random inputs and the special cases, in f32 and f64;
+//! their errors name the first failing item.
 
+use chasles::blend::dlb::{dlb, dlb_batch};
 use chasles::convert::euler::quats_to_euler;
 use chasles::convert::matrix::quats_from_rotation_matrices;
 use chasles::convert::BatchError;
-use chasles::{Error, EulerOrder, Mat3, Quat, Real, Vec3};
+use chasles::{DualQuat, Error, EulerOrder, Mat3, Quat, Real, Vec3};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 use std::f64::consts::{FRAC_PI_2, PI};
@@ -247,4 +248,169 @@ fn quats_from_rotation_matrices_reports_the_first_bad_item() {
     let mut q = [Quat::zero()];
     quats_from_rotation_matrices(&near, &mut q).unwrap();
     assert_eq!(q[0], Quat::from_rotation_matrix(&near[0]).unwrap());
+}
+
+fn random_dq<T: Real>(r: &mut StdRng) -> [T; 8] {
+    let q = any_quat::<f64>(r).normalize().unwrap();
+    let t = Vec3::new(
+        r.random_range(-5.0..5.0),
+        r.random_range(-5.0..5.0),
+        r.random_range(-5.0..5.0),
+    );
+    DualQuat::from_rotation_translation(q, t)
+        .cast::<T>()
+        .to_array()
+}
+
+/// `dlb_batch` against `dlb` for blends of N: random unit dual quaternions of both signs,
+/// random weights (some zero, sums not 1), 1003 blends (a tail after the groups of eight).
+fn dlb_agrees<T: Real, const N: usize>(seed: u64) {
+    let mut r = rng(seed);
+    let count = 1003;
+    let q: Vec<[[T; 8]; N]> = (0..count)
+        .map(|_| {
+            core::array::from_fn(|_| {
+                let d = random_dq::<T>(&mut r);
+                if r.random_bool(0.5) {
+                    d.map(|v| -v)
+                } else {
+                    d
+                }
+            })
+        })
+        .collect();
+    let w: Vec<[T; N]> = (0..count)
+        .map(|_| {
+            core::array::from_fn(|_| {
+                if r.random_bool(0.1) {
+                    T::ZERO
+                } else {
+                    T::from_f64(r.random_range(0.01..3.0))
+                }
+            })
+        })
+        .map(|mut w: [T; N]| {
+            if w.iter().all(|v| *v == T::ZERO) {
+                w[0] = T::ONE;
+            }
+            w
+        })
+        .collect();
+    let mut out = vec![[T::ZERO; 8]; count];
+    dlb_batch(&q, &w, &mut out).unwrap();
+    for ((qi, wi), got) in q.iter().zip(&w).zip(&out) {
+        let want = dlb(&qi.map(DualQuat::from_array), wi).unwrap().to_array();
+        assert_eq!(*got, want, "N = {N}: {qi:?} {wi:?}");
+    }
+}
+
+#[test]
+fn dlb_batch_is_dlb_bit_for_bit() {
+    dlb_agrees::<f64, 1>(10);
+    dlb_agrees::<f64, 2>(11);
+    dlb_agrees::<f64, 3>(12);
+    dlb_agrees::<f64, 4>(13);
+    dlb_agrees::<f64, 7>(14);
+    dlb_agrees::<f32, 2>(15);
+    dlb_agrees::<f32, 4>(16);
+    dlb_agrees::<f32, 8>(17);
+}
+
+#[test]
+fn dlb_batch_blends_translations_and_keeps_the_hemisphere() {
+    // Closed form: pure translations blend to the weighted mean of the translations; the
+    // lighter one is flipped into the hemisphere of the heavier, negated one (the same
+    // motion), not cancelled.
+    let t = |x: f64, y: f64| {
+        DualQuat::from_rotation_translation(Quat::identity(), Vec3::new(x, y, 0.0))
+    };
+    let q = [[t(1.0, 0.0).to_array(), (-t(0.0, 2.0)).to_array()]; 9];
+    let w = [[1.0, 3.0]; 9];
+    let mut out = [[0.0; 8]; 9];
+    dlb_batch(&q, &w, &mut out).unwrap();
+    for o in out {
+        let d = DualQuat::from_array(o);
+        assert!(
+            (d.translation() - Vec3::new(0.25, 1.5, 0.0)).norm() < 1e-15,
+            "{d:?}"
+        );
+        assert_eq!(d.real, -Quat::identity());
+    }
+}
+
+#[test]
+fn dlb_batch_reports_the_first_bad_item() {
+    let mut r = rng(20);
+    let mut q: Vec<[[f64; 8]; 3]> = (0..43)
+        .map(|_| core::array::from_fn(|_| random_dq(&mut r)))
+        .collect();
+    let mut w = vec![[0.2, 0.3, 0.5]; 43];
+    let mut out = vec![[0.0; 8]; 43];
+    w[17] = [0.2, -0.3, 0.5];
+    w[30] = [0.0, 0.0, 0.0];
+    q[35][1][2] = f64::NAN;
+    let e = dlb_batch(&q, &w, &mut out).unwrap_err();
+    assert_eq!(
+        e,
+        BatchError {
+            index: 17,
+            error: Error::BadWeight {
+                index: 1,
+                value: -0.3
+            }
+        }
+    );
+    assert_eq!(
+        out[16],
+        dlb(&q[16].map(DualQuat::from_array), &w[16])
+            .unwrap()
+            .to_array()
+    );
+    w[17] = [0.2, 0.3, 0.5];
+    let e = dlb_batch(&q, &w, &mut out).unwrap_err();
+    assert_eq!(
+        e,
+        BatchError {
+            index: 30,
+            error: Error::WeightSum { sum: 0.0 }
+        }
+    );
+    w[30] = [1.0, f64::INFINITY, 0.0];
+    assert!(matches!(
+        dlb_batch(&q, &w, &mut out).unwrap_err().error,
+        Error::BadWeight { index: 1, .. }
+    ));
+    w[30] = [1.0, 0.0, 0.0];
+    let e = dlb_batch(&q, &w, &mut out).unwrap_err();
+    assert_eq!(e.index, 35);
+    assert!(matches!(e.error, Error::NonFinite { .. }), "{e}");
+    // In the last, partial group too.
+    q[35][1][2] = 0.5;
+    w[41] = [0.0, f64::NAN, 1.0];
+    let e = dlb_batch(&q, &w, &mut out).unwrap_err();
+    assert!(
+        matches!(
+            e,
+            BatchError {
+                index: 41,
+                error: Error::BadWeight { index: 1, .. }
+            }
+        ),
+        "{e}"
+    );
+    let want = dlb(&q[40].map(DualQuat::from_array), &w[40])
+        .unwrap()
+        .to_array();
+    assert_eq!(out[40], want);
+    // Real parts of zero (not rigid motions) sum to zero: dlb's ZeroNorm.
+    let z = [0.0, 0.0, 0.0, 0.0, 1.0, 2.0, 3.0, 4.0];
+    let e = dlb_batch(&[[z, z]], &[[1.0, 1.0]], &mut [[0.0; 8]]).unwrap_err();
+    assert!(matches!(e.error, Error::ZeroNorm { .. }), "{e}");
+    let e = dlb_batch::<f64, 0>(&[[]], &[[]], &mut [[0.0; 8]]).unwrap_err();
+    assert!(matches!(e.error, Error::BlendInput { .. }), "{e}");
+    let e = dlb_batch(&q[..3], &w[..2], &mut out[..3]).unwrap_err();
+    assert!(
+        matches!(e.error, Error::BatchLengths { a: 3, b: 2, .. }),
+        "{e}"
+    );
 }

@@ -7,8 +7,15 @@
 //! largest weight — by flipping its sign when `⟨q0,ᵢ, q0,pivot⟩ < 0` (as Kavan's reference
 //! `dqsAntipod` does in skinning). The sum is then normalized as a dual quaternion (real
 //! part to unit length, dual part made orthogonal to it).
+//!
+//! [`dlb_batch`] runs [`dlb`] over many blends of the same number of transforms, eight
+//! side by side in lanes, with the same operations in the same order and its checks
+//! (weights, finiteness, the plain path of the norm) folded into one flag per blend instead
+//! of branches, so its results are [`dlb`]'s bit for bit; only blends that fail a check go
+//! through [`dlb`] itself, which reports them.
 
 use super::weights::{check_lengths, convex_weights, pivot};
+use crate::convert::BatchError;
 use crate::{DualQuat, Real, Result};
 
 /// DLB of unit dual quaternions (weights made convex).
@@ -27,4 +34,174 @@ pub fn dlb_convex<T: Real>(q: &[DualQuat<T>], w: &[T]) -> Result<DualQuat<T>> {
         sum = sum + *qi * s;
     }
     sum.normalize()
+}
+
+/// [`dlb`] of every blend `(q[i], w[i])` of `N` dual quaternions into `out[i]`, bit for
+/// bit: `q[i][k]` and `out[i]` are dual quaternions as 8 numbers in the order of
+/// [`DualQuat::to_array`], so that contiguous arrays of numbers (a numpy array of shape
+/// (…, N, 8), say) are read and written where they are. The weights are checked and scaled
+/// per blend as [`dlb`] does (no allocation). Eight blends at a time are transposed into
+/// lanes (one array per number, one lane per blend) and blended by loops without branches
+/// or calls, which the compiler vectorizes across blends (`#[inline(always)]`, so that a
+/// caller can compile it for wider vectors inside a `#[target_feature]` function); blends
+/// whose weights or sum fail a check go through [`dlb`], which reports them. Errors: the
+/// first blend that fails (its index and [`dlb`]'s error — bad weights, a sum that is not
+/// finite or has a zero real part; the blends before it are written), or inputs of
+/// different lengths.
+#[inline(always)]
+pub fn dlb_batch<T: Real, const N: usize>(
+    q: &[[[T; 8]; N]],
+    w: &[[T; N]],
+    out: &mut [[T; 8]],
+) -> core::result::Result<(), BatchError> {
+    crate::convert::same_lengths(
+        &[q.len(), w.len(), out.len()],
+        &["dlb_batch: q and w", "dlb_batch: q and out"],
+    )?;
+    let per_item = |index: usize, q: &[[T; 8]; N], w: &[T; N]| {
+        let q = q.map(DualQuat::from_array);
+        dlb(&q, w)
+            .map(DualQuat::to_array)
+            .map_err(|error| BatchError { index, error })
+    };
+    if N == 0 {
+        // Nothing to blend: dlb's error for the first item.
+        return match (q.first(), w.first()) {
+            (Some(q), Some(w)) => per_item(0, q, w).map(|_| ()),
+            _ => Ok(()),
+        };
+    }
+    // Whole groups of LANES blends, then the rest padded with copies of its last blend.
+    let (qg, qr) = q.as_chunks::<LANES>();
+    let (wg, wr) = w.as_chunks::<LANES>();
+    let (og, or) = out.as_chunks_mut::<LANES>();
+    for (g, ((qs, ws), os)) in qg.iter().zip(wg).zip(og.iter_mut()).enumerate() {
+        let ok = dlb_lanes(qs, ws, os);
+        redo(g * LANES, &ok, qs, ws, os, &per_item)?;
+    }
+    if let (Some(ql), Some(wl)) = (qr.last(), wr.last()) {
+        let qs = core::array::from_fn(|l| *qr.get(l).unwrap_or(ql));
+        let ws = core::array::from_fn(|l| *wr.get(l).unwrap_or(wl));
+        let mut os = [[T::ZERO; 8]; LANES];
+        let ok = dlb_lanes(&qs, &ws, &mut os);
+        let n = or.len();
+        or.copy_from_slice(&os[..n]);
+        redo(
+            qg.len() * LANES,
+            &ok[..n],
+            &qs[..n],
+            &ws[..n],
+            or,
+            &per_item,
+        )?;
+    }
+    Ok(())
+}
+
+/// Blends of a group, starting at index `start`, that did not stand, through `per_item`
+/// (that is, [`dlb`]): the first error stops.
+#[inline(always)]
+fn redo<T: Real, const N: usize>(
+    start: usize,
+    ok: &[bool],
+    q: &[[[T; 8]; N]],
+    w: &[[T; N]],
+    out: &mut [[T; 8]],
+    per_item: &impl Fn(usize, &[[T; 8]; N], &[T; N]) -> core::result::Result<[T; 8], BatchError>,
+) -> core::result::Result<(), BatchError> {
+    if ok.iter().all(|g| *g) {
+        return Ok(());
+    }
+    for (l, (((qi, wi), o), good)) in q.iter().zip(w).zip(out).zip(ok).enumerate() {
+        if !good {
+            *o = per_item(start + l, qi, wi)?;
+        }
+    }
+    Ok(())
+}
+
+/// Blends [`dlb_batch`] runs side by side in lanes.
+const LANES: usize = 8;
+
+/// `[f(0), f(1), …]`: one number a lane.
+#[inline(always)]
+fn lanes<T>(f: impl FnMut(usize) -> T) -> [T; LANES] {
+    core::array::from_fn(f)
+}
+
+/// [`dlb`] of [`LANES`] blends side by side, with its checks as one flag a blend: the
+/// numbers transposed into lanes (`x[c][l]`: number c of blend l), every step a loop over
+/// the lanes — each lane one blend, the operations of `convex_weights`, `dlb_convex` and
+/// `DualQuat::normalize` in their order — so that each step is one vector operation or a
+/// few; the results transposed back into `out`. Whether each blend stands (good weights, a
+/// finite sum whose real part's squared norm is a normal number, the norm's plain path).
+#[inline(always)]
+#[allow(clippy::needless_range_loop)] // the lane loops are the point: each one vectorizes
+fn dlb_lanes<T: Real, const N: usize>(
+    q: &[[[T; 8]; N]; LANES],
+    w: &[[T; N]; LANES],
+    out: &mut [[T; 8]; LANES],
+) -> [bool; LANES] {
+    // The weights, checked and scaled (convex_weights).
+    let wk: [[T; LANES]; N] = core::array::from_fn(|k| lanes(|l| w[l][k]));
+    let mut total = [T::ZERO; LANES];
+    let mut good = [true; LANES];
+    for k in 0..N {
+        for l in 0..LANES {
+            let v = wk[k][l];
+            good[l] &= v.is_finite() & (v >= T::ZERO);
+            total[l] += v;
+        }
+    }
+    for l in 0..LANES {
+        good[l] &= (total[l] > T::ZERO) & total[l].is_finite();
+    }
+    let c: [[T; LANES]; N] = core::array::from_fn(|k| lanes(|l| wk[k][l] / total[l]));
+    // The pivot: the real part of the first heaviest.
+    let mut best = c[0];
+    let mut p: [[T; LANES]; 4] = core::array::from_fn(|j| lanes(|l| q[l][0][j]));
+    for k in 1..N {
+        for l in 0..LANES {
+            let heavier = c[k][l] > best[l];
+            best[l] = if heavier { c[k][l] } else { best[l] };
+            for j in 0..4 {
+                p[j][l] = if heavier { q[l][k][j] } else { p[j][l] };
+            }
+        }
+    }
+    // The sum from zero, each term flipped into the pivot's hemisphere.
+    let mut sum = [[T::ZERO; LANES]; 8];
+    for k in 0..N {
+        let x: [[T; LANES]; 8] = core::array::from_fn(|j| lanes(|l| q[l][k][j]));
+        for l in 0..LANES {
+            let dot = x[0][l] * p[0][l] + x[1][l] * p[1][l] + x[2][l] * p[2][l] + x[3][l] * p[3][l];
+            let s = if dot < T::ZERO { -c[k][l] } else { c[k][l] };
+            for j in 0..8 {
+                sum[j][l] += x[j][l] * s;
+            }
+        }
+    }
+    // DualQuat::normalize on its plain path.
+    let mut res = [[T::ZERO; LANES]; 8];
+    for l in 0..LANES {
+        let mut finite = true;
+        for j in 0..8 {
+            finite &= sum[j][l].is_finite();
+        }
+        let r = [sum[0][l], sum[1][l], sum[2][l], sum[3][l]];
+        let n2 = r[0] * r[0] + r[1] * r[1] + r[2] * r[2] + r[3] * r[3];
+        good[l] &= finite & n2.is_finite() & (n2 >= T::MIN_POSITIVE);
+        let n = n2.sqrt();
+        let real = r.map(|v| v / n);
+        let dual = [sum[4][l], sum[5][l], sum[6][l], sum[7][l]].map(|v| v / n);
+        let d = real[0] * dual[0] + real[1] * dual[1] + real[2] * dual[2] + real[3] * dual[3];
+        for j in 0..4 {
+            res[j][l] = real[j];
+            res[4 + j][l] = dual[j] - real[j] * d;
+        }
+    }
+    for (l, o) in out.iter_mut().enumerate() {
+        *o = core::array::from_fn(|j| res[j][l]);
+    }
+    good
 }
