@@ -4,15 +4,15 @@
 //! method, checked), rotation vectors and axis–angle pairs. Every function is batched over
 //! leading dimensions; quaternions are `[w, x, y, z]` (`scalar_first=False`: scipy's
 //! `[x, y, z, w]`). Quaternion → Euler angles and matrix → quaternion run the library's
-//! batch functions (`quats_to_euler`, `quats_from_rotation_matrices`; in their AVX2 build
-//! where the processor has it, see [`crate::simd`]) over each thread's share of the items;
-//! quaternion → matrix is straight-line code per item over plain slices.
+//! batch functions (`quats_to_euler`, `quats_from_rotation_matrices`, in their AVX2 build
+//! where the processor has it, see [`crate::simd`]) over each thread's share of the items,
+//! and so does quaternion → matrix (`quats_to_rotation_matrices`).
 
 use crate::arrays::{
     array, column, dispatch, finite, lib_error, map, map_runs, part, q_in, q_out, v_in, v_out,
     Fail, Num,
 };
-use crate::simd::{quats_from_rotation_matrices, quats_to_euler};
+use crate::simd::{quats_from_rotation_matrices, quats_to_euler, quats_to_rotation_matrices};
 use chasles::convert::BatchError;
 use chasles::{EulerOrder, Mat3, Quat};
 use numpy::PyUntypedArrayMethods;
@@ -183,18 +183,16 @@ pub fn quat_to_matrix<'py>(
 
 fn to_matrix<'py, T: Num>(q: &Bound<'py, PyAny>, sf: bool) -> PyResult<Bound<'py, PyAny>> {
     let q = array::<T>(q, "q")?;
+    // chasles::convert::matrix::quats_to_rotation_matrices: Quat::to_rotation_matrix bit
+    // for bit (normalized first where |q|² is not a normal number), eight in lanes.
     let out = map_runs(q.py(), [("q", &q, &[4])], &[3, 3], 5, |[q], out| {
+        let mut buf = [Quat::<T>::zero(); BLOCK];
         let (q, out) = (q.as_chunks::<4>().0, out.as_chunks_mut::<9>().0);
-        for (i, (s, o)) in q.iter().zip(out).enumerate() {
-            // unit_matrix's common case inline: Quat::to_rotation_matrix, straight-line.
-            let q = q_in(s, sf);
-            let n2 = q.norm_squared();
-            let m = if n2.is_finite() && n2 > T::ZERO {
-                q.to_rotation_matrix()
-            } else {
-                crate::quat::unit_matrix(q).map_err(|e| (i, e))?
-            };
-            *o = m.to_row_major();
+        for (b, (qs, os)) in q.chunks(BLOCK).zip(out.chunks_mut(BLOCK)).enumerate() {
+            for (d, s) in buf.iter_mut().zip(qs) {
+                *d = q_in(s, sf);
+            }
+            quats_to_rotation_matrices(&buf[..qs.len()], os).map_err(|e| at_block(b, e))?;
         }
         Ok(())
     })?;

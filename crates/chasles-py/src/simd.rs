@@ -2,13 +2,15 @@
 //!
 //! The package is built for the x86-64 baseline, so that one wheel runs on every x86-64
 //! processor: its vectorized loops use SSE2, two f64 (or four f32) lanes. The library's
-//! batch functions are `#[inline(always)]`, so each is compiled here a second time inside a
-//! `#[target_feature(enable = "avx2")]` function — four f64 lanes — and that build runs where
-//! `is_x86_feature_detected!("avx2")` finds the feature (cached by std after the first
-//! call). The two builds perform the same operations in the same order: Rust never fuses a
-//! multiply and an add on its own, and the library's kernels fuse only under the
-//! compile-time `fma` target feature, which neither build has — so they give the same bits
-//! (`tests/test_convert.py` and `tests/test_blend.py` check it through [`set_simd`]).
+//! batch functions (`quats_to_euler`, `quats_to_rotation_matrices`,
+//! `quats_from_rotation_matrices`, `dlb_batch`) are `#[inline(always)]`, so each is compiled
+//! here a second time inside a `#[target_feature(enable = "avx2")]` function — four f64
+//! lanes — and that build runs where `is_x86_feature_detected!("avx2")` finds the feature
+//! (cached by std after the first call). The two builds perform the same operations in the
+//! same order: Rust never fuses a multiply and an add on its own, and the library's kernels
+//! fuse only under the compile-time `fma` target feature, which neither build has — so they
+//! give the same bits (`tests/test_convert.py` and `tests/test_blend.py` check it through
+//! [`_set_simd`]).
 //!
 //! This module holds the crate's only `unsafe`: calling a `#[target_feature]` function is
 //! unsafe unless the caller has the feature, and each call here is behind the check.
@@ -70,6 +72,19 @@ pub fn quats_from_rotation_matrices<T: Real>(
     matrix::quats_from_rotation_matrices(m, out)
 }
 
+/// `chasles::convert::matrix::quats_to_rotation_matrices`, in the AVX2 build where it runs.
+pub fn quats_to_rotation_matrices<T: Real>(
+    q: &[Quat<T>],
+    out: &mut [[T; 9]],
+) -> Result<(), BatchError> {
+    #[cfg(target_arch = "x86_64")]
+    if avx2() {
+        // SAFETY: the processor has AVX2 (avx2() checked it).
+        return unsafe { wide::quats_to_rotation_matrices(q, out) };
+    }
+    matrix::quats_to_rotation_matrices(q, out)
+}
+
 /// `chasles::blend::dlb::dlb_batch`, in the AVX2 build where it runs.
 pub fn dlb_batch<T: Real, const N: usize>(
     q: &[[[T; 8]; N]],
@@ -105,6 +120,14 @@ mod wide {
         out: &mut [Quat<T>],
     ) -> Result<(), BatchError> {
         matrix::quats_from_rotation_matrices(m, out)
+    }
+
+    #[target_feature(enable = "avx2")]
+    pub fn quats_to_rotation_matrices<T: Real>(
+        q: &[Quat<T>],
+        out: &mut [[T; 9]],
+    ) -> Result<(), BatchError> {
+        matrix::quats_to_rotation_matrices(q, out)
     }
 
     #[target_feature(enable = "avx2")]

@@ -308,3 +308,12 @@ def test_batch_conversions_report_the_first_bad_item(rng):
     raises(chasles.quat_from_matrix, m, match=r"at index \(2, 4000\): the matrix is not a rotation")
     m[2, 4000] = np.eye(3)
     raises(chasles.quat_from_matrix, m, match=r"at index \(3, 10\): the matrix is not a rotation: determinant")
+
+
+def test_tiny_and_huge_quaternions_give_their_rotation():
+    # |q|² subnormal (2/|q|² would overflow) or past the largest float: normalized first.
+    quarter = chasles.quat_to_matrix([np.sqrt(0.5), 0.0, 0.0, np.sqrt(0.5)])
+    for s in [1e-160, 1e-300, 1e160, 1e300]:
+        q = np.array([[1.0, 0.0, 0.0, 1.0]] * 3) * s
+        assert np.abs(chasles.quat_to_matrix(q) - quarter).max() < 1e-15, s
+        assert np.abs(chasles.rotate(q[0], [1.0, 0.0, 0.0]) - [0.0, 1.0, 0.0]).max() < 1e-15, s

@@ -1,12 +1,13 @@
 //! The batch functions against their per-item functions: `quats_to_euler` against
 //! `Quat::to_euler` (a few ulp; exactly at gimbal lock and wherever it defers to it),
+//! `quats_to_rotation_matrices` against `Quat::to_rotation_matrix`,
 //! `quats_from_rotation_matrices` against `Quat::from_rotation_matrix` and `dlb_batch`
 //! against `dlb` (bit for bit), over random inputs and the special cases, in f32 and f64;
 //! their errors name the first failing item.
 
 use chasles::blend::dlb::{dlb, dlb_batch};
 use chasles::convert::euler::quats_to_euler;
-use chasles::convert::matrix::quats_from_rotation_matrices;
+use chasles::convert::matrix::{quats_from_rotation_matrices, quats_to_rotation_matrices};
 use chasles::convert::BatchError;
 use chasles::{DualQuat, Error, EulerOrder, Mat3, Quat, Real, Vec3};
 use rand::rngs::StdRng;
@@ -248,6 +249,72 @@ fn quats_from_rotation_matrices_reports_the_first_bad_item() {
     let mut q = [Quat::zero()];
     quats_from_rotation_matrices(&near, &mut q).unwrap();
     assert_eq!(q[0], Quat::from_rotation_matrix(&near[0]).unwrap());
+}
+
+#[test]
+fn quats_to_rotation_matrices_is_to_rotation_matrix_bit_for_bit() {
+    fn check<T: Real>(seed: u64) {
+        let mut r = rng(seed);
+        let mut q: Vec<Quat<T>> = (0..1003).map(|_| any_quat(&mut r)).collect();
+        q.extend(special::<T>(EulerOrder::DAM));
+        let mut out = vec![[T::ZERO; 9]; q.len()];
+        quats_to_rotation_matrices(&q, &mut out).unwrap();
+        for (qi, m) in q.iter().zip(&out) {
+            let n2 = qi.norm_squared();
+            let want = if n2.is_finite() && n2 >= T::MIN_POSITIVE {
+                qi.to_rotation_matrix()
+            } else {
+                // Squared norms past the ends of the normal range: normalized first.
+                qi.normalize().unwrap().to_rotation_matrix()
+            };
+            assert_eq!(*m, want.to_row_major(), "{qi:?}");
+            let back = Mat3::from_row_major(*m);
+            assert!(back.rotation_deviation().to_f64() < 1e3 * T::EPSILON.to_f64());
+        }
+    }
+    check::<f64>(6);
+    check::<f32>(7);
+    // Closed form: a half turn about z, from a quaternion of length 2.
+    let mut m = [[0.0; 9]];
+    quats_to_rotation_matrices(&[Quat::new(0.0f64, 0.0, 0.0, 2.0)], &mut m).unwrap();
+    assert_eq!(m[0], [-1.0, 0.0, 0.0, 0.0, -1.0, 0.0, 0.0, 0.0, 1.0]);
+}
+
+#[test]
+fn quats_to_rotation_matrices_reports_the_first_bad_item() {
+    let mut q = vec![Quat::<f32>::new(1.0, 0.2, 0.3, 0.4); 21];
+    q[13] = Quat::zero();
+    q[19] = Quat::new(0.0, f32::INFINITY, 0.0, 0.0);
+    let mut out = vec![[0.0; 9]; 21];
+    let e = quats_to_rotation_matrices(&q, &mut out).unwrap_err();
+    assert!(
+        matches!(
+            e,
+            BatchError {
+                index: 13,
+                error: Error::ZeroNorm { .. }
+            }
+        ),
+        "{e}"
+    );
+    assert_eq!(out[12], q[12].to_rotation_matrix().to_row_major());
+    q[13] = Quat::identity();
+    let e = quats_to_rotation_matrices(&q, &mut out).unwrap_err();
+    assert!(
+        matches!(
+            e,
+            BatchError {
+                index: 19,
+                error: Error::NonFinite { .. }
+            }
+        ),
+        "{e}"
+    );
+    let e = quats_to_rotation_matrices(&q, &mut out[..3]).unwrap_err();
+    assert!(
+        matches!(e.error, Error::BatchLengths { a: 21, b: 3, .. }),
+        "{e}"
+    );
 }
 
 fn random_dq<T: Real>(r: &mut StdRng) -> [T; 8] {

@@ -15,7 +15,7 @@
 //! through [`dlb`] itself, which reports them.
 
 use super::weights::{check_lengths, convex_weights, pivot};
-use crate::convert::BatchError;
+use crate::convert::{lanes, BatchError, LANES};
 use crate::{DualQuat, Real, Result};
 
 /// DLB of unit dual quaternions (weights made convex).
@@ -120,16 +120,7 @@ fn redo<T: Real, const N: usize>(
     Ok(())
 }
 
-/// Blends [`dlb_batch`] runs side by side in lanes.
-const LANES: usize = 8;
-
-/// `[f(0), f(1), …]`: one number a lane.
-#[inline(always)]
-fn lanes<T>(f: impl FnMut(usize) -> T) -> [T; LANES] {
-    core::array::from_fn(f)
-}
-
-/// [`dlb`] of [`LANES`] blends side by side, with its checks as one flag a blend: the
+/// [`dlb`] of `LANES` (8) blends side by side, with its checks as one flag a blend: the
 /// numbers transposed into lanes (`x[c][l]`: number c of blend l), every step a loop over
 /// the lanes — each lane one blend, the operations of `convex_weights`, `dlb_convex` and
 /// `DualQuat::normalize` in their order — so that each step is one vector operation or a

@@ -12,10 +12,100 @@
 //! the same operations in the same order — the rotation check, the pivot, the divisions,
 //! the normalization — but the pivot's four cases as selects instead of branches (a random
 //! rotation's pivot is a coin toss for the branch predictor), so its results are the
-//! per-item function's bit for bit.
+//! per-item function's bit for bit. [`quats_to_rotation_matrices`] runs
+//! [`Quat::to_rotation_matrix`] over a slice, eight quaternions side by side in lanes (the
+//! nine entries of a row-major matrix are too many for the compiler to vectorize a loop
+//! that stores them item by item), bit for bit too.
 
-use super::BatchError;
+use super::{lanes, BatchError, LANES};
 use crate::{Error, Mat3, Mat4, Quat, Real, Result};
+
+/// The rotation matrices of `q` into `out` (row-major, as [`Mat3::to_row_major`] gives
+/// them): [`Quat::to_rotation_matrix`] bit for bit for every quaternion whose squared norm
+/// is a normal finite number (any such scale: `q/‖q‖`'s rotation), eight at a time side by
+/// side in lanes, in loops without branches or calls that the compiler vectorizes
+/// (`#[inline(always)]`, so that a caller can compile it for wider vectors inside a
+/// `#[target_feature]` function). The others go through `q.normalize()?` first: rescaled
+/// where `‖q‖²` overflows or is subnormal (where `2/‖q‖²` would not be finite), an error
+/// for a zero or non-finite quaternion. Errors: the first such item (its index and
+/// [`Quat::normalize`]'s error; the items before it are written), or `q` and `out` of
+/// different lengths.
+#[inline(always)]
+pub fn quats_to_rotation_matrices<T: Real>(
+    q: &[Quat<T>],
+    out: &mut [[T; 9]],
+) -> core::result::Result<(), BatchError> {
+    super::same_lengths(
+        &[q.len(), out.len()],
+        &["quats_to_rotation_matrices: q and out"],
+    )?;
+    let (qg, qr) = q.as_chunks::<LANES>();
+    let (og, or) = out.as_chunks_mut::<LANES>();
+    for (g, (qs, os)) in qg.iter().zip(og.iter_mut()).enumerate() {
+        rotations_in_lanes(g * LANES, qs, os)?;
+    }
+    if let Some(last) = qr.last() {
+        // The rest, padded with copies of its last quaternion.
+        let qs = core::array::from_fn(|l| *qr.get(l).unwrap_or(last));
+        rotations_in_lanes(qg.len() * LANES, &qs, or)?;
+    }
+    Ok(())
+}
+
+/// [`quats_to_rotation_matrices`] of [`LANES`] quaternions (the first `out.len()` of them
+/// written), the first being item `start`: `to_rotation_matrix`'s operations, each a loop
+/// over the lanes.
+#[inline(always)]
+fn rotations_in_lanes<T: Real>(
+    start: usize,
+    q: &[Quat<T>; LANES],
+    out: &mut [[T; 9]],
+) -> core::result::Result<(), BatchError> {
+    let (w, x, y, z) = (
+        lanes(|l| q[l].w),
+        lanes(|l| q[l].x),
+        lanes(|l| q[l].y),
+        lanes(|l| q[l].z),
+    );
+    let n2 = lanes(|l| w[l] * w[l] + x[l] * x[l] + y[l] * y[l] + z[l] * z[l]);
+    let plain = lanes(|l| n2[l].is_finite() & (n2[l] >= T::MIN_POSITIVE));
+    let s = lanes(|l| {
+        if n2[l] > T::ZERO {
+            T::TWO / n2[l]
+        } else {
+            T::ZERO
+        }
+    });
+    let times = |a: &[T; LANES], b: &[T; LANES]| lanes(|l| a[l] * b[l] * s[l]);
+    let (xx, yy, zz) = (times(&x, &x), times(&y, &y), times(&z, &z));
+    let (xy, xz, yz) = (times(&x, &y), times(&x, &z), times(&y, &z));
+    let (wx, wy, wz) = (times(&w, &x), times(&w, &y), times(&w, &z));
+    let m = [
+        lanes(|l| T::ONE - (yy[l] + zz[l])),
+        lanes(|l| xy[l] - wz[l]),
+        lanes(|l| xz[l] + wy[l]),
+        lanes(|l| xy[l] + wz[l]),
+        lanes(|l| T::ONE - (xx[l] + zz[l])),
+        lanes(|l| yz[l] - wx[l]),
+        lanes(|l| xz[l] - wy[l]),
+        lanes(|l| yz[l] + wx[l]),
+        lanes(|l| T::ONE - (xx[l] + yy[l])),
+    ];
+    for (l, o) in out.iter_mut().enumerate() {
+        *o = if plain[l] {
+            core::array::from_fn(|k| m[k][l])
+        } else {
+            q[l].normalize()
+                .map_err(|error| BatchError {
+                    index: start + l,
+                    error,
+                })?
+                .to_rotation_matrix()
+                .to_row_major()
+        };
+    }
+    Ok(())
+}
 
 /// [`Quat::from_rotation_matrix`] of every matrix of `m` into `out`, bit for bit, in a loop
 /// without branches or calls: Shepperd's four cases are all computed and selected. Matrices
