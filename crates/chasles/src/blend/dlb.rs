@@ -15,7 +15,7 @@
 //! through [`dlb`] itself, which reports them.
 
 use super::weights::{check_lengths, convex_weights, pivot};
-use crate::convert::{lanes, BatchError, LANES};
+use crate::convert::{BatchError, LANES};
 use crate::{DualQuat, Real, Result};
 
 /// DLB of unit dual quaternions (weights made convex).
@@ -121,11 +121,8 @@ fn redo<T: Real, const N: usize>(
 }
 
 /// [`dlb`] of `LANES` (8) blends side by side, with its checks as one flag a blend: the
-/// numbers transposed into lanes (`x[c][l]`: number c of blend l), every step a loop over
-/// the lanes — each lane one blend, the operations of `convex_weights`, `dlb_convex` and
-/// `DualQuat::normalize` in their order — so that each step is one vector operation or a
-/// few; the results transposed back into `out`. Whether each blend stands (good weights, a
-/// finite sum whose real part's squared norm is a normal number, the norm's plain path).
+/// numbers transposed into lanes, blended by [`blend_in_lanes`], the results transposed
+/// back into `out`. Whether each blend stands.
 #[inline(always)]
 #[allow(clippy::needless_range_loop)] // the lane loops are the point: each one vectorizes
 fn dlb_lanes<T: Real, const N: usize>(
@@ -133,66 +130,84 @@ fn dlb_lanes<T: Real, const N: usize>(
     w: &[[T; N]; LANES],
     out: &mut [[T; 8]; LANES],
 ) -> [bool; LANES] {
-    // The weights, checked and scaled (convex_weights).
-    let wk: [[T; LANES]; N] = core::array::from_fn(|k| lanes(|l| w[l][k]));
-    let mut total = [T::ZERO; LANES];
-    let mut good = [true; LANES];
-    for k in 0..N {
-        for l in 0..LANES {
-            let v = wk[k][l];
-            good[l] &= v.is_finite() & (v >= T::ZERO);
-            total[l] += v;
-        }
-    }
+    // x[k][j][l] is number j of dual quaternion k of blend l; wk[k][l] its weight.
+    let mut x = [[[T::ZERO; LANES]; 8]; N];
+    let mut wk = [[T::ZERO; LANES]; N];
     for l in 0..LANES {
-        good[l] &= (total[l] > T::ZERO) & total[l].is_finite();
-    }
-    let c: [[T; LANES]; N] = core::array::from_fn(|k| lanes(|l| wk[k][l] / total[l]));
-    // The pivot: the real part of the first heaviest.
-    let mut best = c[0];
-    let mut p: [[T; LANES]; 4] = core::array::from_fn(|j| lanes(|l| q[l][0][j]));
-    for k in 1..N {
-        for l in 0..LANES {
-            let heavier = c[k][l] > best[l];
-            best[l] = if heavier { c[k][l] } else { best[l] };
-            for j in 0..4 {
-                p[j][l] = if heavier { q[l][k][j] } else { p[j][l] };
-            }
-        }
-    }
-    // The sum from zero, each term flipped into the pivot's hemisphere.
-    let mut sum = [[T::ZERO; LANES]; 8];
-    for k in 0..N {
-        let x: [[T; LANES]; 8] = core::array::from_fn(|j| lanes(|l| q[l][k][j]));
-        for l in 0..LANES {
-            let dot = x[0][l] * p[0][l] + x[1][l] * p[1][l] + x[2][l] * p[2][l] + x[3][l] * p[3][l];
-            let s = if dot < T::ZERO { -c[k][l] } else { c[k][l] };
+        for k in 0..N {
             for j in 0..8 {
-                sum[j][l] += x[j][l] * s;
+                x[k][j][l] = q[l][k][j];
             }
+            wk[k][l] = w[l][k];
         }
     }
-    // DualQuat::normalize on its plain path.
+    let (res, good) = blend_in_lanes(&x, &wk);
+    for (l, o) in out.iter_mut().enumerate() {
+        *o = core::array::from_fn(|j| res[j][l]);
+    }
+    good
+}
+
+/// The blends of [`dlb_lanes`], one a lane (`x[k][j][l]`: number j of dual quaternion k of
+/// blend l, `w[k][l]` its weight; the result's number j of blend l in `[j][l]`): the
+/// operations of `convex_weights`, `dlb_convex` and `DualQuat::normalize` in their order,
+/// in one loop over the lanes that the compiler vectorizes — every choice a select. Whether
+/// each blend stands (good weights, a finite sum whose real part's squared norm is a normal
+/// number: the norm's plain path).
+#[inline(always)]
+#[allow(clippy::needless_range_loop)] // the lane loop is the point: it vectorizes
+fn blend_in_lanes<T: Real, const N: usize>(
+    x: &[[[T; LANES]; 8]; N],
+    w: &[[T; LANES]; N],
+) -> ([[T; LANES]; 8], [bool; LANES]) {
     let mut res = [[T::ZERO; LANES]; 8];
+    let mut good = [true; LANES];
     for l in 0..LANES {
-        let mut finite = true;
-        for j in 0..8 {
-            finite &= sum[j][l].is_finite();
+        // The weights, checked and scaled (convex_weights).
+        let mut total = T::ZERO;
+        let mut ok = true;
+        for k in 0..N {
+            let v = w[k][l];
+            ok &= v.is_finite() & (v >= T::ZERO);
+            total += v;
         }
-        let r = [sum[0][l], sum[1][l], sum[2][l], sum[3][l]];
-        let n2 = r[0] * r[0] + r[1] * r[1] + r[2] * r[2] + r[3] * r[3];
-        good[l] &= finite & n2.is_finite() & (n2 >= T::MIN_POSITIVE);
+        ok &= (total > T::ZERO) & total.is_finite();
+        let c: [T; N] = core::array::from_fn(|k| w[k][l] / total);
+        // Every real part, loaded once (a load under the pivot's condition below would be
+        // compiled as a masked load, slow on AMD's Zen).
+        let r: [[T; 4]; N] = core::array::from_fn(|k| core::array::from_fn(|j| x[k][j][l]));
+        // The pivot: the real part of the first heaviest.
+        let mut best = c[0];
+        let mut p = r[0];
+        for k in 1..N {
+            let heavier = c[k] > best;
+            best = if heavier { c[k] } else { best };
+            for j in 0..4 {
+                p[j] = if heavier { r[k][j] } else { p[j] };
+            }
+        }
+        // The sum from zero, each term flipped into the pivot's hemisphere.
+        let mut sum = [T::ZERO; 8];
+        for k in 0..N {
+            let dot = r[k][0] * p[0] + r[k][1] * p[1] + r[k][2] * p[2] + r[k][3] * p[3];
+            let s = if dot < T::ZERO { -c[k] } else { c[k] };
+            for j in 0..8 {
+                sum[j] += x[k][j][l] * s;
+            }
+        }
+        // DualQuat::normalize on its plain path.
+        let finite = sum.iter().fold(true, |a, v| a & v.is_finite());
+        let n2 = sum[0] * sum[0] + sum[1] * sum[1] + sum[2] * sum[2] + sum[3] * sum[3];
+        ok &= finite & n2.is_finite() & (n2 >= T::MIN_POSITIVE);
         let n = n2.sqrt();
-        let real = r.map(|v| v / n);
-        let dual = [sum[4][l], sum[5][l], sum[6][l], sum[7][l]].map(|v| v / n);
+        let real = [sum[0] / n, sum[1] / n, sum[2] / n, sum[3] / n];
+        let dual = [sum[4] / n, sum[5] / n, sum[6] / n, sum[7] / n];
         let d = real[0] * dual[0] + real[1] * dual[1] + real[2] * dual[2] + real[3] * dual[3];
         for j in 0..4 {
             res[j][l] = real[j];
             res[4 + j][l] = dual[j] - real[j] * d;
         }
+        good[l] = ok;
     }
-    for (l, o) in out.iter_mut().enumerate() {
-        *o = core::array::from_fn(|j| res[j][l]);
-    }
-    good
+    (res, good)
 }

@@ -17,7 +17,7 @@
 //! nine entries of a row-major matrix are too many for the compiler to vectorize a loop
 //! that stores them item by item), bit for bit too.
 
-use super::{lanes, BatchError, LANES};
+use super::{BatchError, LANES};
 use crate::{Error, Mat3, Mat4, Quat, Real, Result};
 
 /// The rotation matrices of `q` into `out` (row-major, as [`Mat3::to_row_major`] gives
@@ -53,44 +53,35 @@ pub fn quats_to_rotation_matrices<T: Real>(
 }
 
 /// [`quats_to_rotation_matrices`] of [`LANES`] quaternions (the first `out.len()` of them
-/// written), the first being item `start`: `to_rotation_matrix`'s operations, each a loop
-/// over the lanes.
+/// written), the first being item `start`: `to_rotation_matrix`'s operations in one loop
+/// over the lanes, which the compiler vectorizes, then the entries stored item by item.
 #[inline(always)]
+#[allow(clippy::needless_range_loop)] // the lane loop is the point: it vectorizes
 fn rotations_in_lanes<T: Real>(
     start: usize,
     q: &[Quat<T>; LANES],
     out: &mut [[T; 9]],
 ) -> core::result::Result<(), BatchError> {
-    let (w, x, y, z) = (
-        lanes(|l| q[l].w),
-        lanes(|l| q[l].x),
-        lanes(|l| q[l].y),
-        lanes(|l| q[l].z),
-    );
-    let n2 = lanes(|l| w[l] * w[l] + x[l] * x[l] + y[l] * y[l] + z[l] * z[l]);
-    let plain = lanes(|l| n2[l].is_finite() & (n2[l] >= T::MIN_POSITIVE));
-    let s = lanes(|l| {
-        if n2[l] > T::ZERO {
-            T::TWO / n2[l]
-        } else {
-            T::ZERO
-        }
-    });
-    let times = |a: &[T; LANES], b: &[T; LANES]| lanes(|l| a[l] * b[l] * s[l]);
-    let (xx, yy, zz) = (times(&x, &x), times(&y, &y), times(&z, &z));
-    let (xy, xz, yz) = (times(&x, &y), times(&x, &z), times(&y, &z));
-    let (wx, wy, wz) = (times(&w, &x), times(&w, &y), times(&w, &z));
-    let m = [
-        lanes(|l| T::ONE - (yy[l] + zz[l])),
-        lanes(|l| xy[l] - wz[l]),
-        lanes(|l| xz[l] + wy[l]),
-        lanes(|l| xy[l] + wz[l]),
-        lanes(|l| T::ONE - (xx[l] + zz[l])),
-        lanes(|l| yz[l] - wx[l]),
-        lanes(|l| xz[l] - wy[l]),
-        lanes(|l| yz[l] + wx[l]),
-        lanes(|l| T::ONE - (xx[l] + yy[l])),
-    ];
+    let mut m = [[T::ZERO; LANES]; 9];
+    let mut plain = [false; LANES];
+    for l in 0..LANES {
+        let (w, x, y, z) = (q[l].w, q[l].x, q[l].y, q[l].z);
+        let n2 = w * w + x * x + y * y + z * z;
+        plain[l] = n2.is_finite() & (n2 >= T::MIN_POSITIVE);
+        let s = if n2 > T::ZERO { T::TWO / n2 } else { T::ZERO };
+        let (xx, yy, zz) = (x * x * s, y * y * s, z * z * s);
+        let (xy, xz, yz) = (x * y * s, x * z * s, y * z * s);
+        let (wx, wy, wz) = (w * x * s, w * y * s, w * z * s);
+        m[0][l] = T::ONE - (yy + zz);
+        m[1][l] = xy - wz;
+        m[2][l] = xz + wy;
+        m[3][l] = xy + wz;
+        m[4][l] = T::ONE - (xx + zz);
+        m[5][l] = yz - wx;
+        m[6][l] = xz - wy;
+        m[7][l] = yz + wx;
+        m[8][l] = T::ONE - (xx + yy);
+    }
     for (l, o) in out.iter_mut().enumerate() {
         *o = if plain[l] {
             core::array::from_fn(|k| m[k][l])

@@ -52,12 +52,6 @@ pub(crate) fn same_lengths(
 }
 
 /// Items the batch functions run side by side in lanes, where they do: one array per
-/// number, one lane per item, so that each step is a loop over the lanes, which the
-/// compiler turns into a vector operation or a few.
+/// number, one lane per item, so that their arithmetic is one loop over the lanes, which the
+/// compiler vectorizes.
 pub(crate) const LANES: usize = 8;
-
-/// `[f(0), f(1), …]`: one number a lane.
-#[inline(always)]
-pub(crate) fn lanes<T>(f: impl FnMut(usize) -> T) -> [T; LANES] {
-    core::array::from_fn(f)
-}
