@@ -28,7 +28,7 @@ use pyo3::types::{PyDict, PyEllipsis, PySlice, PyTuple};
 use rayon::prelude::*;
 
 /// The element types a call runs in: `f32` and `f64`.
-pub trait Num: Real + Element + Send + Sync {}
+pub trait Num: Real + Element + Send + Sync + crate::simd::Dlb {}
 impl Num for f32 {}
 impl Num for f64 {}
 

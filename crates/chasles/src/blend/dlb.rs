@@ -15,7 +15,7 @@
 //! through [`dlb`] itself, which reports them.
 
 use super::weights::{check_lengths, convex_weights, pivot};
-use crate::convert::{BatchError, LANES};
+use crate::convert::BatchError;
 use crate::{DualQuat, Real, Result};
 
 /// DLB of unit dual quaternions (weights made convex).
@@ -120,8 +120,11 @@ fn redo<T: Real, const N: usize>(
     Ok(())
 }
 
-/// [`dlb`] of `LANES` (8) blends side by side, with its checks as one flag a blend: the
-/// numbers transposed into lanes, blended by [`blend_in_lanes`], the results transposed
+/// How many blends [`dlb_in_lanes`] blends side by side (and [`dlb_batch`] at a time).
+pub const LANES: usize = crate::convert::LANES;
+
+/// [`dlb`] of [`LANES`] blends side by side, with its checks as one flag a blend: the
+/// numbers transposed into lanes, blended by [`dlb_in_lanes`], the results transposed
 /// back into `out`. Whether each blend stands.
 #[inline(always)]
 #[allow(clippy::needless_range_loop)] // the lane loops are the point: each one vectorizes
@@ -141,22 +144,27 @@ fn dlb_lanes<T: Real, const N: usize>(
             wk[k][l] = w[l][k];
         }
     }
-    let (res, good) = blend_in_lanes(&x, &wk);
+    let (res, good) = dlb_in_lanes(&x, &wk);
     for (l, o) in out.iter_mut().enumerate() {
         *o = core::array::from_fn(|j| res[j][l]);
     }
     good
 }
 
-/// The blends of [`dlb_lanes`], one a lane (`x[k][j][l]`: number j of dual quaternion k of
-/// blend l, `w[k][l]` its weight; the result's number j of blend l in `[j][l]`): the
-/// operations of `convex_weights`, `dlb_convex` and `DualQuat::normalize` in their order,
-/// in one loop over the lanes that the compiler vectorizes — every choice a select. Whether
-/// each blend stands (good weights, a finite sum whose real part's squared norm is a normal
-/// number: the norm's plain path).
+/// The kernel of [`dlb_batch`]: [`dlb`] of [`LANES`] blends held in lanes — `x[k][j][l]` is
+/// number j (in [`DualQuat::to_array`]'s order) of dual quaternion k of blend l, `w[k][l]`
+/// its weight; number j of blend l's result is returned in `[j][l]` — with `dlb`'s
+/// operations (`convex_weights`, `dlb_convex`, `DualQuat::normalize`) in their order, in
+/// one loop over the lanes that the compiler vectorizes, every choice a select. The flag of
+/// a lane says whether its blend stands (good weights, a finite sum whose real part's
+/// squared norm is a normal number — the norm's plain path): then it is `dlb`'s bit for
+/// bit; a blend whose flag is false must go through [`dlb`] (which reports what is wrong
+/// with it). For callers that hold their blends in lanes already, or put them there with
+/// shuffles the compiler does not find (the Python package's AVX2 build does; [`dlb_batch`]
+/// moves numbers one by one). `#[inline(always)]`, like [`dlb_batch`].
 #[inline(always)]
 #[allow(clippy::needless_range_loop)] // the lane loop is the point: it vectorizes
-fn blend_in_lanes<T: Real, const N: usize>(
+pub fn dlb_in_lanes<T: Real, const N: usize>(
     x: &[[[T; LANES]; 8]; N],
     w: &[[T; LANES]; N],
 ) -> ([[T; LANES]; 8], [bool; LANES]) {
