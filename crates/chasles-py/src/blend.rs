@@ -113,12 +113,15 @@ fn checked<T: Num>(
     start: usize,
 ) -> Result<(), (usize, Fail)> {
     let written = &out[..failed.as_ref().map_or(out.len(), |e| e.index)];
-    // One pass without branches; the search only when something is not finite.
-    if !written
-        .iter()
-        .flatten()
-        .fold(true, |a, v| a & v.is_finite())
-    {
+    // One pass without branches (0·x is 0 for finite x, NaN otherwise; one running sum per
+    // number, so the loop vectorizes); the search only when something is not finite.
+    let mut acc = [T::ZERO; 8];
+    for d in written {
+        for (a, v) in acc.iter_mut().zip(d) {
+            *a += *v * T::ZERO;
+        }
+    }
+    if acc.iter().any(|a| *a != T::ZERO) {
         for (k, d) in written.iter().enumerate() {
             finite(
                 d,
