@@ -5,7 +5,7 @@
 //! against `dlb` (bit for bit), over random inputs and the special cases, in f32 and f64;
 //! their errors name the first failing item.
 
-use chasles::blend::dlb::{dlb, dlb_batch};
+use chasles::blend::dlb::{dlb, dlb_batch, dlb_in_lanes, LANES};
 use chasles::convert::euler::quats_to_euler;
 use chasles::convert::matrix::{quats_from_rotation_matrices, quats_to_rotation_matrices};
 use chasles::convert::BatchError;
@@ -480,4 +480,32 @@ fn dlb_batch_reports_the_first_bad_item() {
         matches!(e.error, Error::BatchLengths { a: 3, b: 2, .. }),
         "{e}"
     );
+}
+
+#[test]
+fn dlb_in_lanes_is_dlb_where_it_says_so() {
+    // Eight blends of three held in lanes: x[k][j][l], w[k][l].
+    let mut r = rng(30);
+    let q: Vec<[[f64; 8]; 3]> = (0..LANES)
+        .map(|_| core::array::from_fn(|_| random_dq(&mut r)))
+        .collect();
+    let mut w: Vec<[f64; 3]> = (0..LANES)
+        .map(|_| core::array::from_fn(|_| r.random_range(0.0..2.0)))
+        .collect();
+    w[3] = [1.0, -1.0, 1.0];
+    w[6] = [0.0; 3];
+    let x: [[[f64; LANES]; 8]; 3] =
+        core::array::from_fn(|k| core::array::from_fn(|j| core::array::from_fn(|l| q[l][k][j])));
+    let wl: [[f64; LANES]; 3] = core::array::from_fn(|k| core::array::from_fn(|l| w[l][k]));
+    let (out, ok) = dlb_in_lanes(&x, &wl);
+    for l in 0..LANES {
+        let want = dlb(&q[l].map(DualQuat::from_array), &w[l]);
+        assert_eq!(ok[l], l != 3 && l != 6, "lane {l}");
+        if ok[l] {
+            let got: [f64; 8] = core::array::from_fn(|j| out[j][l]);
+            assert_eq!(got, want.unwrap().to_array(), "lane {l}");
+        } else {
+            assert!(want.is_err());
+        }
+    }
 }
