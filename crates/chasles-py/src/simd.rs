@@ -220,9 +220,21 @@ mod wide {
                     }
                 }
             }
-            for (l, wl) in ws.iter().enumerate() {
-                for (k, v) in wl.iter().enumerate() {
-                    wk[k][l] = *v;
+            if N.is_multiple_of(4) {
+                for c in 0..N / 4 {
+                    for b in 0..L / 4 {
+                        // Weights 4c..4c+4 of blends 4b..4b+4.
+                        let rows = std::array::from_fn(|l| load4(&ws[4 * b + l][4 * c..]));
+                        for (k, col) in transpose4(rows).into_iter().enumerate() {
+                            store4(&mut wk[4 * c + k][4 * b..], col);
+                        }
+                    }
+                }
+            } else {
+                for (l, wl) in ws.iter().enumerate() {
+                    for (k, v) in wl.iter().enumerate() {
+                        wk[k][l] = *v;
+                    }
                 }
             }
             let (res, ok) = dlb::dlb_in_lanes(&x, &wk);
