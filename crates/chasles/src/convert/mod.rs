@@ -5,10 +5,11 @@
 //! Rigid transformations ↔ dual quaternions (Kavan et al. 2006, eq. 1) are methods of
 //! [`crate::DualQuat`].
 //!
-//! Batches: [`euler::quats_to_euler`] and [`matrix::quats_from_rotation_matrices`] convert
-//! slices at once, in loops without branches or calls that the compiler vectorizes, and
-//! give the per-item functions' results (the Euler angles to a few ulp, the quaternions
-//! bit for bit); they report the first item that fails as a [`BatchError`].
+//! Batches: [`euler::quats_to_euler`], [`matrix::quats_to_rotation_matrices`] and
+//! [`matrix::quats_from_rotation_matrices`] convert slices at once, in loops without
+//! branches or calls that the compiler vectorizes, and give the per-item functions' results
+//! (the Euler angles to a few ulp, the matrices and quaternions bit for bit); they report
+//! the first item that fails as a [`BatchError`] (so does [`crate::blend::dlb::dlb_batch`]).
 
 pub mod axis_angle;
 pub mod euler;
