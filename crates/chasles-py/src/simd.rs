@@ -41,16 +41,10 @@ pub fn _set_simd(allowed: bool) -> bool {
 }
 
 /// Whether the AVX2 builds run: an x86-64 processor with AVX2, and allowed.
+#[cfg(target_arch = "x86_64")]
 #[inline]
 fn avx2() -> bool {
-    #[cfg(target_arch = "x86_64")]
-    {
-        ALLOWED.load(Ordering::Relaxed) && std::is_x86_feature_detected!("avx2")
-    }
-    #[cfg(not(target_arch = "x86_64"))]
-    {
-        false
-    }
+    ALLOWED.load(Ordering::Relaxed) && std::is_x86_feature_detected!("avx2")
 }
 
 /// `chasles::convert::euler::quats_to_euler`, in the AVX2 build where it runs.
@@ -195,6 +189,7 @@ mod wide {
         out: &mut [[f64; 8]],
     ) -> Result<(), BatchError> {
         const L: usize = dlb::LANES;
+        const { assert!(L.is_multiple_of(4), "whole 4x4 transposes") };
         if N == 0 || q.len() != w.len() || q.len() != out.len() {
             // dlb_batch's errors.
             return dlb::dlb_batch(q, w, out);
