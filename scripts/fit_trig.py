@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Refits the polynomial tables `ACOS`, `SIN`, `COS`, `ANGLE2_F32` and `SINC_F32` of
+"""Refits the polynomial tables `ACOS`, `SIN`, `COS`, `ATAN`, `ANGLE2_F32` and `SINC_F32` of
 crates/chasles/src/trig.rs.
 
 What is fitted (each table is the polynomial in its own variable, constant term first):
@@ -7,6 +7,8 @@ What is fitted (each table is the polynomial in its own variable, constant term 
   SIN   S(z) ~ (sin x - x)/(x z),           z = x^2, 0 <= z <= 0.64 (|x| <= 0.8), 6 terms
         (sin x = x + x z S(z));
   COS   C(z) ~ (cos x - 1 + z/2)/z^2,       same z, 7 terms (cos x = 1 - z/2 + z^2 C(z));
+  ATAN  P(z) ~ (atan t - t)/(t z),          z = t^2, 0 <= z <= 1 (0 <= t <= 1), 20 terms
+        (atan t = t + t z P(z); the error is counted on atan t);
 and, for f32 (coefficients rounded to f32 where used, errors in f32 ulp = 2^-23):
   ANGLE2_F32  Z(y) ~ acos(1 - y)^2/(2y),    0 <= y <= 1.0001, 9 terms (the squared angle);
   SINC_F32    T(u) ~ (sin(sqrt u)/sqrt u - 1)/u, 0 <= u <= acos(-0.0001)^2 (SINC_F32_MAX),
@@ -15,22 +17,24 @@ How: plain (unweighted) least squares in the monomial basis at --nodes Chebyshev
 kind) of the variable's interval, in 50-digit mpmath arithmetic, each coefficient then rounded
 to the nearest f64. All 19 ACOS terms are fitted: the constant comes out 1 + 1.4e-17 and rounds
 to exactly 1.0 (so A(0) = 1 in f64). This reproduces trig.rs's tables bit for bit for any
---nodes from 29 up (fewer nodes, or weighting by 1/f, or fixing the constant at 1 before the
+--nodes from 29 up (ATAN from 30 up; at 29 six of its coefficients differ in the last digits,
+0.06 ulp in value; fewer nodes, or weighting by 1/f, or fixing the constant at 1 before the
 fit, give different coefficients whose values agree to well under 1 ulp; the fits are
 near-minimax, hence ill-conditioned in the coefficients).
 
 Errors are relative, in ulp = 2^-52 (f64::EPSILON, as trig.rs's tests count them), of the
-angle factor A(y) (the angle is d * A(y)), of sin x and of cos x, over a dense grid: exactly
-(50 digits, coefficients as f64 values) and evaluated in f64 by Horner without FMA (trig.rs
-uses Estrin's scheme, with FMA where the build has it, so its rounding differs a little).
+angle factor A(y) (the angle is d * A(y)), of sin x, of cos x and of atan t, over a dense
+grid: exactly (50 digits, coefficients as f64 values) and evaluated in f64 by Horner without
+FMA (trig.rs uses Estrin's scheme, with FMA where the build has it, so its rounding differs a
+little).
 The f32 tables likewise in ulp = 2^-23, their coefficients rounded to f32, evaluated in
 f32 (each operation rounded to f32).
 
 Usage (needs mpmath: pip install mpmath):
   python3 scripts/fit_trig.py            print the refitted tables as Rust source, and errors
   python3 scripts/fit_trig.py --check    compare with trig.rs's tables; exit 1 unless they are
-                                         within the documented error (3 ulp angle, 1.5 ulp sin
-                                         and cos) and agree in value with the refit to that
+                                         within the documented error (3 ulp angle, 1.5 ulp sin,
+                                         cos and atan) and agree in value with the refit to that
 """
 import argparse
 import pathlib
@@ -82,6 +86,11 @@ def angle2(y):
     return mp.acos(1 - y) ** 2 / (2 * y)
 
 
+def atan_part(z):
+    t = mp.sqrt(z)
+    return (mp.atan(t) - t) / (t * z)
+
+
 def sinc(u):
     return mp.sin(mp.sqrt(u)) / mp.sqrt(u)
 
@@ -110,6 +119,12 @@ KERNELS = {
         lambda c, x: 1 - x * x / 2 + (x * x) ** 2 * horner(c, x * x),
         lambda c, x: (x * x) * (x * x) * horner(c, x * x) + ((x * x) * -0.5 + 1.0),
         mp.cos, 1.5, EPS,
+    ),
+    "ATAN": (
+        20, mp.mpf(1), atan_part, 1.0,
+        lambda c, t: t + t * t * t * horner(c, t * t),
+        lambda c, t: t * (t * t) * horner(c, t * t) + t,
+        mp.atan, 1.5, EPS,
     ),
     "ANGLE2_F32": (
         9, mp.mpf(Y_MAX), angle2, float(Y_MAX),

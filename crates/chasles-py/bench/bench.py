@@ -65,6 +65,7 @@ def main():
     ap.add_argument("--fps", type=float, default=120.0)
     a = ap.parse_args()
     n, rep = a.n, a.repeat
+    load_before = os.getloadavg()
     rng = np.random.default_rng(19)
     q = rng.normal(size=(n + 1, 4))
     q /= np.linalg.norm(q, axis=1, keepdims=True)
@@ -144,7 +145,9 @@ def main():
         lambda: numpy_lbs(jm, j, wt, p, nn), "numpy einsum LBS", 10, lambda: None)
 
     print(f"n = {n}, best of {a.repeat}, {os.cpu_count()} CPUs, numpy {np.__version__}, "
-          f"scipy {__import__('scipy').__version__}, chasles {chasles.__version__}")
+          f"scipy {__import__('scipy').__version__}, chasles {chasles.__version__}; load average "
+          f"{load_before[0]:.1f} before, {os.getloadavg()[0]:.1f} after (other processes share the "
+          f"CPUs: compare ratios from one run, and runs at low load)")
     print("| task | chasles ms | baseline | baseline ms | speed-up | target |")
     print("|---|---|---|---|---|---|")
     for name, to, tt, ratio, base, target in rows:

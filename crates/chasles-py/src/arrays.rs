@@ -9,6 +9,13 @@
 //!   runs the library once per item with the GIL released — on all cores (rayon) when the
 //!   batch is large. A failing item raises `ValueError` with the library's message and the
 //!   item's index; the first failing index is reported whatever the thread order.
+//! * [`map_runs`] does the same for the library's batch functions (`quats_to_euler`,
+//!   `dlb_batch`, …): when no argument is broadcast, each thread's share of the items is
+//!   handed over as plain slices of the arrays — no index arithmetic and no call per item.
+//! * Outputs are allocated by numpy's `empty`: every function writes every element of every
+//!   item before it returns, and an array whose filling failed is never returned. (`zeros`
+//!   clears outputs up to 32 MB, which glibc serves from memory it reuses: 0.4 ms for 10⁶
+//!   Euler triples, 0.8 ms for 10⁶ quaternions on the development machine.)
 //! * [`q_in`], [`q_out`] and friends read and write `[w, x, y, z]`, or scipy's
 //!   `[x, y, z, w]` when `scalar_first` is false.
 
@@ -21,7 +28,7 @@ use pyo3::types::{PyDict, PyEllipsis, PySlice, PyTuple};
 use rayon::prelude::*;
 
 /// The element types a call runs in: `f32` and `f64`.
-pub trait Num: Real + Element + Send + Sync {}
+pub trait Num: Real + Element + Send + Sync + crate::simd::Dlb {}
 impl Num for f32 {}
 impl Num for f64 {}
 
@@ -237,6 +244,10 @@ impl Index {
             kind,
         }
     }
+    /// Whether every output item `i` reads input item `i` (no broadcasting).
+    pub fn is_identity(&self) -> bool {
+        matches!(self.kind, Kind::Same)
+    }
     /// The input item of output item `i`.
     #[inline]
     pub fn at(&self, mut i: usize) -> usize {
@@ -318,10 +329,60 @@ pub fn item_error(i: usize, msg: String, lead: &[usize]) -> PyErr {
     }
 }
 
+/// What [`map`] and [`map_runs`] share: the checked and broadcast arguments and the
+/// output, allocated.
+struct Prepared<'a, 'py, T: Num, const N: usize> {
+    lead: Vec<usize>,
+    index: [Index; N],
+    sizes: [usize; N],
+    data: [&'a [T]; N],
+    out: Bound<'py, PyArrayDyn<T>>,
+    size: usize,
+}
+
+fn prepare<'a, 'py, T: Num, const N: usize>(
+    py: Python<'py>,
+    args: &[Arg<'a, 'py, T>; N],
+    out_core: &[usize],
+) -> PyResult<Prepared<'a, 'py, T, N>> {
+    let mut leads = Vec::with_capacity(N);
+    for (name, a, core) in args {
+        leads.push((*name, leading(a.shape(), core, name)?));
+    }
+    let lead = broadcast(&leads)?;
+    let index = std::array::from_fn(|k| Index::new(leads[k].1, &lead));
+    let sizes = std::array::from_fn(|k| args[k].2.iter().product());
+    let mut data = [&[][..]; N];
+    for (d, a) in data.iter_mut().zip(args) {
+        *d = a.1.as_slice().map_err(|e| value_error(e.to_string()))?;
+    }
+    let mut shape = lead.clone();
+    shape.extend_from_slice(out_core);
+    Ok(Prepared {
+        lead,
+        index,
+        sizes,
+        data,
+        out: empty(py, &shape)?,
+        size: out_core.iter().product(),
+    })
+}
+
+/// `numpy.empty(shape, T)`: the callers write every element of every item before the array
+/// is returned and read none before it is written (on a failure it is dropped unread).
+pub fn empty<'py, T: Num>(py: Python<'py>, shape: &[usize]) -> PyResult<Bound<'py, PyArrayDyn<T>>> {
+    let np = py.import(intern!(py, "numpy"))?;
+    let a = np.call_method1(
+        intern!(py, "empty"),
+        (PyTuple::new(py, shape)?, numpy::dtype::<T>(py)),
+    )?;
+    Ok(a.cast_into::<PyArrayDyn<T>>()?)
+}
+
 /// Checks each argument's core shape, broadcasts their leading dimensions, allocates the
 /// output (leading dimensions + `out_core`) and fills it item by item with `f(inputs,
-/// out)`, the GIL released. `work` is a rough cost of one item in nanoseconds (it decides
-/// when to use all cores).
+/// out)`, the GIL released; `f` must write all of `out` when it succeeds. `work` is a rough
+/// cost of one item in nanoseconds (it decides when to use all cores).
 pub fn map<'py, T: Num, const N: usize>(
     py: Python<'py>,
     args: [Arg<'_, 'py, T>; N],
@@ -329,36 +390,89 @@ pub fn map<'py, T: Num, const N: usize>(
     work: usize,
     f: impl Fn(&[&[T]; N], &mut [T]) -> Result<(), Fail> + Sync,
 ) -> PyResult<Bound<'py, PyArrayDyn<T>>> {
-    let mut leads = Vec::with_capacity(N);
-    for (name, a, core) in &args {
-        leads.push((*name, leading(a.shape(), core, name)?));
-    }
-    let lead = broadcast(&leads)?;
-    let index: Vec<Index> = leads.iter().map(|l| Index::new(l.1, &lead)).collect();
-    let sizes: Vec<usize> = args.iter().map(|a| a.2.iter().product()).collect();
-    let data: Vec<&[T]> = args
-        .iter()
-        .map(|a| a.1.as_slice())
-        .collect::<Result<_, _>>()
-        .map_err(|e| value_error(e.to_string()))?;
-    let mut shape = lead.clone();
-    shape.extend_from_slice(out_core);
-    let out = PyArrayDyn::<T>::zeros(py, shape, false);
-    let size: usize = out_core.iter().product();
+    let p = prepare(py, &args, out_core)?;
     {
-        let mut rw = out.readwrite();
+        let mut rw = p.out.readwrite();
         let o = rw.as_slice_mut().map_err(|e| value_error(e.to_string()))?;
         let item = |i: usize, oi: &mut [T]| {
             let ins: [&[T]; N] = std::array::from_fn(|k| {
-                let at = index[k].at(i) * sizes[k];
-                &data[k][at..at + sizes[k]]
+                let at = p.index[k].at(i) * p.sizes[k];
+                &p.data[k][at..at + p.sizes[k]]
             });
             f(&ins, oi)
         };
-        py.detach(|| for_items(o, size, work, &item))
-            .map_err(|(i, m)| item_error(i, m, &lead))?;
+        py.detach(|| for_items(o, p.size, work, &item))
+            .map_err(|(i, m)| item_error(i, m, &p.lead))?;
     }
-    Ok(out)
+    Ok(p.out)
+}
+
+/// [`map`] for functions of runs of consecutive items (the library's batch functions):
+/// `f(inputs, out)` gets each argument's numbers for some `k` items and the `k` items'
+/// output, writes all of it when it succeeds, and otherwise returns the first failing
+/// item's offset in the run with its message. When no argument is broadcast, each thread's
+/// share of the batch is one run of plain slices of the arrays; otherwise `f` sees runs of
+/// one item, gathered as [`map`] does.
+pub fn map_runs<'py, T: Num, const N: usize>(
+    py: Python<'py>,
+    args: [Arg<'_, 'py, T>; N],
+    out_core: &[usize],
+    work: usize,
+    f: impl Fn(&[&[T]; N], &mut [T]) -> Result<(), (usize, Fail)> + Sync,
+) -> PyResult<Bound<'py, PyArrayDyn<T>>> {
+    let p = prepare(py, &args, out_core)?;
+    {
+        let mut rw = p.out.readwrite();
+        let o = rw.as_slice_mut().map_err(|e| value_error(e.to_string()))?;
+        let result = if p.index.iter().all(Index::is_identity) {
+            let run = |start: usize, oi: &mut [T]| {
+                let count = oi.len() / p.size.max(1);
+                let ins: [&[T]; N] = std::array::from_fn(|k| {
+                    &p.data[k][start * p.sizes[k]..(start + count) * p.sizes[k]]
+                });
+                f(&ins, oi).map_err(|(j, e)| (start + j, e.0))
+            };
+            py.detach(|| for_runs(o, p.size, work, &run))
+        } else {
+            let item = |i: usize, oi: &mut [T]| {
+                let ins: [&[T]; N] = std::array::from_fn(|k| {
+                    let at = p.index[k].at(i) * p.sizes[k];
+                    &p.data[k][at..at + p.sizes[k]]
+                });
+                f(&ins, oi).map_err(|(_, e)| e)
+            };
+            py.detach(|| for_items(o, p.size, work, &item))
+        };
+        result.map_err(|(i, m)| item_error(i, m, &p.lead))?;
+    }
+    Ok(p.out)
+}
+
+/// Runs `f(start, out)` over runs of consecutive items of `out` (items of `size` numbers;
+/// `start` is the run's first item): one run on the caller's thread for small batches
+/// (`work`: rough nanoseconds an item), else runs of an eighth of a thread's share (at
+/// least 1024 items) on all threads. The failure of the lowest index, if any.
+fn for_runs<T: Send>(
+    out: &mut [T],
+    size: usize,
+    work: usize,
+    f: &(impl Fn(usize, &mut [T]) -> Result<(), (usize, String)> + Sync),
+) -> Result<(), (usize, String)> {
+    let n = out.len() / size.max(1);
+    if size == 0 || n == 0 {
+        return Ok(());
+    }
+    let threads = rayon::current_num_threads();
+    if threads > 1 && n.saturating_mul(work) >= PARALLEL_NS && n > 1 {
+        let per = (n / (threads * 8)).max(1024).min(n);
+        out.par_chunks_mut(per * size)
+            .enumerate()
+            .filter_map(|(c, o)| f(c * per, o).err())
+            .min_by_key(|e| e.0)
+            .map_or(Ok(()), Err)
+    } else {
+        f(0, out)
+    }
 }
 
 /// `a[..., start:end]`.

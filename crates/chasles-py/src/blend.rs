@@ -5,7 +5,9 @@
 //! with weights (..., n) — one blend per item of the leading dimensions, on all cores —
 //! and ScLERP between pairs.
 
-use crate::arrays::{array, dispatch, dq_in, dq_out, finite, map, value_error, Fail, Num};
+use crate::arrays::{
+    array, dispatch, dq_in, dq_out, finite, map, map_runs, value_error, Fail, Num,
+};
 use crate::dualquat::mat4;
 use chasles::blend::{blend_dual_quats, blend_matrices, dlb, Method, Options};
 use chasles::{DualQuat, Mat4, Real, Vec3};
@@ -54,6 +56,84 @@ fn dlb_on<T: Num, const N: usize>(x: &[T], w: &[T], sf: bool) -> Result<DualQuat
         *b = dq_in(s, sf);
     }
     dlb_item(&buf[..n], w)
+}
+
+/// Items blended at a time by [`dlb_run`] when their numbers are reordered first.
+const BLOCK: usize = 128;
+
+/// DLB of a run of blends of N dual quaternions each (`x`: 8 N numbers a blend, `w`: N),
+/// into `out` (8 numbers a blend, and with `full` the rigid flag and -1): through
+/// `chasles::blend::dlb::dlb_batch` (in its AVX2 build where the processor has it), which
+/// gives `dlb`'s results bit for bit. Scalar-first input and plain output are read and
+/// written where they are; otherwise blocks are reordered through the stack. The first
+/// failure — the library's, or a blend that is not finite — with its offset.
+fn dlb_run<T: Num, const N: usize>(
+    x: &[T],
+    w: &[T],
+    out: &mut [T],
+    sf: bool,
+    full: bool,
+) -> Result<(), (usize, Fail)> {
+    let x = x.as_chunks::<8>().0.as_chunks::<N>().0;
+    let w = w.as_chunks::<N>().0;
+    if sf && !full {
+        let out = out.as_chunks_mut::<8>().0;
+        let failed = crate::simd::dlb_batch(x, w, out).err();
+        return checked(out, failed, 0);
+    }
+    let width = if full { 10 } else { 8 };
+    let mut qs = [[[T::ZERO; 8]; N]; BLOCK];
+    let mut ds = [[T::ZERO; 8]; BLOCK];
+    for (b, (xs, ws)) in x.chunks(BLOCK).zip(w.chunks(BLOCK)).enumerate() {
+        for (q, s) in qs.iter_mut().zip(xs) {
+            for (d, s) in q.iter_mut().zip(s) {
+                *d = dq_in(s, sf).to_array();
+            }
+        }
+        let (qs, ds) = (&qs[..xs.len()], &mut ds[..xs.len()]);
+        let failed = crate::simd::dlb_batch(qs, ws, ds).err();
+        let os = out[b * BLOCK * width..].chunks_exact_mut(width);
+        for (d, o) in ds.iter().zip(os) {
+            dq_out(DualQuat::from_array(*d), &mut o[..8], sf);
+            if full {
+                o[8] = T::ONE;
+                o[9] = -T::ONE;
+            }
+        }
+        checked(ds, failed, b * BLOCK)?;
+    }
+    Ok(())
+}
+
+/// The first failure of a DLB batch written to `out` (`failed`: the library's, which stopped
+/// it), or of a blend in `out` before it that is not finite, offset by `start`.
+fn checked<T: Num>(
+    out: &[[T; 8]],
+    failed: Option<chasles::convert::BatchError>,
+    start: usize,
+) -> Result<(), (usize, Fail)> {
+    let written = &out[..failed.as_ref().map_or(out.len(), |e| e.index)];
+    // One pass without branches (0·x is 0 for finite x, NaN otherwise; one running sum per
+    // number, so the loop vectorizes); the search only when something is not finite.
+    let mut acc = [T::ZERO; 8];
+    for d in written {
+        for (a, v) in acc.iter_mut().zip(d) {
+            *a += *v * T::ZERO;
+        }
+    }
+    if acc.iter().any(|a| *a != T::ZERO) {
+        for (k, d) in written.iter().enumerate() {
+            finite(
+                d,
+                "the blend (the input is beyond the range of this precision)",
+            )
+            .map_err(|e| (start + k, e))?;
+        }
+    }
+    match failed {
+        Some(e) => Err((start + e.index, e.error.into())),
+        None => Ok(()),
+    }
 }
 
 /// Blends of rigid transformations with convex weights, every method of ``chasles blend``.
@@ -165,6 +245,27 @@ fn blend_t<'py, T: Num>(
     let each = if matrices { 16 } else { 8 };
     let width = each + if s.full_output { 2 } else { 0 };
     let (m, sf, full) = (s.method, s.sf, s.full_output);
+    if m == Method::Dlb && !matrices {
+        // chasles::blend::dlb::dlb_batch for up to 8 transforms a blend.
+        macro_rules! batch {
+            ($($n:literal)*) => {
+                match n {
+                    $($n => {
+                        let out = map_runs(
+                            py,
+                            [("transforms", &x, &core), ("weights", &w, &[n])],
+                            &[width],
+                            20 * n + 10,
+                            |[x, w], out| dlb_run::<T, $n>(x, w, out, sf, full),
+                        )?;
+                        return finish(out, false, full);
+                    })*
+                    _ => {}
+                }
+            };
+        }
+        batch!(1 2 3 4 5 6 7 8);
+    }
     let work = match m {
         Method::Dlb | Method::Lin | Method::Qlb | Method::ScLerp => 20 * n + 40,
         _ => 400 * n,

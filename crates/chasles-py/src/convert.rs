@@ -3,14 +3,29 @@
 //! naming: lower case extrinsic, upper case intrinsic), rotation matrices (Shepperd's
 //! method, checked), rotation vectors and axis–angle pairs. Every function is batched over
 //! leading dimensions; quaternions are `[w, x, y, z]` (`scalar_first=False`: scipy's
-//! `[x, y, z, w]`).
+//! `[x, y, z, w]`). Quaternion → Euler angles and matrix → quaternion run the library's
+//! batch functions (`quats_to_euler`, `quats_from_rotation_matrices`, in their AVX2 build
+//! where the processor has it, see [`crate::simd`]) over each thread's share of the items,
+//! and so does quaternion → matrix (`quats_to_rotation_matrices`).
 
 use crate::arrays::{
-    array, column, dispatch, finite, lib_error, map, part, q_in, q_out, v_in, v_out, Fail, Num,
+    array, column, dispatch, finite, lib_error, map, map_runs, part, q_in, q_out, v_in, v_out,
+    Fail, Num,
 };
+use crate::simd::{quats_from_rotation_matrices, quats_to_euler, quats_to_rotation_matrices};
+use chasles::convert::BatchError;
 use chasles::{EulerOrder, Mat3, Quat};
 use numpy::PyUntypedArrayMethods;
 use pyo3::prelude::*;
+
+/// Items converted at a time through the library's batch functions (their inputs copied to
+/// the stack as the library's types, in scalar-first order).
+const BLOCK: usize = 256;
+
+/// A batch function's failure at `index` of block `b` as [`map_runs`] reports it.
+fn at_block(b: usize, e: BatchError) -> (usize, Fail) {
+    (b * BLOCK + e.index, e.error.into())
+}
 
 /// Parses an Euler order by the library's rules (`ValueError` with its message).
 pub fn order(s: &str) -> PyResult<EulerOrder> {
@@ -82,8 +97,17 @@ fn to_euler<'py, T: Num>(
     sf: bool,
 ) -> PyResult<Bound<'py, PyAny>> {
     let q = array::<T>(q, "q")?;
-    let out = map(q.py(), [("q", &q, &[4])], &[3], 60, |[q], out| {
-        out.copy_from_slice(&q_in(q, sf).to_euler(o)?.angles);
+    // chasles::convert::euler::quats_to_euler: Quat::to_euler's angles to a few ulp (exactly
+    // at gimbal lock), vectorized.
+    let out = map_runs(q.py(), [("q", &q, &[4])], &[3], 15, |[q], out| {
+        let mut buf = [Quat::<T>::zero(); BLOCK];
+        let (q, out) = (q.as_chunks::<4>().0, out.as_chunks_mut::<3>().0);
+        for (b, (qs, os)) in q.chunks(BLOCK).zip(out.chunks_mut(BLOCK)).enumerate() {
+            for (d, s) in buf.iter_mut().zip(qs) {
+                *d = q_in(s, sf);
+            }
+            quats_to_euler(&buf[..qs.len()], o, os).map_err(|e| at_block(b, e))?;
+        }
         Ok(())
     })?;
     Ok(out.into_any())
@@ -117,9 +141,22 @@ fn from_matrix<'py, T: Num>(m: &Bound<'py, PyAny>, sf: bool) -> PyResult<Bound<'
             Ok(())
         })?
     } else {
-        map(m.py(), [("m", &m, &[3, 3])], &[4], 40, |[m], out| {
-            let m = Mat3::from_row_major((*m).try_into().map_err(|_| Fail("m".into()))?);
-            q_out(Quat::from_rotation_matrix(&m)?, out, sf);
+        // chasles::convert::matrix::quats_from_rotation_matrices: Quat::from_rotation_matrix
+        // bit for bit, without branches.
+        map_runs(m.py(), [("m", &m, &[3, 3])], &[4], 15, |[m], out| {
+            let mut ms = [Mat3::<T>::identity(); BLOCK];
+            let mut qs = [Quat::<T>::zero(); BLOCK];
+            let (m, out) = (m.as_chunks::<9>().0, out.as_chunks_mut::<4>().0);
+            for (b, (mb, ob)) in m.chunks(BLOCK).zip(out.chunks_mut(BLOCK)).enumerate() {
+                for (d, s) in ms.iter_mut().zip(mb) {
+                    *d = Mat3::from_row_major(*s);
+                }
+                let (ms, qs) = (&ms[..mb.len()], &mut qs[..mb.len()]);
+                quats_from_rotation_matrices(ms, qs).map_err(|e| at_block(b, e))?;
+                for (q, o) in qs.iter().zip(ob) {
+                    q_out(*q, o, sf);
+                }
+            }
             Ok(())
         })?
     };
@@ -146,9 +183,17 @@ pub fn quat_to_matrix<'py>(
 
 fn to_matrix<'py, T: Num>(q: &Bound<'py, PyAny>, sf: bool) -> PyResult<Bound<'py, PyAny>> {
     let q = array::<T>(q, "q")?;
-    let out = map(q.py(), [("q", &q, &[4])], &[3, 3], 20, |[q], out| {
-        let m = crate::quat::unit_matrix(q_in(q, sf))?;
-        out.copy_from_slice(&m.to_row_major());
+    // chasles::convert::matrix::quats_to_rotation_matrices: Quat::to_rotation_matrix bit
+    // for bit (normalized first where |q|² is not a normal number), eight in lanes.
+    let out = map_runs(q.py(), [("q", &q, &[4])], &[3, 3], 5, |[q], out| {
+        let mut buf = [Quat::<T>::zero(); BLOCK];
+        let (q, out) = (q.as_chunks::<4>().0, out.as_chunks_mut::<9>().0);
+        for (b, (qs, os)) in q.chunks(BLOCK).zip(out.chunks_mut(BLOCK)).enumerate() {
+            for (d, s) in buf.iter_mut().zip(qs) {
+                *d = q_in(s, sf);
+            }
+            quats_to_rotation_matrices(&buf[..qs.len()], os).map_err(|e| at_block(b, e))?;
+        }
         Ok(())
     })?;
     Ok(out.into_any())

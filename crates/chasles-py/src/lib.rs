@@ -14,13 +14,15 @@
 //! * [`blend`] — `chasles::blend`: every method of `chasles blend`, and ScLERP;
 //! * [`skin`] — `chasles_skin`: rigs (glTF, JSON, the built-in models), poses, and
 //!   skinning through the typed fast job (`fast::SkinningJob` with a `fast::Palette`);
-//! * [`pickle`] — rigs and poses cross processes (Dask) by pickling.
+//! * [`pickle`] — rigs and poses cross processes (Dask) by pickling;
+//! * [`simd`] — the library's batch loops compiled for AVX2 too, chosen at run time.
 //!
 //! It is not a member of the root workspace: a PyO3 extension module is linked by the
 //! Python that loads it, so `cargo test --workspace` could not link it; maturin builds it
 //! and `.ci/run` checks it with `cargo fmt`/`cargo clippy --manifest-path` and pytest.
 
-#![forbid(unsafe_code)]
+// No unsafe code but `simd`'s calls of the AVX2 builds, each behind its feature check.
+#![deny(unsafe_code)]
 
 use pyo3::prelude::*;
 
@@ -32,6 +34,7 @@ pub mod interp;
 pub mod pickle;
 pub mod quat;
 pub mod rig;
+pub mod simd;
 pub mod skin;
 pub mod spring;
 
@@ -82,6 +85,7 @@ fn chasles_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
         w!(skin::skin, m)?,
         w!(rig::models, m)?,
         w!(rig::model_bytes, m)?,
+        w!(simd::_set_simd, m)?,
     ] {
         m.add_function(f)?;
     }

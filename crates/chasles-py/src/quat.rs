@@ -10,11 +10,12 @@ use pyo3::prelude::*;
 
 /// The rotation matrix of a non-zero, finite quaternion (`to_rotation_matrix` treats a
 /// non-unit q as `q/|q|`, with one division and no square root); the library's error for
-/// a zero or non-finite one (and the normalized route where `|q|²` overflows).
+/// a zero or non-finite one (and the normalized route where `|q|²` overflows or is
+/// subnormal, as `chasles::convert::matrix::quats_to_rotation_matrices` does).
 #[inline(always)]
 pub fn unit_matrix<T: Num>(q: Quat<T>) -> Result<chasles::Mat3<T>, Fail> {
     let n2 = q.norm_squared();
-    if n2.is_finite() && n2 > T::ZERO {
+    if n2.is_finite() && n2 >= T::MIN_POSITIVE {
         Ok(q.to_rotation_matrix())
     } else {
         Ok(q.normalize()?.to_rotation_matrix())

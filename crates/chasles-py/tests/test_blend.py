@@ -108,3 +108,61 @@ def test_bad_weights_and_shapes_raise_value_error(rng):
         chasles.blend(x, [1.0, 1.0, 1.0], "dib", precision=0.0)
     with pytest.raises(ValueError, match="zero length"):
         chasles.sclerp(np.zeros(8), x[0], 0.5)
+
+
+@pytest.mark.parametrize("n", [1, 2, 3, 4, 5, 8, 9])
+@pytest.mark.parametrize("dtype", [np.float32, np.float64])
+def test_dlb_batches_are_the_same_in_every_build_and_layout(rng, n, dtype):
+    # DLB of up to 8 transforms runs through the library's dlb_batch (dlb bit for bit); the
+    # AVX2 and baseline builds, scalar-last order, full_output, broadcast weights and one
+    # blend at a time all give the same bits.
+    from test_convert import both_builds
+
+    x = random_dqs(rng, 3001, n).astype(dtype)
+    x[::7] *= -1
+    w = rng.uniform(0.0, 1.0, size=(3001, n)).astype(dtype)
+    w[:, 0] += 0.01
+    wide, base = both_builds(chasles.blend, x, w, "dlb")
+    assert wide.dtype == dtype and wide.shape == (3001, 8)
+    assert np.array_equal(wide, base)
+    assert np.array_equal(chasles.blend(x[2999], w[2999], "dlb"), wide[2999])
+    b, rigid, iters = chasles.blend(x, w, "dlb", full_output=True)
+    assert np.array_equal(b, wide) and rigid.all() and (iters == -1).all()
+    xyzw = np.concatenate([np.roll(x[..., :4], -1, axis=-1), np.roll(x[..., 4:], -1, axis=-1)], axis=-1)
+    sl = chasles.blend(xyzw, w, "dlb", scalar_first=False)
+    assert np.array_equal(np.concatenate([np.roll(sl[:, :4], 1, axis=-1), np.roll(sl[:, 4:], 1, axis=-1)], axis=-1), wide)
+    same = chasles.blend(x, w[0], "dlb")
+    assert np.array_equal(same[5], chasles.blend(x[5], w[0], "dlb"))
+    if dtype == np.float64:
+        # A real value: the numpy DLB of bench/bench.py (the same antipodality fix).
+        s = w / w.sum(axis=1, keepdims=True)
+        pivot = x[np.arange(3001), np.argmax(s, axis=1), :4]
+        s = np.where(np.einsum("nkj,nj->nk", x[..., :4], pivot) < 0, -s, s)
+        sb = np.einsum("nk,nkj->nj", s, x)
+        r = sb[:, :4] / np.linalg.norm(sb[:, :4], axis=1, keepdims=True)
+        d = sb[:, 4:] / np.linalg.norm(sb[:, :4], axis=1, keepdims=True)
+        d = d - r * np.sum(r * d, axis=1, keepdims=True)
+        assert np.abs(wide - np.concatenate([r, d], axis=1)).max() < 1e-12
+
+
+def test_dlb_batches_report_the_first_bad_blend(rng):
+    x = random_dqs(rng, 20000, 4)
+    w = rng.uniform(0.1, 1.0, size=(20000, 4))
+    w[12345, 2] = -1.0
+    w[19000] = 0.0
+    with pytest.raises(ValueError, match=r"at index \(12345,\): weight 2 is -1"):
+        chasles.blend(x, w, "dlb")
+    w[12345, 2] = 1.0
+    with pytest.raises(ValueError, match=r"at index \(19000,\): the weights sum to 0"):
+        chasles.blend(x, w, "dlb", scalar_first=False, full_output=True)
+    w[19000] = 1.0
+    x[15000, 1, 5] = np.inf
+    with pytest.raises(ValueError, match=r"at index \(15000,\): dual quaternion is not finite"):
+        chasles.blend(x, w, "dlb")
+    # Finite input whose blend is not: the real part's norm tiny, the dual part huge.
+    x[15000, 1, 5] = 0.0
+    x[16000] = [1e-150, 0, 0, 0, 1e300, 0, 0, 0]
+    with pytest.raises(ValueError, match=r"at index \(16000,\): the blend \(the input is beyond"):
+        chasles.blend(x, w, "dlb")
+    with pytest.raises(ValueError, match=r"at index \(16000,\): the blend \(the input is beyond"):
+        chasles.blend(x, w, "dlb", full_output=True)

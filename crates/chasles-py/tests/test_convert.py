@@ -245,3 +245,75 @@ def test_misaligned_and_strided_inputs_are_read(rng):
     wide[:, ::2] = q
     assert np.array_equal(chasles.quat_conj(wide[:, ::2]), chasles.quat_conj(q))
     assert np.array_equal(chasles.quat_conj(q.T.copy().T), chasles.quat_conj(q))
+
+
+def both_builds(fn, *args, **kw):
+    """fn's result with the batch loops' AVX2 build (where the processor has AVX2) and with
+    the baseline build."""
+    native = chasles._chasles
+    was = native._set_simd(True)
+    try:
+        wide = fn(*args, **kw)
+        native._set_simd(False)
+        base = fn(*args, **kw)
+    finally:
+        native._set_simd(was)
+    return wide, base
+
+
+@pytest.mark.parametrize("dtype", [np.float32, np.float64])
+def test_batch_conversions_are_the_same_in_every_build_and_layout(rng, dtype):
+    # Enough items for every thread's run, not a whole number of the library's blocks; the
+    # AVX2 and baseline builds of the batch loops give the same bits, and so does a
+    # broadcast call (item by item) or one item at a time.
+    q = (unit_quats(rng, 5001) * rng.uniform(0.1, 10.0, size=(5001, 1))).astype(dtype)
+    q[:50] = chasles.quat_from_euler(rng.uniform(-3, 3, size=(50, 3)) * [1, 0, 1] + [0, np.pi / 2, 0], "xyz")
+    q[50:60, 1:3] = 0.0
+    for order in ["xyz", "ZYZ", "yxy", "XZY"]:
+        wide, base = both_builds(chasles.quat_to_euler, q, order)
+        assert np.array_equal(wide, base), order
+        assert np.array_equal(chasles.quat_to_euler(q[None], order)[0], wide)
+        assert np.array_equal(chasles.quat_to_euler(q[1234], order), wide[1234])
+        xyzw = np.roll(q, -1, axis=1)
+        assert np.array_equal(chasles.quat_to_euler(xyzw, order, scalar_first=False), wide)
+        # Against scipy: float64 to 1e-12; gimbal lock sets the third angle to 0 (scipy
+        # agrees on the rotation there).
+        if dtype == np.float64:
+            ref = Rotation.from_quat(q[60:], scalar_first=True).as_euler(order)
+            assert np.abs(wide[60:] - ref).max() < 1e-12, order
+        if order == "xyz":
+            assert (wide[:50, 2] == 0).all()
+            back = chasles.quat_from_euler(wide[:50], order)
+            assert same_rotation(back, q[:50] / np.linalg.norm(q[:50], axis=1, keepdims=True)) < 1e-5
+    m = chasles.quat_to_matrix(q)
+    wide, base = both_builds(chasles.quat_from_matrix, m)
+    assert np.array_equal(wide, base)
+    assert np.array_equal(chasles.quat_from_matrix(m[777]), wide[777])
+    wide, base = both_builds(chasles.quat_to_matrix, q)
+    assert np.array_equal(wide, base)
+    assert np.array_equal(chasles.quat_to_matrix(q[4321]), wide[4321])
+
+
+def test_batch_conversions_report_the_first_bad_item(rng):
+    q = unit_quats(rng, 20000)
+    q[15000] = 0.0
+    q[17000] = np.nan
+    raises(chasles.quat_to_euler, q, "xyz", match=r"at index \(15000,\): quaternion has zero length")
+    raises(chasles.quat_to_matrix, q, match=r"at index \(15000,\): quaternion has zero length")
+    m = chasles.quat_to_matrix(unit_quats(rng, 20000)).reshape(4, 5000, 3, 3)
+    m[3, 10] = np.diag([1.0, 1.0, -1.0])
+    m[2, 4000, 0, 0] = np.inf
+    raises(chasles.quat_from_matrix, m, match=r"at index \(2, 4000\): rotation matrix is not finite")
+    m[2, 4000, 0, 0] = 1.0
+    raises(chasles.quat_from_matrix, m, match=r"at index \(2, 4000\): the matrix is not a rotation")
+    m[2, 4000] = np.eye(3)
+    raises(chasles.quat_from_matrix, m, match=r"at index \(3, 10\): the matrix is not a rotation: determinant")
+
+
+def test_tiny_and_huge_quaternions_give_their_rotation():
+    # |q|² subnormal (2/|q|² would overflow) or past the largest float: normalized first.
+    quarter = chasles.quat_to_matrix([np.sqrt(0.5), 0.0, 0.0, np.sqrt(0.5)])
+    for s in [1e-160, 1e-300, 1e160, 1e300]:
+        q = np.array([[1.0, 0.0, 0.0, 1.0]] * 3) * s
+        assert np.abs(chasles.quat_to_matrix(q) - quarter).max() < 1e-15, s
+        assert np.abs(chasles.rotate(q[0], [1.0, 0.0, 0.0]) - [0.0, 1.0, 0.0]).max() < 1e-15, s

@@ -1,4 +1,5 @@
-//! Reduced-range trigonometric kernels for the interpolation formulas.
+//! Reduced-range trigonometric kernels for the interpolation formulas and the batched
+//! conversions.
 //!
 //! ScLERP (Kavan et al. 2006, §4, `p̂ (p̂* q̂)^t`, evaluated as a dual Slerp, Dam et al.
 //! 1998, eq. 6.4) needs the angle Ω between two unit quaternions on the shorter arc
@@ -14,18 +15,32 @@
 //! * for f32 Slerp (Dam et al. 1998, eq. 6.13, up to a quarter turn), two shorter
 //!   polynomials fitted to f32's precision: the squared angle `Ω² = 2y Z(y)`
 //!   ([`angle2_over_2y_f32`], 9 terms) and the small part of `sinc √u = 1 + u T(u)`
-//!   ([`sinc_minus_one_f32`], 5 terms), within 1.5 f32 ulp each.
+//!   ([`sinc_minus_one_f32`], 5 terms), within 1.5 f32 ulp each;
+//! * for the batched quaternion → Euler conversion (Bernardes & Viollet 2022, three
+//!   `atan2` per item): [`atan2`], the four-quadrant arc tangent with no branch and no
+//!   call — one division `t = min(|x|, |y|)/max(|x|, |y|) ∈ [0, 1]`, `atan t = t + t z P(z)`
+//!   with `z = t²` (`P` in 20 terms), then the octant by selects and `π/2`, `π` as
+//!   two-part constants — so that a loop of them vectorizes, where libm's `atan2` is a
+//!   call with branches per value. It is hand-written rather than taken from `wide`
+//!   (whose `f64x2::atan2` is Cephes' rational form, two divisions a value): the batch
+//!   conversion is generic over [`Real`] like the rest of the crate, so its kernel must be
+//!   too, and scalar code with selects is vectorized at the width of the function it is
+//!   compiled into — four f64 lanes where a caller compiles the batch for AVX2, as the
+//!   Python package does when the processor has it — where `wide`'s types fix their width
+//!   and instructions when the crate is compiled.
 //!
 //! The polynomials were fitted in 50-digit arithmetic (unweighted least squares at Chebyshev
 //! nodes of the first kind, near-minimax; every coefficient of `ACOS` free, the constant
-//! rounding to exactly 1) on `y ≤ 1.0001` and `|x| ≤ 0.8` by `scripts/fit_trig.py`, whose
-//! refit reproduces the tables bit for bit (its `--check`, run in CI, reports that and fails
-//! if the tables' values drift past these bounds); in `f64` they are within about 3 ulp (the
-//! angle) and 1.5 ulp (sin, cos) of the true values there — the tests check this against
-//! the library functions; the f32 tables likewise within 1.5 f32 ulp, evaluated in f32. They are evaluated by Estrin's scheme (short dependency chains),
-//! with fused multiply-adds where the build has them (`fma` target feature), and are generic
-//! over [`Lanes`]: every [`Real`] (so the FLOP counter counts them as they run) and
-//! `wide::f64x2`, two values at once (SSE2 on every x86-64, NEON on AArch64).
+//! rounding to exactly 1) on `y ≤ 1.0001`, `|x| ≤ 0.8` and `0 ≤ t ≤ 1` by
+//! `scripts/fit_trig.py`, whose refit reproduces the tables bit for bit (its `--check`, run
+//! in CI, reports that and fails if the tables' values drift past these bounds); in `f64`
+//! they are within about 3 ulp (the angle) and 1.5 ulp (sin, cos, atan) of the true values
+//! there — the tests check this against the library functions; the f32 tables likewise
+//! within 1.5 f32 ulp, evaluated in f32. They are evaluated by Estrin's scheme (short
+//! dependency chains), with fused multiply-adds where the build has them (`fma` target
+//! feature), and are generic over [`Lanes`]: every [`Real`] (so the FLOP counter counts them
+//! as they run) and `wide::f64x2`, two values at once (SSE2 on every x86-64, NEON on
+//! AArch64).
 
 use crate::Real;
 use core::ops::{Add, Mul, Sub};
@@ -113,6 +128,30 @@ const COS: [f64; 7] = [
     2.087675565161897e-09,
     -1.1470439189559761e-11,
     4.744616280885557e-14,
+];
+
+/// `atan(t) = t + t z P(z)`, `z = t²`, `0 ≤ t ≤ 1`: the coefficients of `P`.
+const ATAN: [f64; 20] = [
+    -0.3333333333333333,
+    0.1999999999999784,
+    -0.14285714285420378,
+    0.11111111095189265,
+    -0.09090908632998367,
+    0.07692299608538965,
+    -0.06666571116309021,
+    0.05881552238667051,
+    -0.05258206977515918,
+    0.04738648786275643,
+    -0.04262985730644524,
+    0.037553839957608456,
+    -0.031379046544951064,
+    0.023831884941536995,
+    -0.015671636995656543,
+    0.008471897649490865,
+    -0.003552058629716547,
+    0.0010705283915803199,
+    -0.0002047228449238937,
+    1.8560948007510396e-05,
 ];
 
 /// `acos(1 − y)²/(2y) = Z(y)` to f32's precision (coefficients rounded to f32 where used):
@@ -236,6 +275,33 @@ pub fn sinc_cos_reduced<L: Lanes>(z: L) -> (L, L) {
     (s, c)
 }
 
+/// The four-quadrant arc tangent of `y/x` in [−π, π], as `Real::atan2` for finite `y`, `x`
+/// that are not both zero, except that `y = −0` is taken as `+0` (the result's sign is the
+/// sign of `y < 0`); within about 2 ulp of the true value in `f64` (the tests check it
+/// against libm). No branch and no call: every choice is a select, so a loop of them
+/// vectorizes.
+#[inline(always)]
+pub fn atan2<T: Real>(y: T, x: T) -> T {
+    let (ax, ay) = (x.abs(), y.abs());
+    let swap = ay > ax;
+    let (big, small) = if swap { (ay, ax) } else { (ax, ay) };
+    let t = small / big;
+    let z = t * t;
+    let r = Lanes::madd(t * z, poly(z, &ATAN), t);
+    // π/2 and π as a rounded head and the rest (for f32 the rest of the f32 head).
+    let half_pi = core::f64::consts::FRAC_PI_2;
+    let (h_hi, h_lo) = (T::from_f64(half_pi), 6.123_233_995_736_766e-17);
+    let h_lo = T::from_f64(half_pi - h_hi.to_f64() + h_lo);
+    let (p_hi, p_lo) = (T::TWO * h_hi, T::TWO * h_lo);
+    let r = if swap { h_hi - r + h_lo } else { r };
+    let r = if x < T::ZERO { p_hi - r + p_lo } else { r };
+    if y < T::ZERO {
+        -r
+    } else {
+        r
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -307,5 +373,38 @@ mod tests {
         assert!(worst.0 < 2.0 && worst.1 < 2.0, "{worst:?} f32 ulp");
         assert_eq!(angle2_over_2y_f32(0.0f32), 1.0);
         assert_eq!(sinc_minus_one_f32(0.0f32), 0.0);
+    }
+
+    /// `atan2` against libm (itself within 1 ulp) on every octant, in ulp of the true
+    /// value, and its special values.
+    #[test]
+    fn atan2_within_two_ulps_of_libm() {
+        let mut worst: f64 = 0.0;
+        let mut worst32: f64 = 0.0;
+        let n = 200_000;
+        for i in 0..n {
+            // Angles over the whole circle, radii over many octaves.
+            let a = -core::f64::consts::PI
+                + 2.0 * core::f64::consts::PI * (f64::from(i) + 0.5) / f64::from(n);
+            let r = 2f64.powi(i % 40 - 20);
+            let (y, x) = (r * a.sin(), r * a.cos());
+            let want = y.atan2(x);
+            worst = worst.max(ulps(atan2(y, x), want));
+            let (y32, x32) = (y as f32, x as f32);
+            let want32 = f64::from(y32).atan2(f64::from(x32));
+            let got32 = f64::from(atan2(y32, x32));
+            worst32 = worst32.max(((got32 - want32) / want32).abs() / f64::from(f32::EPSILON));
+        }
+        assert!(worst < 2.0, "atan2: {worst} ulp");
+        assert!(worst32 < 2.0, "atan2 f32: {worst32} f32 ulp");
+        // Exact where libm is: axes, diagonals' signs, zero y.
+        let pi = core::f64::consts::PI;
+        assert_eq!(atan2(0.0, 1.0), 0.0);
+        assert_eq!(atan2(0.0, -1.0), pi);
+        assert_eq!(atan2(-1.0, -0.0), -pi / 2.0);
+        assert_eq!(atan2(1.0, 0.0), pi / 2.0);
+        assert_eq!(atan2(3.0, 3.0), pi / 4.0);
+        assert_eq!(atan2(-2.0f32, -2.0), -3.0 * core::f32::consts::FRAC_PI_4);
+        assert_eq!(atan2(1e-300, 1.0), 1e-300);
     }
 }
