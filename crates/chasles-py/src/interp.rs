@@ -1,18 +1,22 @@
 //! Interpolation of rotations, wrapping `chasles::interp` (Dam et al. 1998, chapters 5–7):
 //! Slerp between pairs (batched, broadcast), and whole curves through key frames — every
 //! method of `chasles interp` by the same names (`lineuler`, `linmat`, `lerp`, `slerp`,
-//! `squad`, `spring`, `slerpsvupti`, `squadsvupti`, `justdoit`), with the Spring controls
-//! of its command line ([`crate::spring`]). Key sets are batched: keys (..., K, 4) give curves (..., frames, 4), one
+//! `squad`, `spring`, `slerpsvupti`, `squadsvupti`, `justdoit`, and the curves past the
+//! report: `tcb`, `catmull-rom`, `bezier`, `c2`), with the Spring controls of its command
+//! line ([`crate::spring`]), Kochanek–Bartels' tension, continuity and bias, and a stable
+//! horizon for camera paths (`chasles::interp::horizon`). Key sets are batched: keys (..., K, 4) give curves (..., frames, 4), one
 //! per item, on all cores.
 
 use crate::arrays::{
     array, column, dispatch, finite, item_error, leading, part, q_in, q_out, value_error, Fail, Num,
 };
 use crate::spring::{spring_config, SpringOptions, DEFAULT_FRAMES};
+use chasles::interp::horizon::{check_keys, level_frames};
 use chasles::interp::slerp::{slerp as slerp_as_given, slerp_shortest};
+use chasles::interp::tcb::check_parameter;
 use chasles::interp::{
     interpolate as lib_interpolate, spring as lib_spring, Hemisphere, KeyFrames, Method,
-    SpringConfig, Timing,
+    SpringConfig, Tcb, Timing, Up,
 };
 use chasles::{EulerOrder, Quat};
 use numpy::{PyArrayDyn, PyArrayMethods, PyUntypedArrayMethods};
@@ -78,8 +82,12 @@ fn slerp_t<'py, T: Num>(
 #[derive(Debug, Clone)]
 enum Plan {
     Piecewise(Method),
-    Spring(SpringConfig),
+    /// A Spring preset, and whether it runs the converged solver unless told otherwise.
+    Spring(SpringConfig, bool),
 }
+
+/// The methods' names, for errors.
+const METHODS: &str = "lineuler, linmat, lerp, slerp, squad, spring, slerpsvupti, squadsvupti, justdoit, tcb, catmull-rom, bezier or c2";
 
 /// The plan of a method name; LinEuler in `order`.
 fn plan(method: &str, order: EulerOrder) -> PyResult<Plan> {
@@ -89,15 +97,15 @@ fn plan(method: &str, order: EulerOrder) -> PyResult<Plan> {
         "lerp" => Plan::Piecewise(Method::Nlerp),
         "slerp" => Plan::Piecewise(Method::Slerp),
         "squad" => Plan::Piecewise(Method::Squad),
-        "spring" => Plan::Spring(SpringConfig::spring()),
-        "slerpsvupti" => Plan::Spring(SpringConfig::slerpsvupti()),
-        "squadsvupti" => Plan::Spring(SpringConfig::squadsvupti()),
-        "justdoit" => Plan::Spring(SpringConfig::justdoit()),
-        other => {
-            return Err(value_error(format!(
-                "unknown method '{other}': lineuler, linmat, lerp, slerp, squad, spring, slerpsvupti, squadsvupti or justdoit"
-            )))
-        }
+        "spring" => Plan::Spring(SpringConfig::spring(), true),
+        "slerpsvupti" => Plan::Spring(SpringConfig::slerpsvupti(), false),
+        "squadsvupti" => Plan::Spring(SpringConfig::squadsvupti(), false),
+        "justdoit" => Plan::Spring(SpringConfig::justdoit(), false),
+        "tcb" => Plan::Piecewise(Method::KochanekBartels(Tcb::CATMULL_ROM)),
+        "catmull-rom" => Plan::Piecewise(Method::CatmullRom),
+        "bezier" => Plan::Piecewise(Method::Bezier),
+        "c2" => Plan::Piecewise(Method::C2),
+        other => return Err(value_error(format!("unknown method '{other}': {METHODS}"))),
     })
 }
 
@@ -122,6 +130,61 @@ pub struct Curve {
     pub max_frames: usize,
     /// Spring's controls.
     pub spring: SpringOptions,
+    /// Kochanek–Bartels' tension, continuity and bias (`tcb` only).
+    pub tcb: [Option<f64>; 3],
+    /// `"Z"` or `"Y"`: a camera path levelled about this up axis.
+    pub horizon: Option<String>,
+}
+
+impl Curve {
+    /// A curve by `method` with no options past the common ones.
+    fn plain(method: &str, frames: Option<usize>, timing: &str) -> Self {
+        Curve {
+            method: method.into(),
+            frames,
+            timing: timing.into(),
+            keep_signs: false,
+            order: "xyz".into(),
+            full_output: false,
+            scalar_first: true,
+            max_frames: 1_000_000,
+            spring: SpringOptions::default(),
+            tcb: [None; 3],
+            horizon: None,
+        }
+    }
+}
+
+/// The names of Kochanek–Bartels' parameters, in [`Curve::tcb`]'s order.
+const TCB_NAMES: [&str; 3] = ["tension", "continuity", "bias"];
+
+/// Kochanek–Bartels' parameters checked (each named in its error), 0 where not given.
+fn tcb_params(given: &[Option<f64>; 3]) -> PyResult<Tcb> {
+    let mut t = Tcb::CATMULL_ROM;
+    let slots = [&mut t.tension, &mut t.continuity, &mut t.bias];
+    for ((name, v), slot) in TCB_NAMES.iter().zip(given).zip(slots) {
+        if let Some(v) = *v {
+            if check_parameter("", v).is_err() {
+                return Err(value_error(format!(
+                    "{name} must be a finite number in [-1, 1], got {v}"
+                )));
+            }
+            *slot = v;
+        }
+    }
+    Ok(t)
+}
+
+/// The up axis named by `horizon`.
+fn up_axis(horizon: Option<&str>) -> PyResult<Option<Up>> {
+    match horizon {
+        None => Ok(None),
+        Some("Z" | "z") => Ok(Some(Up::Z)),
+        Some("Y" | "y") => Ok(Some(Up::Y)),
+        Some(other) => Err(value_error(format!(
+            "horizon must be 'Z' or 'Y' (the world's up axis), got '{other}'"
+        ))),
+    }
 }
 
 /// Curves through key frames (..., K, 4) by `c.method`; see the Python docstring.
@@ -169,7 +232,19 @@ fn curves_t<'py, T: Num>(
         )));
     }
     let k = shape[shape.len() - 2];
-    let plan = plan(&c.method, order)?;
+    let up = up_axis(c.horizon.as_deref())?;
+    let mut plan = plan(&c.method, order)?;
+    match &mut plan {
+        Plan::Piecewise(Method::KochanekBartels(p)) => *p = tcb_params(&c.tcb)?,
+        _ => {
+            if let Some(i) = c.tcb.iter().position(Option::is_some) {
+                return Err(value_error(format!(
+                    "{} is a Kochanek-Bartels control: it applies to tcb, not {}",
+                    TCB_NAMES[i], c.method
+                )));
+            }
+        }
+    }
     let (plan, frames) = match plan {
         Plan::Piecewise(m) => {
             if let Some(name) = c.spring.given().first() {
@@ -180,9 +255,9 @@ fn curves_t<'py, T: Num>(
             }
             (Plan::Piecewise(m), c.frames.unwrap_or(DEFAULT_FRAMES))
         }
-        Plan::Spring(preset) => {
-            let (cfg, total) = spring_config(preset, &c.spring, c.frames, k)?;
-            (Plan::Spring(cfg), total)
+        Plan::Spring(preset, converged) => {
+            let (cfg, total) = spring_config(preset, converged, &c.spring, c.frames, k)?;
+            (Plan::Spring(cfg, converged), total)
         }
     };
     if frames > c.max_frames {
@@ -213,23 +288,39 @@ fn curves_t<'py, T: Num>(
     let sf = c.scalar_first;
     let work = match &plan {
         Plan::Piecewise(_) => frames * 60,
-        Plan::Spring(_) => 1_000_000,
+        Plan::Spring(..) => 1_000_000,
     };
     {
         let mut rw = out.readwrite();
         let o = rw.as_slice_mut().map_err(|e| value_error(e.to_string()))?;
         let item = |i: usize, out: &mut [T]| -> Result<(), Fail> {
             let ks = &kd[kidx.at(i) * k * 4..][..k * 4];
-            let q: Vec<Quat<T>> = ks.chunks_exact(4).map(|s| q_in(s, sf)).collect();
+            // Normalized once here as `chasles interp`'s key files are, so that the curves
+            // are the CLI's bit for bit (a second normalization may move a last bit, and
+            // the converged Spring stops where the rounding says); a key that cannot be
+            // normalized is left for KeyFrames to report with its index.
+            let q: Vec<Quat<T>> = ks
+                .chunks_exact(4)
+                .map(|s| {
+                    let q = q_in(s, sf);
+                    q.normalize().unwrap_or(q)
+                })
+                .collect();
             let ts = match (&tidx, td) {
                 (Some(ix), Some(td)) => Some(&td[ix.at(i) * k..][..k]),
                 _ => None,
             };
             let kf = KeyFrames::new(&q, ts, hemisphere)?;
-            let fr = match &plan {
+            if let Some(up) = up {
+                check_keys(&kf, up)?;
+            }
+            let mut fr = match &plan {
                 Plan::Piecewise(m) => lib_interpolate(*m, &kf, frames, timing)?,
-                Plan::Spring(cfg) => lib_spring(&kf, frames, timing, cfg, &mut |_| {})?.frames,
+                Plan::Spring(cfg, _) => lib_spring(&kf, frames, timing, cfg, &mut |_| {})?.frames,
             };
+            if let Some(up) = up {
+                level_frames(&mut fr, up);
+            }
             if fr.len() != frames {
                 return Err(Fail(format!(
                     "{} frames made, {frames} asked for",
@@ -262,12 +353,22 @@ fn curves_t<'py, T: Num>(
 /// ``keys`` is (..., K, 4), K ≥ 2 unit quaternions (normalized here); leading dimensions
 /// are a batch of key sets, one curve each, on all cores. ``method`` is ``lineuler``
 /// (Euler angles in ``order``, Dam et al. eq. 6.1), ``linmat`` (matrices, eq. 6.2),
-/// ``lerp`` (normalized, eq. 6.3), ``slerp`` (eq. 6.13), ``squad`` (Definition 17) or
-/// Spring — ``spring`` (§6.3.7), ``slerpsvupti``, ``squadsvupti``, ``justdoit`` (App. C
-/// presets) — whose controls are the keywords ``levels``, ``iterations``, ``step``
-/// (``"fixed:0.02"``, ``"normalized:E"``, ``"adaptive:E"``, ``"accelerated:E"``),
-/// ``penalty``, ``width`` (``one``, ``chord``, ``angle``), ``key_weight``,
+/// ``lerp`` (normalized, eq. 6.3), ``slerp`` (eq. 6.13), ``squad`` (Definition 17),
+/// Spring — ``spring`` (§6.3.7 solved to its optimum by Newton's method, §8.2),
+/// ``slerpsvupti``, ``squadsvupti``, ``justdoit`` (App. C presets, the report's gradient
+/// descent) — or a curve past the report: ``tcb`` (Kochanek–Bartels with ``tension``,
+/// ``continuity`` and ``bias`` in [-1, 1], 0 by default), ``catmull-rom``, ``bezier``
+/// (Shoemake) or ``c2`` (C² at the keys, as scipy's ``RotationSpline``).
+///
+/// Spring's controls are the keywords ``solver`` (``"converged"``, the default of
+/// ``spring``, or ``"report"``, the presets'), ``tolerance`` (the converged solver's
+/// gradient fall, 1e-10), the report's ``levels``, ``iterations``, ``step``
+/// (``"fixed:0.02"``, ``"normalized:E"``, ``"adaptive:E"``, ``"accelerated:E"``) and
+/// ``penalty``, and for both ``width`` (``one``, ``chord``, ``angle``), ``key_weight``,
 /// ``velocity_weight`` and ``start`` (``slerp``, ``squad``), as on the command line.
+/// ``horizon="Z"`` (or ``"Y"``) makes a camera path: keys looking along their x axis with
+/// no roll about that world up axis, every frame turned back to roll 0.
+///
 /// Every key is one of the frames; ``timing`` shares the others among the intervals
 /// (``"angle"``, the default, in proportion to each interval's angle; ``"uniform"``
 /// equally, or by the key ``times`` (K,) when given). Keys are chained into one hemisphere
@@ -279,11 +380,15 @@ fn curves_t<'py, T: Num>(
 /// >>> q = chasles.interpolate(keys, "squad", 9)
 /// >>> q.shape, bool(np.allclose(q[0], keys[0]))
 /// ((9, 4), True)
+/// >>> chasles.interpolate(keys, "tcb", 9, tension=0.5).shape
+/// (9, 4)
 #[pyfunction]
 #[pyo3(signature = (keys, method = "slerp", frames = None, *, timing = "angle", times = None,
     keep_signs = false, order = "xyz", full_output = false, scalar_first = true,
-    max_frames = 1_000_000, levels = None, iterations = None, step = None, penalty = None,
-    width = None, key_weight = None, velocity_weight = None, start = None))]
+    max_frames = 1_000_000, solver = None, tolerance = None, levels = None,
+    iterations = None, step = None, penalty = None, width = None, key_weight = None,
+    velocity_weight = None, start = None, tension = None, continuity = None, bias = None,
+    horizon = None))]
 #[allow(clippy::too_many_arguments)]
 pub fn interpolate<'py>(
     keys: &Bound<'py, PyAny>,
@@ -296,6 +401,8 @@ pub fn interpolate<'py>(
     full_output: bool,
     scalar_first: bool,
     max_frames: usize,
+    solver: Option<String>,
+    tolerance: Option<f64>,
     levels: Option<Vec<usize>>,
     iterations: Option<Vec<usize>>,
     step: Option<String>,
@@ -304,11 +411,12 @@ pub fn interpolate<'py>(
     key_weight: Option<f64>,
     velocity_weight: Option<f64>,
     start: Option<String>,
+    tension: Option<f64>,
+    continuity: Option<f64>,
+    bias: Option<f64>,
+    horizon: Option<String>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let c = Curve {
-        method: method.to_string(),
-        frames,
-        timing: timing.to_string(),
         keep_signs,
         order: order.to_string(),
         full_output,
@@ -323,7 +431,12 @@ pub fn interpolate<'py>(
             key_weight,
             velocity_weight,
             start,
+            solver,
+            tolerance,
         },
+        tcb: [tension, continuity, bias],
+        horizon,
+        ..Curve::plain(method, frames, timing)
     };
     curves(keys, times, &c)
 }
@@ -351,37 +464,39 @@ pub fn squad<'py>(
     max_frames: usize,
 ) -> PyResult<Bound<'py, PyAny>> {
     let c = Curve {
-        method: "squad".into(),
-        frames: Some(frames),
-        timing: timing.to_string(),
         keep_signs,
-        order: "xyz".into(),
         full_output,
         scalar_first,
         max_frames,
-        spring: SpringOptions::default(),
+        ..Curve::plain("squad", Some(frames), timing)
     };
     curves(keys, times, &c)
 }
 
-/// Spring (Dam et al. §6.3.7): the curve through key frames (..., K, 4) whose curvature
-/// is minimized by gradient descent. ``preset`` is ``spring`` (the default: ``justdoit``
-/// with key weight 1.3 and the accelerated step), ``slerpsvupti``, ``squadsvupti`` or
-/// ``justdoit``; the keywords adjust it as ``chasles interp``'s flags do (``levels``:
-/// frames at each step, the last the total; ``iterations`` per step; ``step``;
-/// ``penalty``; ``width``; ``key_weight``; ``velocity_weight``; ``start``). ``frames``
-/// defaults to the last of ``levels``, else 200. See :func:`interpolate` for the rest.
+/// Spring (Dam et al. §6.3.7): the curve through key frames (..., K, 4) of least
+/// curvature. ``preset`` ``spring`` (the default) solves eq. 6.23 to its optimum by
+/// Newton's method (``solver="converged"``, §8.2's "more robust numerical solution"; the
+/// gradient falls by ``tolerance``, 1e-10); the report's presets ``slerpsvupti``,
+/// ``squadsvupti`` and ``justdoit`` run its gradient descent (App. C), as does
+/// ``solver="report"`` for ``spring`` (``justdoit`` with key weight 1.3 and the
+/// accelerated step). The keywords adjust the run as ``chasles interp``'s flags do
+/// (the descent's ``levels``: frames at each step, the last the total; ``iterations`` per
+/// step; ``step``; ``penalty``; for both ``width``, ``key_weight``, ``velocity_weight``,
+/// ``start``). ``frames`` defaults to the last of ``levels``, else 200. See
+/// :func:`interpolate` for the rest.
 ///
 /// >>> import chasles, numpy as np
 /// >>> keys = chasles.quat_from_euler([[0, 0, 0], [0, 0, 1.0], [0, 1.0, 1.0]], "xyz")
-/// >>> q = chasles.spring(keys, 40, iterations=[20, 20, 20])
+/// >>> q = chasles.spring(keys, 40)
 /// >>> q.shape, bool(np.allclose(np.linalg.norm(q, axis=-1), 1.0))
 /// ((40, 4), True)
+/// >>> chasles.spring(keys, 40, solver="report", iterations=[20, 20, 20]).shape
+/// (40, 4)
 #[pyfunction]
 #[pyo3(signature = (keys, frames = None, *, preset = "spring", timing = "angle", times = None,
     keep_signs = false, full_output = false, scalar_first = true, max_frames = 1_000_000,
-    levels = None, iterations = None, step = None, penalty = None, width = None,
-    key_weight = None, velocity_weight = None, start = None))]
+    solver = None, tolerance = None, levels = None, iterations = None, step = None,
+    penalty = None, width = None, key_weight = None, velocity_weight = None, start = None))]
 #[allow(clippy::too_many_arguments)]
 pub fn spring<'py>(
     keys: &Bound<'py, PyAny>,
@@ -393,6 +508,8 @@ pub fn spring<'py>(
     full_output: bool,
     scalar_first: bool,
     max_frames: usize,
+    solver: Option<String>,
+    tolerance: Option<f64>,
     levels: Option<Vec<usize>>,
     iterations: Option<Vec<usize>>,
     step: Option<String>,
@@ -411,11 +528,7 @@ pub fn spring<'py>(
         )));
     }
     let c = Curve {
-        method: preset.to_string(),
-        frames,
-        timing: timing.to_string(),
         keep_signs,
-        order: "xyz".into(),
         full_output,
         scalar_first,
         max_frames,
@@ -428,7 +541,10 @@ pub fn spring<'py>(
             key_weight,
             velocity_weight,
             start,
+            solver,
+            tolerance,
         },
+        ..Curve::plain(preset, frames, timing)
     };
     curves(keys, times, &c)
 }

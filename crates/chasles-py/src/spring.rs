@@ -1,16 +1,18 @@
 //! Spring's controls as `chasles interp` takes them (Dam et al. 1998, §6.3.7 and App. C):
 //! the keywords of `chasles.spring` and `chasles.interpolate` turned into a
 //! `chasles::interp::SpringConfig` by the rules of the CLI's `spring_args::configure`
-//! (the same checks, the same messages, with the keyword names).
+//! (the same checks, the same messages, with the keyword names): the converged solver
+//! (§8.2, `chasles::interp::Solver::Converged`) by default for `spring`, the report's
+//! gradient descent (App. C) for its presets, `solver=` choosing either.
 
 use crate::arrays::value_error;
 use chasles::analysis::curvature::Width;
-use chasles::interp::{Level, SpringConfig, Start, StepRule};
+use chasles::interp::{Level, Solver, SpringConfig, Start, StepRule};
 use pyo3::prelude::*;
 
 /// Spring's controls as `chasles interp` takes them (`--levels`, `--iterations`, `--step`,
-/// `--penalty`, `--width`, `--key-weight`, `--velocity-weight`, `--start`), each unset
-/// unless given.
+/// `--penalty`, `--width`, `--key-weight`, `--velocity-weight`, `--start`, `--solver`,
+/// `--tolerance`), each unset unless given.
 #[derive(Debug, Clone, Default)]
 pub struct SpringOptions {
     /// Frames at each step, coarse to fine; the last is the total.
@@ -29,6 +31,10 @@ pub struct SpringOptions {
     pub velocity_weight: Option<f64>,
     /// `slerp` or `squad`.
     pub start: Option<String>,
+    /// `converged` or `report`.
+    pub solver: Option<String>,
+    /// The converged solver's gradient tolerance.
+    pub tolerance: Option<f64>,
 }
 
 impl SpringOptions {
@@ -43,6 +49,8 @@ impl SpringOptions {
             ("key_weight", self.key_weight.is_some()),
             ("velocity_weight", self.velocity_weight.is_some()),
             ("start", self.start.is_some()),
+            ("solver", self.solver.is_some()),
+            ("tolerance", self.tolerance.is_some()),
         ]
         .into_iter()
         .filter_map(|(n, on)| on.then_some(n))
@@ -79,13 +87,57 @@ fn step_rule(s: &str) -> PyResult<StepRule> {
 }
 
 /// `preset` with the options applied, and the total frame count (`frames`, else the last
-/// of `levels`, else 200), by the rules of `chasles interp` (its `spring_args::configure`).
+/// of `levels`, else 200), by the rules of `chasles interp` (its `spring_args::configure`):
+/// the solver is `o.solver`, else the converged one when `converged_by_default` (the
+/// method `spring`) and the report's otherwise; the converged solver starts from
+/// [`SpringConfig::converged`] with the preset's start and refuses the descent's controls
+/// (`levels`, `iterations`, `step`, `penalty`), the report's refuses `tolerance`.
 pub fn spring_config(
     mut cfg: SpringConfig,
+    converged_by_default: bool,
     o: &SpringOptions,
     frames: Option<usize>,
     keys: usize,
 ) -> PyResult<(SpringConfig, usize)> {
+    let converged = match o.solver.as_deref() {
+        None => converged_by_default,
+        Some("converged") => true,
+        Some("report") => false,
+        Some(other) => {
+            return Err(value_error(format!(
+                "solver: unknown solver '{other}' (converged or report)"
+            )))
+        }
+    };
+    if converged {
+        for (name, on) in [
+            ("levels", o.levels.is_some()),
+            ("iterations", o.iterations.is_some()),
+            ("step", o.step.is_some()),
+            ("penalty", o.penalty.is_some()),
+        ] {
+            if on {
+                return Err(value_error(format!(
+                    "{name} is a control of the report's gradient descent: add solver=\"report\", or leave it out for the converged solver"
+                )));
+            }
+        }
+        let start = cfg.start;
+        cfg = SpringConfig::converged();
+        cfg.start = start;
+        if let Some(t) = o.tolerance {
+            if let Solver::Converged { tolerance, .. } = &mut cfg.solver {
+                *tolerance = t;
+            }
+        }
+    } else {
+        cfg.solver = Solver::Report;
+        if o.tolerance.is_some() {
+            return Err(value_error(
+                "tolerance is a control of the converged solver, not of solver=\"report\"",
+            ));
+        }
+    }
     let total = match (&o.levels, frames) {
         (Some(l), Some(f)) if l.last() != Some(&f) => {
             return Err(value_error(format!(

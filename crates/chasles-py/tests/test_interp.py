@@ -37,35 +37,91 @@ def test_slerp_long_way_and_extrapolation():
     assert np.degrees(chasles.quat_angle([1, 0, 0, 0], far)) == pytest.approx(180.0, abs=1e-9)
 
 
-METHODS = ["lineuler", "linmat", "lerp", "slerp", "squad", "spring", "slerpsvupti", "squadsvupti", "justdoit"]
+PIECEWISE = ["lineuler", "linmat", "lerp", "slerp", "squad", "tcb", "catmull-rom", "bezier", "c2"]
 SPRING = {"spring", "slerpsvupti", "squadsvupti", "justdoit"}
+DESCENT = dict(iterations=[15, 15, 15], levels=[17, 30, 60], key_weight=1.2)
+CASES = [(m, {}) for m in PIECEWISE] + [
+    ("tcb", dict(tension=0.3, continuity=-0.2, bias=0.1)),
+    ("spring", {}),  # the converged solver, spring's default
+    ("spring", dict(width="angle", key_weight=1.5, tolerance=1e-9)),
+    ("spring", dict(solver="report", **DESCENT)),
+    ("justdoit", DESCENT),
+    ("slerpsvupti", dict(levels=[60], iterations=[15], key_weight=1.2)),
+    ("squadsvupti", dict(levels=[60], iterations=[15], solver="report")),
+    ("squadsvupti", dict(solver="converged", start="squad")),
+]
 
 
-@pytest.mark.parametrize("method", METHODS)
-def test_every_method_equals_the_cli(method, cli, tmp_path, rng):
+def flags(kw):
+    """The keywords of chasles.interpolate as chasles interp's flags."""
+    out = []
+    for k, v in kw.items():
+        out += ["--" + k.replace("_", "-"), ",".join(map(str, v)) if isinstance(v, list) else str(v)]
+    return out
+
+
+@pytest.mark.parametrize("method,kw", CASES, ids=[f"{m}-{'-'.join(kw) or 'default'}" for m, kw in CASES])
+def test_every_method_equals_the_cli(method, kw, cli, tmp_path, rng):
     keys = unit_quats(rng, 5)
     keyfile = tmp_path / "keys.json"
     keyfile.write_text(json.dumps({"keys": [{"quat": list(k)} for k in keys]}))
     frames = 60
-    args = ["interp", "--method", method, "--keys", keyfile, "--frames", frames, "--out", tmp_path / "out.json"]
-    kw = {}
-    if method in SPRING:
-        levels = [17, 30, 60] if method in ("spring", "justdoit") else [60]
-        its = [15] * len(levels)
-        args += ["--levels", ",".join(map(str, levels)), "--iterations", ",".join(map(str, its)), "--key-weight", "1.2"]
-        kw = dict(levels=levels, iterations=its, key_weight=1.2)
-    cli(*args)
+    cli("interp", "--method", method, "--keys", keyfile, "--frames", frames, "--out", tmp_path / "out.json", *flags(kw))
     rows = json.loads((tmp_path / "out.json").read_text())
     theirs = np.array([[r["w"], r["x"], r["y"], r["z"]] for r in rows])
     q, t, key = chasles.interpolate(keys, method, frames, full_output=True, **kw)
     assert q.shape == (frames, 4)
-    assert np.abs(q - theirs).max() < 1e-12, method
-    assert np.abs(t - [r["t"] for r in rows]).max() < 1e-12
+    # Bit for bit: the key file's numbers are read back exactly (serde_json's
+    # float_roundtrip), so even the converged Spring stops at the same step.
+    assert np.array_equal(q, theirs), (method, np.abs(q - theirs).max())
+    assert np.array_equal(t, [r["t"] for r in rows])
     assert list(key) == [-1 if r["key"] is None else r["key"] for r in rows]
     if method == "squad":
         assert np.array_equal(chasles.squad(keys, frames), q)
     if method in SPRING:
         assert np.array_equal(chasles.spring(keys, frames, preset=method, **kw), q)
+
+
+def test_a_camera_path_keeps_its_horizon(cli, tmp_path, rng):
+    # Cameras looking along x with z up and no roll: yaw and pitch only (intrinsic ZYX).
+    yaw_pitch = np.column_stack([rng.uniform(-3, 3, 6), rng.uniform(-1.2, 1.2, 6), np.zeros(6)])
+    keys = chasles.quat_from_euler(yaw_pitch, "ZYX")
+    keyfile = tmp_path / "keys.json"
+    keyfile.write_text(json.dumps({"keys": [{"quat": list(k)} for k in keys]}))
+    for method in ["squad", "spring", "c2"]:
+        q = chasles.interpolate(keys, method, 80, horizon="Z")
+        roll = chasles.quat_to_euler(q, "ZYX")[:, 2]
+        assert np.abs(roll).max() < 1e-12, method
+        unlevelled = chasles.quat_to_euler(chasles.interpolate(keys, method, 80), "ZYX")[:, 2]
+        assert np.abs(unlevelled).max() > 1e-3, method
+        cli("interp", "--method", method, "--keys", keyfile, "--frames", 80, "--horizon", "Z", "--out", tmp_path / "out.json")
+        rows = json.loads((tmp_path / "out.json").read_text())
+        assert np.abs(q - [[r["w"], r["x"], r["y"], r["z"]] for r in rows]).max() < 1e-12
+    rolled = chasles.quat_from_euler([[0, 0, 0], [1.0, 0.2, 0.3]], "ZYX")
+    with pytest.raises(ValueError, match="roll"):
+        chasles.interpolate(rolled, "slerp", 10, horizon="Z")
+    with pytest.raises(ValueError, match="horizon must be 'Z' or 'Y'"):
+        chasles.interpolate(keys, "slerp", 10, horizon="X")
+
+
+def test_tcb_parameters_and_spring_solvers_are_checked(rng):
+    keys = unit_quats(rng, 4)
+    # Tension, continuity and bias at 0 are Catmull-Rom.
+    assert np.abs(chasles.interpolate(keys, "tcb", 30) - chasles.interpolate(keys, "catmull-rom", 30)).max() < 1e-14
+    with pytest.raises(ValueError, match=r"tension must be a finite number in \[-1, 1\], got 2"):
+        chasles.interpolate(keys, "tcb", 30, tension=2.0)
+    with pytest.raises(ValueError, match="bias is a Kochanek-Bartels control: it applies to tcb, not slerp"):
+        chasles.interpolate(keys, "slerp", 30, bias=0.5)
+    with pytest.raises(ValueError, match="iterations is a control of the report's gradient descent"):
+        chasles.spring(keys, 30, iterations=[5, 5, 5])
+    with pytest.raises(ValueError, match="tolerance is a control of the converged solver"):
+        chasles.spring(keys, 30, preset="justdoit", tolerance=1e-8)
+    with pytest.raises(ValueError, match="unknown solver 'newton'"):
+        chasles.spring(keys, 30, solver="newton")
+    with pytest.raises(ValueError, match="tolerance"):
+        chasles.spring(keys, 30, tolerance=2.0)
+    with pytest.raises(ValueError, match="unknown method 'nurbs'.*catmull-rom, bezier or c2"):
+        chasles.interpolate(keys, "nurbs", 30)
 
 
 def test_times_timing_and_batches(rng):
@@ -76,7 +132,7 @@ def test_times_timing_and_batches(rng):
         assert np.array_equal(batch[i], one)
     _, t, key = chasles.interpolate(keys[0], "slerp", 13, timing="uniform", times=[0.0, 1.0, 3.0, 4.0], full_output=True)
     assert t[0] == 0.0 and t[-1] == 4.0 and list(key[key >= 0]) == [0, 1, 2, 3]
-    s32 = chasles.spring(keys.astype(np.float32), 20, iterations=[5, 5, 5])
+    s32 = chasles.spring(keys.astype(np.float32), 20, solver="report", iterations=[5, 5, 5])
     assert s32.dtype == np.float32 and s32.shape == (3, 20, 4)
 
 
@@ -91,9 +147,9 @@ def test_bad_curves_raise_value_error(rng):
     with pytest.raises(ValueError, match="step is a Spring control"):
         chasles.interpolate(keys, "slerp", 20, step="fixed:0.1")
     with pytest.raises(ValueError, match="unknown step rule 'slow'"):
-        chasles.spring(keys, 20, step="slow:0.1")
+        chasles.spring(keys, 20, solver="report", step="slow:0.1")
     with pytest.raises(ValueError, match="levels ends at 30 frames but frames is 20"):
-        chasles.spring(keys, 20, levels=[13, 30], iterations=[1, 1])
+        chasles.spring(keys, 20, solver="report", levels=[13, 30], iterations=[1, 1])
     with pytest.raises(ValueError, match="unknown method 'cubic'"):
         chasles.interpolate(keys, "cubic")
     with pytest.raises(ValueError, match="timing must be"):

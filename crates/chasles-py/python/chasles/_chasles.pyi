@@ -89,6 +89,8 @@ def interpolate(
     full_output: bool = False,
     scalar_first: bool = True,
     max_frames: int = 1000000,
+    solver: Optional[str] = None,
+    tolerance: Optional[float] = None,
     levels: Optional[Sequence[int]] = None,
     iterations: Optional[Sequence[int]] = None,
     step: Optional[str] = None,
@@ -97,6 +99,10 @@ def interpolate(
     key_weight: Optional[float] = None,
     velocity_weight: Optional[float] = None,
     start: Optional[str] = None,
+    tension: Optional[float] = None,
+    continuity: Optional[float] = None,
+    bias: Optional[float] = None,
+    horizon: Optional[str] = None,
 ) -> Union[Array, Tuple[Array, Array, NDArray[np.int64]]]:
     """A curve through key frames by any method of `chasles interp`."""
 def squad(
@@ -122,6 +128,8 @@ def spring(
     full_output: bool = False,
     scalar_first: bool = True,
     max_frames: int = 1000000,
+    solver: Optional[str] = None,
+    tolerance: Optional[float] = None,
     levels: Optional[Sequence[int]] = None,
     iterations: Optional[Sequence[int]] = None,
     step: Optional[str] = None,
