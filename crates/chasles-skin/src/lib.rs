@@ -20,7 +20,8 @@
 //! whole or not at all as OBJ, PLY, glTF or JSON ([`writers`]).
 //!
 //! Beyond the paper (its §7): clips blended per joint by DLB ([`clip_blend`], "motion
-//! blending"), written back as glTF with the rig ([`gltf_write`]). Every error is a
+//! blending") and compressed to a vertex tolerance ([`clip_compress`], "motion analysis and
+//! compression"), written back as glTF with the rig ([`gltf_write`]). Every error is a
 //! [`SkinError`] variant naming the file, item or field.
 
 #![warn(missing_docs)]
@@ -28,6 +29,7 @@
 pub mod animation;
 pub mod bounded;
 pub mod clip_blend;
+pub mod clip_compress;
 pub mod cloth;
 pub mod cylinder;
 pub mod error;
