@@ -248,9 +248,13 @@ fn compress(a: CompressArgs) -> Result<()> {
         }
     }
     println!(
-        "{}: clip '{}' ({} frames) with {}: kept {} of {} keys ({:.1} %){}; worst vertex error {:.4e} (vertex {}, frame {}) in the written file, {:.4e} in memory, tolerance {} ({} skinning, per-joint budget {:.3} of it){}",
+        "{}: clip {} ({} frames) with {}: kept {} of {} keys ({:.1} %){}; worst vertex error {:.4e} (vertex {}, frame {}) in the written file, {:.4e} in memory, tolerance {} ({} skinning, per-joint budget {:.3} of it){}",
         rig.name,
-        rig.animations[c].name,
+        if rig.animations[c].name.is_empty() {
+            c.to_string()
+        } else {
+            format!("'{}'", rig.animations[c].name)
+        },
         done.frames.len(),
         rotation.name(),
         done.kept_keys,

@@ -62,6 +62,19 @@ fn blend_writes_a_rig_whose_blended_clip_skins_like_any_clip() {
         &s(&obj),
     ]));
     assert!(text.contains("1728 vertices"), "{text}");
+    // And the viewer shows it.
+    let page = dir.path().join("trot.html");
+    stdout(&chasles(&[
+        "view",
+        &s(&out),
+        "--clip",
+        "Walk+Run 0.5",
+        "--out",
+        &s(&page),
+    ]));
+    assert!(std::fs::read_to_string(&page)
+        .unwrap()
+        .contains("Walk+Run 0.5"));
     assert!(
         std::fs::read_to_string(&obj)
             .unwrap()
