@@ -70,6 +70,22 @@ fn error(got: [f64; 4], want: [f64; 4]) -> f64 {
     d(1.0).min(d(-1.0))
 }
 
+/// Fills `out[i] = f(i)` and returns the seconds it took. One loop monomorphized per
+/// library (not a `&dyn Fn` loop, which the compiler devirtualized and inlined for some
+/// closures and not for others, so that a call was timed with the call's overhead for one
+/// library and without it for another), each call inlined into its loop as in a user's
+/// loop, every result stored.
+#[inline(never)]
+fn fill<T: Copy, const N: usize>(out: &mut [[T; N]], f: impl Fn(usize) -> [T; N]) -> f64 {
+    let start = Instant::now();
+    for (i, slot) in out.iter_mut().enumerate() {
+        *slot = f(i);
+    }
+    let s = start.elapsed().as_secs_f64();
+    std::hint::black_box(&*out);
+    s
+}
+
 /// Median, lowest and highest of `v`.
 fn spread(v: &mut [f64]) -> (f64, f64, f64) {
     v.sort_by(f64::total_cmp);
@@ -117,28 +133,7 @@ fn main() {
 
     let mut out32 = vec![[0f32; 4]; n];
     let mut out64 = vec![[0f64; 4]; n];
-    // Each closure times nothing itself: it fills its output and returns it as f64 for the
-    // error check (outside the timed part, see below).
-    let o32 = std::cell::RefCell::new(&mut out32);
-    let o64 = std::cell::RefCell::new(&mut out64);
-    let time32 = |f: &dyn Fn(usize) -> [f32; 4]| {
-        let mut o = o32.borrow_mut();
-        let start = Instant::now();
-        for (i, slot) in o.iter_mut().enumerate() {
-            *slot = f(i);
-        }
-        let s = start.elapsed().as_secs_f64();
-        (s, o.iter().map(|q| q.map(f64::from)).collect::<Vec<_>>())
-    };
-    let time64 = |f: &dyn Fn(usize) -> [f64; 4]| {
-        let mut o = o64.borrow_mut();
-        let start = Instant::now();
-        for (i, slot) in o.iter_mut().enumerate() {
-            *slot = f(i);
-        }
-        let s = start.elapsed().as_secs_f64();
-        (s, o.to_vec())
-    };
+    let wide = |o: &[[f32; 4]]| o.iter().map(|q| q.map(f64::from)).collect::<Vec<_>>();
     let names = [
         "chasles f32",
         "glam f32",
@@ -175,24 +170,36 @@ fn main() {
     for round in 0..rounds {
         for (k, name) in names.iter().enumerate() {
             let (s, got) = match *name {
-                "chasles f32" => time32(&|i| {
-                    let (a, b, t) = ours32[i];
-                    slerp_shortest(a, b, t).to_array()
-                }),
-                "glam f32" => time32(&|i| {
-                    let (a, b, t) = glam32[i];
-                    let q = a.slerp(b, t);
-                    [q.w, q.x, q.y, q.z]
-                }),
-                "chasles f64" => time64(&|i| {
-                    let (a, b, t) = ours64[i];
-                    slerp_shortest(a, b, t).to_array()
-                }),
-                "glam f64" => time64(&|i| {
-                    let (a, b, t) = glam64[i];
-                    let q = a.slerp(b, t);
-                    [q.w, q.x, q.y, q.z]
-                }),
+                "chasles f32" => {
+                    let s = fill(&mut out32, |i| {
+                        let (a, b, t) = ours32[i];
+                        slerp_shortest(a, b, t).to_array()
+                    });
+                    (s, wide(&out32))
+                }
+                "glam f32" => {
+                    let s = fill(&mut out32, |i| {
+                        let (a, b, t) = glam32[i];
+                        let q = a.slerp(b, t);
+                        [q.w, q.x, q.y, q.z]
+                    });
+                    (s, wide(&out32))
+                }
+                "chasles f64" => {
+                    let s = fill(&mut out64, |i| {
+                        let (a, b, t) = ours64[i];
+                        slerp_shortest(a, b, t).to_array()
+                    });
+                    (s, out64.clone())
+                }
+                "glam f64" => {
+                    let s = fill(&mut out64, |i| {
+                        let (a, b, t) = glam64[i];
+                        let q = a.slerp(b, t);
+                        [q.w, q.x, q.y, q.z]
+                    });
+                    (s, out64.clone())
+                }
                 "chasles f32 batch" => {
                     let start = Instant::now();
                     slerp_shortest_batch(&bp32, &bq32, &bh32, &mut bo32).expect("same lengths");
@@ -208,17 +215,23 @@ fn main() {
                     let s = start.elapsed().as_secs_f64();
                     (s, bo64.iter().map(|q| q.to_array()).collect())
                 }
-                "Eberly series f32" => time32(&|i| {
-                    let (a, b, t) = ours32[i];
-                    let b = if a.dot(b) < 0.0 { -b } else { b };
-                    let (wa, wb) = slerp_weights_series(a.dot(b), t);
-                    (a * wa + b * wb).to_array()
-                }),
-                _ => time64(&|i| {
-                    let (a, b, t) = &na64[i];
-                    let q = a.slerp(b, *t);
-                    [q.w, q.i, q.j, q.k]
-                }),
+                "Eberly series f32" => {
+                    let s = fill(&mut out32, |i| {
+                        let (a, b, t) = ours32[i];
+                        let b = if a.dot(b) < 0.0 { -b } else { b };
+                        let (wa, wb) = slerp_weights_series(a.dot(b), t);
+                        (a * wa + b * wb).to_array()
+                    });
+                    (s, wide(&out32))
+                }
+                _ => {
+                    let s = fill(&mut out64, |i| {
+                        let (a, b, t) = &na64[i];
+                        let q = a.slerp(b, *t);
+                        [q.w, q.i, q.j, q.k]
+                    });
+                    (s, out64.clone())
+                }
             };
             secs[k].push(s);
             if round == 0 {
