@@ -5,6 +5,8 @@
 //! * `chasles convert` — one rotation or rigid motion between representations
 //!   (Dam et al. 1998, App. B; Kavan et al. 2006, §3).
 //! * `chasles interp` — key-frame interpolation (Dam et al. 1998, chapters 5–7).
+//! * `chasles average` — the mean of measured rigid poses, plain (DIB) or robust
+//!   (Kavan et al. 2006, §7).
 //! * `chasles blend`, `chasles properties` — blending of rigid transformations and the
 //!   measured Table 1 (Kavan et al. 2006, §4–5).
 //! * `chasles skin` — skinning a glTF or JSON rig with any method, on the CPU or the GPU,
@@ -17,6 +19,7 @@
 
 #![forbid(unsafe_code)]
 
+mod average;
 mod blend;
 mod blend_case;
 mod blend_pictures;
@@ -144,6 +147,23 @@ enum Command {
         #[command(flatten)]
         pictures: picture_args::Pictures,
     },
+    /// Average measured rigid poses: DIB's rigid mean, or a robust mean (Kavan et al. 2006, §7).
+    ///
+    /// Input (a file or - for stdin): {"poses": [T, ...], "weights": [w, ...]} (weights
+    /// optional) or just the array of poses; T is {"rotation": [w,x,y,z], "translation":
+    /// [x,y,z]}, {"matrix": [[...4 rows...]]} (row-major), {"dq": [8 numbers]} or any other
+    /// object form of convert --jsonl. Output: one JSON object with rotation, translation,
+    /// matrix, dq, iterations (and for --robust: scale, weights, distances, outliers).
+    /// --robust reweights the poses by their distance to the mean (turn in radians and move
+    /// over --length-scale, in quadrature) with Huber's or Tukey's weights, the scale 1.4826
+    /// x the median distance unless --scale fixes it; the start is the pose of least median
+    /// distance to the others.
+    ///
+    /// Examples:
+    ///   chasles average --input poses.json
+    ///   chasles average --input poses.json --robust tukey --out mean.json
+    #[command(verbatim_doc_comment)]
+    Average(average::AverageArgs),
     /// Measure Kavan et al.'s Table 1 on random inputs, with exact FLOP counts (and --claims).
     Properties {
         /// Random cases per property (1 to 10⁷).
@@ -311,6 +331,7 @@ fn run(cli: Cli) -> anyhow::Result<i32> {
         }
         Command::Skin(args) => skin::run(args).map(|_| 0),
         Command::View(args) => view::run(args).map(|_| 0),
+        Command::Average(args) => average::run(args).map(|_| 0),
         Command::Blend {
             method,
             input,
