@@ -15,8 +15,11 @@
 //! * [`identities`]: both papers' identities on random inputs, f64 and f32.
 //! * [`beyond_the_report`]: Dam et al. §8.2's future work (Spring solved to its optimum,
 //!   §7.6's remark tested, angular velocities at keys).
+//! * [`beyond_the_blending_paper`]: Kavan et al. §7's future work (averaging measured
+//!   poses, plainly and robustly).
 
 pub mod algebra;
+pub mod beyond_the_blending_paper;
 pub mod beyond_the_report;
 pub mod blending_claims;
 pub mod captions;
