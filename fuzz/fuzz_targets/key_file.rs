@@ -13,6 +13,9 @@ mod json;
 #[path = "../../crates/chasles-cli/src/keyfile.rs"]
 mod keyfile;
 #[allow(dead_code)]
+#[path = "../../crates/chasles-cli/src/repr.rs"]
+mod repr;
+#[allow(dead_code)]
 #[path = "../../crates/chasles-cli/src/spring_args.rs"]
 mod spring_args;
 

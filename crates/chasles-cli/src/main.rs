@@ -28,6 +28,7 @@ mod cleanup;
 mod convert;
 mod device;
 mod interp;
+mod interp_rigid;
 mod json;
 mod keyfile;
 mod output;
@@ -125,6 +126,8 @@ enum Command {
         frames_dir: Option<std::path::PathBuf>,
         #[command(flatten)]
         pictures: picture_args::Pictures,
+        #[command(flatten)]
+        rigid: interp_rigid::RigidArgs,
     },
     /// Blend rigid transformations: lin, dec, log, log-iter, qlb, sclerp, dlb, dib (Kavan et al. 2006).
     ///
@@ -364,6 +367,7 @@ fn run(cli: Cli) -> anyhow::Result<i32> {
             curve,
             frames_dir,
             pictures,
+            rigid,
         } => interp::run(interp::InterpArgs {
             method,
             keys,
@@ -379,6 +383,7 @@ fn run(cli: Cli) -> anyhow::Result<i32> {
             curve,
             frames_dir,
             pictures,
+            rigid,
         })
         .map(|_| 0),
         Command::Convert {
