@@ -92,6 +92,9 @@ enum Command {
     ///       --iterations 500 --frames-dir frames/     (Figure 6.15, as the tour makes it)
     ///   chasles interp --method tcb --tension 0.3 --bias=-0.5 --keys builtin:table5.1
     ///   chasles interp --method c2 --keys camera.toml --horizon Z --out path.csv
+    ///   chasles interp --rigid --method squad --keys poses.toml --gif moving.gif
+    ///       (keys with a translation, matrix or dq; sclerp, squad or spring; rows gain
+    ///       tx,ty,tz)
     #[command(verbatim_doc_comment)]
     Interp {
         /// The method, by its name in the report and App. C.

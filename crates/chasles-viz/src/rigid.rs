@@ -1,8 +1,8 @@
 //! Pictures of rigid-motion curves (key frames that turn and move, `chasles::interp::rigid`):
 //! the letter R of Dam et al. §5.1's direct visualisation, now moved as well as turned, with
 //! the keys as pale letters and the path of one point of the letter (the top of its stem)
-//! as a trail of small dots. One fixed view fits every key and every frame, facing the
-//! keys' letters (along the mean of their face normals), z up.
+//! as a trail of small dots. One fixed view fits every key and every frame, chosen so that
+//! the path spreads most, on the side the keys' letters face, z up.
 
 use crate::image::Image;
 use crate::letter::letter_r;
@@ -33,9 +33,88 @@ fn scale_for(keys: &[DualQuat<f64>]) -> f64 {
         .flat_map(|a| t.iter().map(move |b| (*a - *b).norm()))
         .fold(0.0, f64::max);
     if extent > 1e-9 {
-        extent / 45.0
+        extent / 32.0
     } else {
         0.2
+    }
+}
+
+/// The direction the view looks from (the keys' alone, so that every curve through them is
+/// seen alike): of 13 candidates (the cube's faces, edges and corners, one of each opposite
+/// pair), the one in which the keys' origins spread most (the largest area of its projected covariance), tilted a little from above, on the
+/// side the keys' letters face (the mean of their z axes).
+fn view_direction(keys: &[DualQuat<f64>]) -> Vec3<f64> {
+    let pts: Vec<Vec3<f64>> = keys.iter().map(|d| d.translation()).collect();
+    let n = pts.len().max(1) as f64;
+    let mean = pts.iter().fold(Vec3::zero(), |s, p| s + *p) * (1.0 / n);
+    let spread = |d: Vec3<f64>| {
+        let (e1, e2) = (d.any_perpendicular(), d.cross(d.any_perpendicular()));
+        let (mut a, mut b, mut c) = (0.0, 0.0, 0.0);
+        for p in &pts {
+            let q = *p - mean;
+            let (x, y) = (q.dot(e1), q.dot(e2));
+            a += x * x;
+            b += x * y;
+            c += y * y;
+        }
+        a * c - b * b
+    };
+    let mut best = (f64::NEG_INFINITY, Vec3::new(0.0, 0.0, 1.0));
+    for x in [-1.0, 0.0, 1.0] {
+        for y in [-1.0, 0.0, 1.0] {
+            for z in [0.0, 1.0] {
+                let d = Vec3::new(x, y, z);
+                let Ok(d) = d.normalize() else { continue };
+                // One of each opposite pair: z > 0, or z = 0 and (y > 0, or y = 0 and x > 0).
+                if z == 0.0 && (y < 0.0 || (y == 0.0 && x < 0.0)) {
+                    continue;
+                }
+                let v = spread(d);
+                if v > best.0 * (1.0 + 1e-9) {
+                    best = (v, d);
+                }
+            }
+        }
+    }
+    let facing = keys.iter().fold(Vec3::zero(), |s, k| {
+        s + k.real.rotate(Vec3::new(0.0, 0.0, 1.0))
+    });
+    let d = if best.1.dot(facing) < 0.0 {
+        -best.1
+    } else {
+        best.1
+    };
+    d + Vec3::new(0.15, -0.2, 0.35)
+}
+
+/// The up direction that lays the keys' spread across the picture: perpendicular to `from`
+/// and to the keys' main direction in the picture's plane, on z's side (z when the keys do
+/// not move).
+fn level_up(keys: &[DualQuat<f64>], from: Vec3<f64>) -> Vec3<f64> {
+    let f = from.normalize().unwrap_or(Vec3::new(0.0, 0.0, 1.0));
+    let (e1, e2) = (f.any_perpendicular(), f.cross(f.any_perpendicular()));
+    let pts: Vec<Vec3<f64>> = keys.iter().map(|d| d.translation()).collect();
+    let n = pts.len().max(1) as f64;
+    let mean = pts.iter().fold(Vec3::zero(), |s, p| s + *p) * (1.0 / n);
+    let (mut a, mut b, mut c) = (0.0, 0.0, 0.0);
+    for p in &pts {
+        let q = *p - mean;
+        let (x, y) = (q.dot(e1), q.dot(e2));
+        a += x * x;
+        b += x * y;
+        c += y * y;
+    }
+    if a + c < 1e-18 {
+        return Vec3::new(0.0, 0.0, 1.0);
+    }
+    // The major axis of [[a, b], [b, c]]: angle ½ atan2(2b, a − c).
+    let phi = 0.5 * (2.0 * b).atan2(a - c);
+    let major = e1 * phi.cos() + e2 * phi.sin();
+    let up = f.cross(major);
+    if up.z < 0.0 {
+        -up
+    } else {
+        up
     }
 }
 
@@ -47,18 +126,8 @@ fn layout(keys: &[DualQuat<f64>], frames: &[DualQuat<f64>], width: usize, height
         .chain(frames)
         .flat_map(|d| v.iter().map(move |p| d.transform_point(*p * scale)))
         .collect();
-    // Facing the letters: along the mean of the keys' face normals (their z axes), tilted
-    // a little from the right and above; z up unless the view is along z.
-    let normal = keys.iter().fold(Vec3::zero(), |s, k| {
-        s + k.real.rotate(Vec3::new(0.0, 0.0, 1.0))
-    });
-    let normal = normal.normalize().unwrap_or(Vec3::new(0.0, -1.0, 0.0));
-    let from = normal + Vec3::new(0.2, -0.25, 0.3);
-    let up = if from.normalize().map_or(true, |f| f.z.abs() > 0.9) {
-        Vec3::new(0.0, 1.0, 0.0)
-    } else {
-        Vec3::new(0.0, 0.0, 1.0)
-    };
+    let from = view_direction(keys);
+    let up = level_up(keys, from);
     let view = View::fit(&pts, from, up, width, height, 0.06);
     Layout {
         scale,

@@ -8,6 +8,7 @@
 //!   coordinates of noise, each averaged), and with 20 % wild outliers the error of DLB,
 //!   DIB and the robust means against that of the inliers' own mean. Pictured: the poses
 //!   as small letters R with the means in colour.
+//! * "spatial keyframing": key-frame curves of rigid motions ([`super::rigid_keyframes`]).
 
 use super::Figures;
 use crate::claim::Paper::Kavan2006;
@@ -257,7 +258,9 @@ fn picture(s: &Scene) -> Image {
 
 /// The section "beyond Kavan et al. (§7)".
 pub fn beyond_the_blending_paper(figures: Figures) -> Section {
-    let mut s = Section::new("Beyond Kavan et al. (§7): averaging measured poses");
+    let mut s = Section::new(
+        "Beyond Kavan et al. (§7): averaging measured poses, key-frame curves of rigid motions",
+    );
     s.text("§7 names where the dual-quaternion blends should go next. Averaging measured poses: the rigid mean is the pose DIB converges to, Σ wᵢ log(b̂* q̂ᵢ) = 0 (bi-invariant; its rotation part is the geodesic mean of the rotations); the robust means reweight every pose by its distance to the current mean — turn in radians and move in units, in quadrature — with Huber's or Tukey's weights and the scale 1.4826 × the median distance, from the input pose of least median distance to the others (chasles::blend::average, `chasles average`). Each measurement below is the true pose moved by a random twist whose six coordinates have deviation σ = 0.05, given with a random sign.");
     s.attempt(Kavan2006, "§7", AVERAGING, |s| {
         let sizes = [16usize, 64, 256, 1024];
@@ -326,6 +329,7 @@ pub fn beyond_the_blending_paper(figures: Figures) -> Section {
                 && sums[2] > 2.0 * noise,
         ))
     });
+    super::rigid_keyframes::rigid_keyframes(&mut s, figures);
     s
 }
 
@@ -338,10 +342,13 @@ mod tests {
     fn the_section_measures_its_claims() {
         let s = beyond_the_blending_paper(Figures::Draw);
         let claims: Vec<_> = s.claims().collect();
-        assert_eq!(claims.len(), 1);
+        assert_eq!(claims.len(), 2);
         for c in &claims {
             assert!(c.verdict.agrees(), "{}", c.measured());
         }
-        assert_eq!(s.figures().count(), 1);
+        assert_eq!(s.figures().count(), 3);
+        for c in &claims {
+            println!("{}", c.measured());
+        }
     }
 }

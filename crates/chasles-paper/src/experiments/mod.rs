@@ -16,7 +16,8 @@
 //! * [`beyond_the_report`]: Dam et al. §8.2's future work (Spring solved to its optimum,
 //!   §7.6's remark tested, angular velocities at keys).
 //! * [`beyond_the_blending_paper`]: Kavan et al. §7's future work (averaging measured
-//!   poses, plainly and robustly).
+//!   poses, plainly and robustly; with [`rigid_keyframes`], key-frame curves of rigid
+//!   motions).
 
 pub mod algebra;
 pub mod beyond_the_blending_paper;
@@ -27,6 +28,7 @@ pub mod dam_figures;
 pub mod identities;
 pub mod interpolation;
 pub mod kavan_figures;
+pub mod rigid_keyframes;
 pub mod squad_and_spring;
 pub mod table_1;
 
