@@ -18,7 +18,7 @@
 //! bias = 0.5               #   those left out are --tension/--continuity/--bias (or 0)
 //! [[keys]]
 //! rotation = [1, 0, 0, 0]  # a rigid key (chasles interp --rigid): [w, x, y, z] and
-//! translation = [1, 2, 3]  #   [x, y, z] (any rotation form above may take a translation)
+//! translation = [1, 2, 3]  #   [x, y, z] (any rotation form may take a translation)
 //! [[keys]]
 //! matrix = [[1, 0, 0, 1], [0, 1, 0, 2], [0, 0, 1, 3], [0, 0, 0, 1]]  # 4x4, row-major
 //! [[keys]]
@@ -371,7 +371,14 @@ fn parse(doc: Doc, source: &str) -> Result<Keys> {
                 bail!("{source}: keys[{i}] must have exactly one of {{angle, axis}}, {{quat}}, {{euler}} or {{yaw, pitch}}");
             }
             cameras = true;
-            quats.push(Quat::from_euler(up.order(), ypr));
+            let q = Quat::from_euler(up.order(), ypr);
+            if let Some(t) = k.translation {
+                posed.push((
+                    i,
+                    DualQuat::from_rotation_translation(q, Vec3::from_array(t)),
+                ));
+            }
+            quats.push(q);
             continue;
         }
         let quat = match (k.quat, k.rotation) {

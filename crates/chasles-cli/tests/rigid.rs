@@ -129,6 +129,31 @@ fn sclerp_through_translations_is_the_polygon_and_json_has_tx_ty_tz() {
 }
 
 #[test]
+fn any_rotation_form_takes_a_translation() {
+    // A camera key (yaw, pitch) and Euler angles with translations: the rows at the keys
+    // carry them; keys without one stay at the origin.
+    let dir = tempfile::tempdir().unwrap();
+    let keys = write(
+        dir.path(),
+        "c.toml",
+        "[[keys]]\nyaw = 0.5\npitch = 0.1\ntranslation = [1, 2, 3]\n[[keys]]\neuler = [0.1, 0.2, 0.3]\ntranslation = [-1, 0, 4]\n[[keys]]\nquat = [1, 0, 0, 0]\n",
+    );
+    let o = chasles(&[
+        "interp", "--rigid", "--method", "squad", "--keys", &keys, "--frames", "3",
+    ]);
+    let r = rows(&stdout(&o));
+    let t: Vec<[f64; 3]> = r.iter().map(|x| [x[6], x[7], x[8]]).collect();
+    for (got, want) in t
+        .iter()
+        .zip([[1.0, 2.0, 3.0], [-1.0, 0.0, 4.0], [0.0, 0.0, 0.0]])
+    {
+        for k in 0..3 {
+            assert!((got[k] - want[k]).abs() < 1e-14, "{t:?}");
+        }
+    }
+}
+
+#[test]
 fn pictures_are_written() {
     let dir = tempfile::tempdir().unwrap();
     let keys = write(dir.path(), "keys.toml", KEYS);
