@@ -14,7 +14,7 @@
 //!
 //! Rigid motions (issue 22, Kavan et al. §7): [`rigid`] — key frames that carry a rotation
 //! and a translation, by piecewise ScLERP, the dual-quaternion Squad ([`rigid_squad`]) or
-//! Spring on the dual quaternions ([`rigid_spring`]).
+//! Spring on the dual quaternions ([`rigid_spring`](mod@rigid_spring)).
 //!
 //! [`interpolate`] samples a whole curve: every key appears exactly once among the frames,
 //! flagged in [`Frame::key`].

@@ -11,7 +11,7 @@
 //!   of Slerp and the dual-quaternion log/exp in eq. 6.15 ([`super::rigid_squad`]). C¹ at
 //!   the keys.
 //! * [`RigidMethod::Spring`]: the curve of least curvature energy through the keys (Dam et
-//!   al. §6.3.7 carried to rigid motions, [`super::rigid_spring`]): by default the
+//!   al. §6.3.7 carried to rigid motions, [`super::rigid_spring`](mod@super::rigid_spring)): by default the
 //!   quaternion Spring of the rotations with the natural spline of the translations; or the
 //!   dual-quaternion curve's own curvature energy ([`super::RigidEnergy::Screw`]).
 //!
@@ -20,12 +20,12 @@
 //! left (`a q̂_i`: a change of world frame) or on the right (`q̂_i a`: a change of the body's
 //! frame) moves every frame the same way. No positive energy on the rigid motions is
 //! invariant on both sides (SE(3) has no bi-invariant metric), so Spring is invariant on the
-//! left and, on the right, under rotations only (see [`super::rigid_spring`]).
+//! left and, on the right, under rotations only (see [`super::rigid_spring`](mod@super::rigid_spring)).
 //!
 //! **Reductions.** Keys without translation give Slerp, Squad and the quaternion Spring
 //! (width 1, c_k = 1) exactly: every dual part stays 0. Keys without rotation give
 //! Euclidean curves of the translations (Spring with its default energy; the screw energy
-//! turns the frames, see [`super::rigid_spring`]): ScLERP the polygon through them, Squad the uniform
+//! turns the frames, see [`super::rigid_spring`](mod@super::rigid_spring)): ScLERP the polygon through them, Squad the uniform
 //! Catmull–Rom spline (the cubic Hermite curve with tangents `(t_{i+1} − t_{i−1})/2`, and
 //! `t_1 − t_0`, `t_N − t_{N−1}` at the ends — `s_i` becomes `t_i − (t_{i−1} − 2t_i +
 //! t_{i+1})/4`, and eq. 6.14 a cubic with those end tangents), Spring the discrete natural

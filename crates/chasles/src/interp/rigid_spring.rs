@@ -9,7 +9,7 @@
 //! two parts are independent: the rotations are the quaternion Spring's, solved by the
 //! converged solver of `spring_converged` (reused as it is, [`super::spring()`] with
 //! [`super::SpringConfig::converged`]), and the translations the discrete natural spline,
-//! a band linear solve ([`crate::banded`]). Keys without translation give the quaternion
+//! a band linear solve (`crate::banded`). Keys without translation give the quaternion
 //! Spring, keys without rotation the Euclidean curve, exactly.
 //!
 //! **[`RigidEnergy::Screw`]**: the curvature energy of the dual-quaternion curve itself.
