@@ -28,7 +28,8 @@ use std::time::Instant;
 #[derive(clap::Args, Clone, Debug, Default)]
 pub struct RigidArgs {
     /// Interpolate rigid motions (keys with a translation, matrix or dq): --method sclerp
-    /// (or slerp: piecewise ScLERP), squad (the dual-quaternion Squad) or spring.
+    /// (or slerp: piecewise ScLERP), squad (the dual-quaternion Squad) or spring; frames are
+    /// shared uniformly, or by key times (--timing does not apply).
     #[arg(long)]
     pub rigid: bool,
     /// --rigid --method spring: the energy — split (the rotations' Spring energy plus the

@@ -10,7 +10,9 @@
 //! unit dual quaternions as on the unit quaternions: differentiating eq. 6.14 at h = 0,
 //! the curve leaves q̂_i with `q̂_i (L₊ + 2 log(q̂_i* ŝ_i)) = q̂_i (L₊ − L₋)/2` and reaches it
 //! from the interval before with the same derivative (`L± = log(q̂_i* q̂_{i±1})`): C¹ at the
-//! keys (`tests/rigid.rs` measures it by one-sided differences). Every term is a product,
+//! keys (`tests/rigid.rs` measures it by one-sided differences). C¹ in the interval
+//! parameter h: with key times whose intervals differ in length the velocity in time scales
+//! by each interval's length on either side of a key, as the quaternion Squad's does. Every term is a product,
 //! log or exp of relative motions, so the curve is bi-invariant. With no translations it is
 //! Squad; with no rotations, the uniform Catmull–Rom spline of the translations (module
 //! [`super::rigid`]).
