@@ -611,7 +611,13 @@ fn repeated_half_turn_and_far_keys_stay_finite() {
     // the sign as chained is taken), and keys far from the origin.
     let half = rt([1.0, 0.0, 0.0], std::f64::consts::PI, [1.0, 2.0, 0.0]);
     let sets = [
-        vec![DualQuat::identity(), DualQuat::identity(), half, half, DualQuat::identity()],
+        vec![
+            DualQuat::identity(),
+            DualQuat::identity(),
+            half,
+            half,
+            DualQuat::identity(),
+        ],
         keys5()
             .iter()
             .map(|k| DualQuat::from_rotation_translation(k.real, k.translation() * 1e6))
@@ -620,7 +626,10 @@ fn repeated_half_turn_and_far_keys_stay_finite() {
     for k in &sets {
         for (name, m) in methods() {
             let f = run(&m, k, 41);
-            assert!(f.iter().all(|x| x.dq.is_finite() && x.dq.is_unit(1e-9)), "{name}");
+            assert!(
+                f.iter().all(|x| x.dq.is_finite() && x.dq.is_unit(1e-9)),
+                "{name}"
+            );
             let at: Vec<_> = f.iter().filter_map(|x| x.key.map(|i| (i, x.dq))).collect();
             for (i, d) in at {
                 assert!(apart(d, k[i]) == 0.0, "{name} key {i}");
