@@ -13,6 +13,8 @@
 //!   to meshes, pictures and benchmarks (Kavan et al. 2006, §6).
 //! * `chasles view` — one self-contained HTML page showing a rig (or the twisted cylinder)
 //!   skinned by LBS and DQS in the browser, WebGL2 (Kavan et al. 2006, §6).
+//! * `chasles clip blend`, `chasles clip compress` — clips made anew: two blended per joint
+//!   by DLB, one compressed to a vertex tolerance (Kavan et al. 2006, §7).
 //!
 //! Output piped into a program that stops reading (`chasles interp … | head -1`) ends the
 //! process quietly, as it does for other Unix tools: SIGPIPE is restored to its default.
@@ -25,6 +27,7 @@ mod blend_case;
 mod blend_pictures;
 mod choice;
 mod cleanup;
+mod clip;
 mod convert;
 mod device;
 mod interp;
@@ -208,6 +211,9 @@ enum Command {
     ///   chasles view --artifacts --out cylinder.html   (the candy wrapper, twist and bend sliders)
     #[command(verbatim_doc_comment)]
     View(view::ViewArgs),
+    /// Make clips of a rig: blend two per joint by DLB, or compress one to a vertex tolerance (Kavan et al. 2006, §7).
+    #[command(subcommand)]
+    Clip(clip::ClipCommand),
     /// Convert one rotation or rigid motion between representations.
     ///
     /// Representations: quat (w x y z), matrix (9 or 16 numbers, row-major), matrix3,
@@ -338,6 +344,7 @@ fn run(cli: Cli) -> anyhow::Result<i32> {
         Command::Skin(args) => skin::run(args).map(|_| 0),
         Command::View(args) => view::run(args).map(|_| 0),
         Command::Average(args) => average::run(args).map(|_| 0),
+        Command::Clip(cmd) => clip::run(cmd).map(|_| 0),
         Command::Blend {
             method,
             input,

@@ -2,18 +2,26 @@
 //! the plain JSON format, bytes, or the built-in models of `chasles_models`) and
 //! `chasles_skin::Pose` (clips sampled by the glTF rules). Both pickle, so they cross
 //! processes (Dask): a rig as its bytes ([`crate::pickle`]), a pose as its arrays.
+//!
+//! `device="gpu"` skins through `chasles_skin::gpu::GpuSkinner` (wgpu compute shaders for
+//! LBS, DQS and DIB, Kavan et al. §6's GPU implementation) — the mesh uploaded once per rig,
+//! on the first call that asks for it, and the frames of a clip skinned one after another
+//! on it; `device="auto"` takes a hardware GPU when there is one and the method has a
+//! shader, the CPU otherwise, as `chasles skin --device auto`.
 
 use crate::arrays::{array, skin_error, value_error};
-use crate::skin::{device, frames_out, method, skin_into, Layout};
+use crate::skin::{device, frames_out, method, skin_into, Device, Layout};
 use chasles::{Quat, Vec3};
+use chasles_skin::gpu::GpuSkinner;
 use chasles_skin::pose::skinning_matrices;
-use chasles_skin::{gltf_load, json_rig, Pose, Rig, Trs};
+use chasles_skin::{gltf_load, joint_transforms, json_rig, Method, Pose, Rig, Trs};
 use numpy::{
     PyArray1, PyArray2, PyArrayDyn, PyArrayMethods, PyReadonlyArrayDyn, PyUntypedArrayMethods,
 };
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyType};
 use std::path::PathBuf;
+use std::sync::{Mutex, OnceLock};
 
 /// `obj` as an int64 array; a `ValueError` unless its numbers are integers.
 pub fn int_array<'py>(
@@ -33,6 +41,33 @@ pub fn int_array<'py>(
     kw.set_item("requirements", "CAE")?;
     let a = np.call_method("require", (a,), Some(&kw))?;
     Ok(a.cast_into::<PyArrayDyn<i64>>()?.readonly())
+}
+
+/// `pose` of `rig` skinned by `m` on the GPU `g` into `pos` and `nrm`; a vertex that is
+/// not finite is an error, as on the CPU.
+fn on_gpu(
+    g: &Mutex<GpuSkinner>,
+    rig: &Rig,
+    pose: &Pose,
+    m: Method,
+    pos: &mut [[f32; 3]],
+    nrm: &mut [[f32; 3]],
+) -> Result<(), crate::arrays::Fail> {
+    let jt = joint_transforms(rig, pose)?;
+    let g = g
+        .lock()
+        .map_err(|_| "the GPU skinner was poisoned by an earlier panic".to_string())?;
+    let s = g.skin(&jt, m).map_err(|e| e.to_string())?;
+    for (i, (o, p)) in pos.iter_mut().zip(&s.positions).enumerate() {
+        *o = p.to_array();
+        if !o.iter().all(|x| x.is_finite()) {
+            return Err(format!("vertex {i}: the GPU's skinned position is not finite").into());
+        }
+    }
+    for (o, n) in nrm.iter_mut().zip(&s.normals) {
+        *o = n.to_array();
+    }
+    Ok(())
 }
 
 /// The names of the built-in models (``CesiumMan``, ``Fox``, …): real rigged characters
@@ -87,12 +122,66 @@ pub struct PyRig {
     pub rig: Rig,
     /// Laid out for skinning.
     pub layout: Layout,
+    /// The mesh on the GPU, made by the first call that asks for it (the reason when
+    /// there is no adapter); not pickled.
+    gpu: OnceLock<Result<Mutex<GpuSkinner>, String>>,
+}
+
+/// The methods with a GPU shader.
+fn has_shader(m: Method) -> bool {
+    matches!(m, Method::Lbs | Method::Dqs | Method::Dib)
 }
 
 impl PyRig {
     fn of(rig: Rig) -> PyResult<Self> {
         let layout = Layout::of(&rig).map_err(skin_error)?;
-        Ok(PyRig { rig, layout })
+        Ok(PyRig {
+            rig,
+            layout,
+            gpu: OnceLock::new(),
+        })
+    }
+
+    /// The GPU to skin on by `m` under `device`: None for the CPU; a `ValueError` when
+    /// the GPU was asked for and cannot be had (no adapter, or no shader for `m`).
+    fn gpu(
+        &self,
+        py: Python<'_>,
+        device: Device,
+        m: Method,
+    ) -> PyResult<Option<&Mutex<GpuSkinner>>> {
+        if device == Device::Cpu || (device == Device::Auto && !has_shader(m)) {
+            return Ok(None);
+        }
+        if !has_shader(m) {
+            return Err(value_error(format!(
+                "device='gpu': {} has no GPU path (lbs, dqs and dib do); use device='cpu'",
+                m.name()
+            )));
+        }
+        let made = self.gpu.get_or_init(|| {
+            py.detach(|| {
+                GpuSkinner::new(&self.rig)
+                    .map(Mutex::new)
+                    .map_err(|e| e.to_string())
+            })
+        });
+        match (made, device) {
+            (Ok(g), Device::Gpu) => Ok(Some(g)),
+            (Ok(g), _) => {
+                let software = g.lock().map_or(true, |g| g.is_software());
+                Ok((!software).then_some(g))
+            }
+            (Err(e), Device::Gpu) => Err(value_error(format!("device='gpu': {e}"))),
+            (Err(_), _) => Ok(None),
+        }
+    }
+
+    /// The adapter's name when skinning by `method` under `device` runs on a GPU.
+    fn adapter_of(&self, py: Python<'_>, device: Device, m: Method) -> PyResult<Option<String>> {
+        Ok(self
+            .gpu(py, device, m)?
+            .and_then(|g| g.lock().ok().map(|g| g.adapter().to_string())))
     }
 
     /// A clip by index (int), name, or index as text; the first when None.
@@ -382,10 +471,27 @@ impl PyRig {
             .reshape([m.len(), 4, 4])?
             .into_any())
     }
+    /// Where :meth:`skin` and :meth:`skin_clip` run for ``method`` under ``device``:
+    /// ``"cpu"``, or the GPU adapter's name (``device="gpu"`` raises ``ValueError`` with
+    /// the reason when there is no adapter or the method has no shader; ``"auto"`` takes a
+    /// hardware GPU for ``lbs``, ``dqs`` and ``dib``, else the CPU).
+    ///
+    /// >>> import chasles
+    /// >>> chasles.Rig.model("CesiumMan").skinning_device("sbs", "auto")
+    /// 'cpu'
+    #[pyo3(signature = (method = "dqs", device = "auto"))]
+    fn skinning_device(&self, py: Python<'_>, method: &str, device: &str) -> PyResult<String> {
+        let m = self::method(method)?;
+        Ok(self
+            .adapter_of(py, self::device(device)?, m)?
+            .unwrap_or_else(|| "cpu".into()))
+    }
     /// Skins one pose: ``pose`` (a :class:`Pose`), or ``clip``/``time`` as
     /// :meth:`pose` takes them (the rest pose when none is given), by ``method`` (``lbs``,
     /// ``dqs``, ``dib``, ``log``, ``qlb``, ``sbs``) — the numbers of ``chasles skin
-    /// --device cpu``. Returns float32 ``(positions, normals)``, each (V, 3).
+    /// --device cpu`` — on ``device`` ``"cpu"`` (the default), ``"gpu"`` (LBS, DQS, DIB by
+    /// compute shaders, any adapter; ``ValueError`` when there is none) or ``"auto"`` (see
+    /// :meth:`skinning_device`). Returns float32 ``(positions, normals)``, each (V, 3).
     ///
     /// >>> import chasles
     /// >>> pos, nrm = chasles.Rig.model("CesiumMan").skin(clip=0, time=0.5, method="dqs")
@@ -402,10 +508,13 @@ impl PyRig {
         time: Option<f32>,
     ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
         let m = self::method(method)?;
-        self::device(device)?;
+        let gpu = self.gpu(py, self::device(device)?, m)?;
         let pose = self.chosen(pose, clip, time)?;
         let v = self.rig.mesh.positions.len();
         frames_out(py, &[], v, |_, p, n, parallel| {
+            if let Some(g) = gpu {
+                return on_gpu(g, &self.rig, &pose, m, p, n);
+            }
             let mats = skinning_matrices(&self.rig, &pose)?;
             Ok(skin_into(
                 &self.rig,
@@ -420,7 +529,8 @@ impl PyRig {
     }
     /// Skins a whole clip at ``fps`` frames a second — ``floor(duration · fps) + 1``
     /// frames at ``t = f / fps``, as ``chasles skin --all-frames`` — or at the given
-    /// ``times`` (seconds), one frame per task on all cores. Returns float32
+    /// ``times`` (seconds), one frame per task on all cores (one after another on the GPU
+    /// with ``device="gpu"``, see :meth:`skin`). Returns float32
     /// ``(positions, normals)``, each (F, V, 3). ``max_frames`` is a ceiling against a clip
     /// that lasts a week.
     ///
@@ -442,7 +552,7 @@ impl PyRig {
         max_frames: usize,
     ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
         let m = self::method(method)?;
-        self::device(device)?;
+        let gpu = self.gpu(py, self::device(device)?, m)?;
         let c = self.clip(clip)?;
         let ts: Vec<f32> = match times {
             Some(t) => {
@@ -480,6 +590,9 @@ impl PyRig {
         let v = self.rig.mesh.positions.len();
         frames_out(py, &[ts.len()], v, |f, p, n, parallel| {
             let pose = Pose::animated(&self.rig, c, ts[f])?;
+            if let Some(g) = gpu {
+                return on_gpu(g, &self.rig, &pose, m, p, n);
+            }
             let mats = skinning_matrices(&self.rig, &pose)?;
             Ok(skin_into(
                 &self.rig,

@@ -47,13 +47,23 @@ pub fn method(name: &str) -> PyResult<Method> {
     })
 }
 
-/// Checks a device name: the CPU (`cpu`, or `auto`, which is the CPU in this build).
-pub fn device(name: &str) -> PyResult<()> {
+/// Where a rig is skinned (`chasles skin --device`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Device {
+    /// The CPU: the fast path on all cores.
+    Cpu,
+    /// The GPU (wgpu compute), any adapter, a software one too; LBS, DQS and DIB only.
+    Gpu,
+    /// A hardware GPU when there is one and the method has a shader, else the CPU.
+    Auto,
+}
+
+/// The device of a name: `cpu`, `gpu` or `auto`.
+pub fn device(name: &str) -> PyResult<Device> {
     match name {
-        "cpu" | "auto" => Ok(()),
-        "gpu" => Err(value_error(
-            "device='gpu': this build of chasles skins on the CPU only (the GPU path is the Rust crate's `gpu` feature, used by `chasles skin --device gpu`)",
-        )),
+        "cpu" => Ok(Device::Cpu),
+        "gpu" => Ok(Device::Gpu),
+        "auto" => Ok(Device::Auto),
         other => Err(value_error(format!(
             "unknown device '{other}': cpu, gpu or auto"
         ))),

@@ -58,6 +58,71 @@ def test_a_whole_clip_equals_the_cli(method, cesium, cesium_path, cli, tmp_path)
         assert np.array_equal(pos[f], p) and np.array_equal(nrm[f], n), (method, f)
 
 
+def gpu_or_skip(rig):
+    try:
+        return rig.skinning_device("dqs", "gpu")
+    except ValueError as e:
+        pytest.skip(f"no GPU adapter (not even Mesa's lavapipe): {e}")
+
+
+@pytest.mark.parametrize("method", ["lbs", "dqs", "dib"])
+def test_the_gpu_skins_as_the_cpu(method, cesium):
+    adapter = gpu_or_skip(cesium)
+    assert adapter != "cpu"
+    cpu, cpu_n = cesium.skin(clip=0, time=0.7, method=method)
+    gpu, gpu_n = cesium.skin(clip=0, time=0.7, method=method, device="gpu")
+    assert gpu.dtype == np.float32 and gpu.shape == cpu.shape
+    # f32 on both, different operation orders (and the GPU's fused multiply-adds): the
+    # mesh is about 1.8 units tall, so 1e-5 is a few ulp of its coordinates.
+    assert np.abs(gpu - cpu).max() < 1e-5, (method, adapter)
+    assert np.abs(gpu_n - cpu_n).max() < 1e-4
+    clip, _ = cesium.skin_clip(0, fps=10, method=method, device="gpu")
+    ref, _ = cesium.skin_clip(0, fps=10, method=method)
+    assert clip.shape == ref.shape and np.abs(clip - ref).max() < 1e-5
+    # auto takes a hardware GPU only; a software one (lavapipe) is no faster than the CPU.
+    assert cesium.skinning_device("sbs", "auto") == "cpu"
+    assert cesium.skinning_device(method, "cpu") == "cpu"
+
+
+STRIP = {
+    # A bar along x from 0 to 2, the joint "tip" at x = 1 turning the outer half.
+    "positions": [[x, y, 0.0] for x in (0.0, 0.5, 1.0, 1.5, 2.0) for y in (-0.1, 0.1)],
+    "triangles": [[2 * i + a, 2 * i + b, 2 * i + c] for i in range(4) for a, b, c in ((0, 2, 1), (1, 2, 3))],
+    "joints": [{"name": "root", "parent": None}, {"name": "tip", "parent": 0, "translation": [1.0, 0.0, 0.0]}],
+    "influences": [[[0, 1.0]]] * 4 + [[[0, 0.5], [1, 0.5]]] * 2 + [[[1, 1.0]]] * 4,
+}
+
+
+def test_a_json_rig_loads_and_skins_as_the_cli(cli, tmp_path):
+    path = tmp_path / "strip.json"
+    path.write_text(json.dumps(STRIP))
+    rig = chasles.Rig.load(path)
+    assert rig.vertex_count == 10 and rig.joint_names == ["root", "tip"]
+    assert chasles.Rig.from_bytes(path.read_bytes(), "strip.json").vertex_count == 10
+    # The tip turned 90° about z: the outer vertices (weight 1 on tip) turn exactly about
+    # (1, 0, 0); the middle ones, half on each joint, by DQS are turned 45°.
+    quarter = chasles.quat_from_axis_angle([0.0, 0.0, 1.0], np.pi / 2)
+    rest = rig.pose()
+    rotations = np.array(rest.rotations)
+    rotations[1] = quarter
+    pose = chasles.Pose(rest.translations, rotations, rest.scales)
+    pos, _ = rig.skin(pose, "dqs")
+    expect = np.array([[1.0 - y, x - 1.0, 0.0] for x, y, _ in STRIP["positions"][6:]])
+    assert np.abs(pos[6:] - expect).max() < 1e-6
+    assert np.array_equal(pos[:4], np.array(STRIP["positions"][:4], dtype=np.float32))
+    mid = pos[4]  # (1, -0.1) turned 45° about (1, 0)
+    assert np.abs(mid - [1 + 0.1 * np.sin(np.pi / 4), -0.1 * np.cos(np.pi / 4), 0]).max() < 1e-6
+    posefile = tmp_path / "pose.json"
+    posefile.write_text(json.dumps({"joints": {"tip": {"rotation": list(quarter)}}}))
+    for method in SKIN_METHODS:
+        out = tmp_path / f"{method}.json"
+        cli("skin", "--rig", path, "--pose", posefile, "--method", method, "--device", "cpu", "--out", out)
+        d = json.loads(out.read_text())
+        p, n = rig.skin(pose, method)
+        assert np.array_equal(p, np.array(d["positions"], dtype=np.float32)), method
+        assert np.array_equal(n, np.array(d["normals"], dtype=np.float32)), method
+
+
 def test_clip_frames_are_single_poses(cesium):
     times = np.array([0.0, 0.25, 1.5], dtype=np.float32)
     pos, nrm = cesium.skin_clip("0", times=times, method="log")
@@ -124,8 +189,10 @@ def test_rigs_and_poses_pickle(cesium):
 def test_bad_skinning_inputs_raise(cesium, tmp_path, rng):
     with pytest.raises(ValueError, match="unknown method 'bbw'"):
         cesium.skin(method="bbw")
-    with pytest.raises(ValueError, match="device='gpu'"):
-        cesium.skin(device="gpu")
+    with pytest.raises(ValueError, match="device='gpu': sbs has no GPU path"):
+        cesium.skin(method="sbs", device="gpu")
+    with pytest.raises(ValueError, match="unknown device 'tpu': cpu, gpu or auto"):
+        cesium.skin(device="tpu")
     with pytest.raises(ValueError, match="no animation 'Dance'; there are: 0"):
         cesium.pose("Dance", 0.0)
     with pytest.raises(ValueError, match="no animation 3"):

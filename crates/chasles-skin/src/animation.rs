@@ -157,6 +157,34 @@ impl Animation {
             .fold(0.0, f32::max)
     }
 
+    /// Every key time of any channel, sorted, times within a millionth of a second (times
+    /// stored by different channels in f32) counted once: the clip's own sampling.
+    pub fn key_times(&self) -> Vec<f32> {
+        let mut t: Vec<f32> = self
+            .channels
+            .iter()
+            .flat_map(|c| c.times.iter().copied())
+            .collect();
+        t.sort_by(f32::total_cmp);
+        t.dedup_by(|b, a| (*b - *a).abs() <= 1e-6 * a.abs().max(1.0));
+        t
+    }
+
+    /// Whether a channel drives `path` of `node`.
+    pub fn animates(&self, node: usize, path: Path) -> bool {
+        self.channels
+            .iter()
+            .any(|c| c.node == node && c.path == path)
+    }
+
+    /// The nodes any channel drives, in increasing order.
+    pub fn nodes(&self) -> Vec<usize> {
+        let mut n: Vec<usize> = self.channels.iter().map(|c| c.node).collect();
+        n.sort_unstable();
+        n.dedup();
+        n
+    }
+
     /// The local transforms of all nodes at time t: the rest transforms with the animated
     /// properties replaced.
     pub fn sample(&self, rest: &[Trs], t: f32) -> Vec<Trs> {

@@ -143,6 +143,27 @@ pub enum SkinError {
         /// How many clips there are.
         count: usize,
     },
+    /// A clip asked for by a name (or index) the rig does not have.
+    #[error("{rig}: no animation '{clip}'; there are: {available}")]
+    NoClip {
+        /// The rig.
+        rig: String,
+        /// The name asked for.
+        clip: String,
+        /// The clips there are, by name (and index).
+        available: String,
+    },
+    /// A parameter out of its range (a blend weight outside [0, 1], a tolerance that is
+    /// not positive, a NaN).
+    #[error("{what} {value} {reason}")]
+    Parameter {
+        /// The parameter (`the weight`, `the tolerance`).
+        what: &'static str,
+        /// Its value, as given.
+        value: String,
+        /// What it must be.
+        reason: &'static str,
+    },
     /// An animation channel that cannot be played.
     #[error("{rig}: animation {animation}, channel {channel} (node {node}): {problem}")]
     Channel {

@@ -17,19 +17,26 @@
 //!
 //! The candy-wrapper artifact is measured on a twisted cylinder built in code
 //! ([`cylinder`]), linear blending's volume loss by [`volume`]; deformed meshes are written
-//! whole or not at all as OBJ, PLY, glTF or JSON ([`writers`]). Every error is a
+//! whole or not at all as OBJ, PLY, glTF or JSON ([`writers`]).
+//!
+//! Beyond the paper (its §7): clips blended per joint by DLB ([`clip_blend`], "motion
+//! blending") and compressed to a vertex tolerance ([`clip_compress`], "motion analysis and
+//! compression"), written back as glTF with the rig ([`gltf_write`]). Every error is a
 //! [`SkinError`] variant naming the file, item or field.
 
 #![warn(missing_docs)]
 
 pub mod animation;
 pub mod bounded;
+pub mod clip_blend;
+pub mod clip_compress;
 pub mod cloth;
 pub mod cylinder;
 pub mod error;
 pub mod fast;
 mod gltf_check;
 pub mod gltf_load;
+pub mod gltf_write;
 #[cfg(feature = "gpu")]
 pub mod gpu;
 pub mod json_rig;

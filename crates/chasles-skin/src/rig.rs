@@ -246,6 +246,37 @@ impl Rig {
         Ok(rig)
     }
 
+    /// The index of the clip named `name` — or, when no clip has that name, of index
+    /// `name` (`"0"`). Errors: [`SkinError::NoClip`], listing the clips there are.
+    pub fn clip_index(&self, name: &str) -> Result<usize> {
+        if let Some(i) = self.animations.iter().position(|a| a.name == name) {
+            return Ok(i);
+        }
+        match name.parse::<usize>() {
+            Ok(i) if i < self.animations.len() => Ok(i),
+            _ => Err(SkinError::NoClip {
+                rig: self.name.clone(),
+                clip: name.to_string(),
+                available: if self.animations.is_empty() {
+                    "none".to_string()
+                } else {
+                    self.animations
+                        .iter()
+                        .enumerate()
+                        .map(|(i, a)| {
+                            if a.name.is_empty() {
+                                i.to_string()
+                            } else {
+                                format!("{} ({i})", a.name)
+                            }
+                        })
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                },
+            }),
+        }
+    }
+
     /// Checks the rig's consistency: counts, indices, finite numbers, an acyclic hierarchy,
     /// playable animation channels. [`Rig::new`] runs it; run it again after changing the
     /// public fields by hand.

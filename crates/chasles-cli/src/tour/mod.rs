@@ -7,6 +7,7 @@
 //! measurement, whether they agree, and the pictures; see [`crate::report`]).
 
 mod blending;
+mod clips;
 mod figure_5;
 mod skinning;
 
@@ -81,9 +82,11 @@ pub fn run(args: TourArgs) -> anyhow::Result<()> {
         Experiment::new("skinning: the candy wrapper", skinning::candy_wrapper),
         Experiment::new("skinning: Figure 6(c)–(d)", skinning::long_way),
         Experiment::new("skinning: the characters", skinning::characters),
-        Experiment::new("beyond Kavan et al. (§7)", || {
-            beyond_the_blending_paper(Figures::Draw)
-        }),
+        Experiment::new("beyond Kavan et al. (§7): clips", clips::clips),
+        Experiment::new(
+            "beyond Kavan et al. (§7): poses and rigid key frames",
+            || beyond_the_blending_paper(Figures::Draw),
+        ),
         Experiment::new("identities on random inputs", move || {
             identities(samples, seed)
         }),
