@@ -2,7 +2,7 @@
 //! (`crates/chasles-cli/src/keyfile.rs`, compiled in by path: the binary's modules are not
 //! a library): keys or a typed error, never a panic. Keys that load are interpolated by
 //! every piecewise method (the curves past the report too, with the keys' own
-//! Kochanek–Bartels parameters) and by Spring (its iterations and frames clamped so that one
+//! Kochanek–Bartels parameters), as rigid motions by every rigid curve, and by Spring (its iterations and frames clamped so that one
 //! input stays well under libFuzzer's timeout); every frame must be finite or an error.
 #![no_main]
 
@@ -13,13 +13,17 @@ mod json;
 #[path = "../../crates/chasles-cli/src/keyfile.rs"]
 mod keyfile;
 #[allow(dead_code)]
+#[path = "../../crates/chasles-cli/src/repr.rs"]
+mod repr;
+#[allow(dead_code)]
 #[path = "../../crates/chasles-cli/src/spring_args.rs"]
 mod spring_args;
 
 use chasles::interp::{
-    interpolate, spring, Hemisphere, KeyFrames, Method, SpringConfig, Tcb, Timing,
+    interpolate, interpolate_rigid, spring, Hemisphere, KeyFrames, Method, RigidEnergy,
+    RigidKeys, RigidMethod, RigidSpringConfig, SpringConfig, Tcb, Timing,
 };
-use chasles::EulerOrder;
+use chasles::{DualQuat, EulerOrder};
 use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|data: &[u8]| {
@@ -76,6 +80,31 @@ fuzz_target!(|data: &[u8]| {
                 f.iter().all(|f| f.q.is_finite()),
                 "{m:?}: a frame that is not finite"
             );
+        }
+    }
+    // The keys as rigid motions (translation, matrix or dq keys; the others at the
+    // origin) by the rigid curves, Spring with both energies and few steps.
+    let poses: Vec<DualQuat<f64>> = keys.poses.clone().unwrap_or_else(|| {
+        keys.quats.iter().map(|q| DualQuat::from_rotation(*q)).collect()
+    });
+    if let Ok(rk) = RigidKeys::new(&poses, keys.times.as_deref()) {
+        let few = |energy| RigidSpringConfig {
+            energy,
+            max_iterations: 20,
+            ..Default::default()
+        };
+        for m in [
+            RigidMethod::ScLerp,
+            RigidMethod::Squad,
+            RigidMethod::Spring(few(RigidEnergy::Split)),
+            RigidMethod::Spring(few(RigidEnergy::Screw)),
+        ] {
+            if let Ok(f) = interpolate_rigid(&m, &rk, frames.min(200)) {
+                assert!(
+                    f.iter().all(|f| f.dq.is_finite()),
+                    "rigid {m:?}: a pose that is not finite"
+                );
+            }
         }
     }
     let preset = SpringConfig::spring();

@@ -53,7 +53,8 @@ pub enum InterpMethod {
     LinMat,
     /// Lerp (§6.1.3), normalized (Figure 6.3).
     Lerp,
-    /// Slerp (§6.1.5, eq. 6.13).
+    /// Slerp (§6.1.5, eq. 6.13); with --rigid, piecewise ScLERP (also named sclerp).
+    #[value(alias = "sclerp")]
     Slerp,
     /// Squad (§6.2.1, Definition 17).
     Squad,

@@ -47,6 +47,8 @@ pub struct InterpArgs {
     pub frames_dir: Option<PathBuf>,
     /// The pictures asked for (`--plot` SVG or PNG).
     pub pictures: Pictures,
+    /// `--rigid` and its options.
+    pub rigid: crate::interp_rigid::RigidArgs,
 }
 
 /// The world's up axis on the command line.
@@ -185,7 +187,16 @@ pub fn compute(args: &InterpArgs) -> Result<Run> {
             args.max_frames
         );
     }
+    if let Some(flag) = args.rigid.stray() {
+        bail!("{flag} applies to --rigid curves");
+    }
     let keys = keyfile::load(&args.keys)?;
+    if keys.poses.is_some() {
+        bail!(
+            "{}: the keys carry translations (translation, matrix or dq): interpolate them with --rigid",
+            keys.source
+        );
+    }
     let hemisphere = if args.keep_signs {
         Hemisphere::AsGiven
     } else {
@@ -439,6 +450,9 @@ pub fn run(args: InterpArgs) -> Result<()> {
         }
     }
     args.pictures.check(&["svg", "png"])?;
+    if args.rigid.rigid {
+        return crate::interp_rigid::run(&args);
+    }
     if let Some(dir) = &args.frames_dir {
         check_frames_dir("--frames-dir", dir)?;
     }

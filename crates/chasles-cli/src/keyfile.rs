@@ -17,6 +17,13 @@
 //! continuity = -0.2        #   continuity and bias, each in [-1, 1] (Kochanek–Bartels);
 //! bias = 0.5               #   those left out are --tension/--continuity/--bias (or 0)
 //! [[keys]]
+//! rotation = [1, 0, 0, 0]  # a rigid key (chasles interp --rigid): [w, x, y, z] and
+//! translation = [1, 2, 3]  #   [x, y, z] (any rotation form may take a translation)
+//! [[keys]]
+//! matrix = [[1, 0, 0, 1], [0, 1, 0, 2], [0, 0, 1, 3], [0, 0, 0, 1]]  # 4x4, row-major
+//! [[keys]]
+//! dq = [1, 0, 0, 0, 0, 0.5, 1, 1.5]  # a unit dual quaternion [w,x,y,z, wε,xε,yε,zε]
+//! [[keys]]
 //! yaw = 0.5                # a camera (radians): yaw about the up axis, pitch, and an
 //! pitch = -0.1             #   optional roll (default 0), looking along its x axis, with
 //!                          #   the file's `horizon` axis up (z when it names none)
@@ -41,11 +48,12 @@
 //! field, an unknown Euler order, a zero axis alike).
 
 use crate::json::{from_json, Order};
+use crate::repr::{motion_from_numbers, Repr};
 use crate::spring_args::SpringArgs;
 use anyhow::{anyhow, bail, Context, Result};
 use chasles::interp::tcb::check_parameter;
 use chasles::interp::{examples, TcbKey, Up};
-use chasles::{EulerOrder, Quat, Vec3};
+use chasles::{DualQuat, EulerOrder, Quat, Vec3};
 use serde::de::value::{MapAccessDeserializer, SeqAccessDeserializer};
 use serde::de::{Deserializer, MapAccess, SeqAccess, Visitor};
 use serde::Deserialize;
@@ -129,6 +137,14 @@ struct Spec {
     axis: Option<[f64; 3]>,
     /// `[w, x, y, z]`.
     quat: Option<[f64; 4]>,
+    /// `[w, x, y, z]` (as `quat`; the rigid forms' name).
+    rotation: Option<[f64; 4]>,
+    /// `[x, y, z]`, applied after the rotation (a rigid key).
+    translation: Option<[f64; 3]>,
+    /// A 4×4 rigid matrix, row-major, as four rows.
+    matrix: Option<[[f64; 4]; 4]>,
+    /// A unit dual quaternion `[w, x, y, z, wε, xε, yε, zε]`.
+    dq: Option<[f64; 8]>,
     /// Three angles in radians.
     euler: Option<[f64; 3]>,
     /// The Euler order of this key's `euler`.
@@ -170,6 +186,9 @@ pub struct Keys {
     pub horizon: Option<Up>,
     /// Whether some key is a camera given by yaw and pitch.
     pub cameras: bool,
+    /// The keys as rigid motions, when some key carries a translation (`translation`,
+    /// `matrix` or `dq`); the others have none.
+    pub poses: Option<Vec<DualQuat<f64>>>,
     /// A name for messages: the file or `builtin:NAME`.
     pub source: String,
 }
@@ -193,6 +212,7 @@ pub fn load(spec: &str) -> Result<Keys> {
             tcb: None,
             horizon: None,
             cameras: false,
+            poses: None,
             source: spec.to_string(),
         });
     }
@@ -265,6 +285,7 @@ fn parse(doc: Doc, source: &str) -> Result<Keys> {
     let mut triples: Vec<(EulerOrder, [f64; 3])> = Vec::new();
     let mut tcb = Vec::with_capacity(doc.keys.len());
     let mut cameras = false;
+    let mut posed: Vec<(usize, DualQuat<f64>)> = Vec::new();
     for (i, k) in doc.keys.iter().enumerate() {
         let at = |field: &str| format!("{source}: keys[{i}].{field}");
         for (field, v) in [
@@ -307,19 +328,73 @@ fn parse(doc: Doc, source: &str) -> Result<Keys> {
                 at("pitch")
             ),
         };
+        // A rigid key given whole: a matrix or a dual quaternion, alone.
+        let whole = match (k.matrix, k.dq) {
+            (Some(_), Some(_)) => {
+                bail!("{source}: keys[{i}] must have one of {{matrix}} or {{dq}}, not both")
+            }
+            (Some(m), None) => Some(("matrix", Repr::Matrix4, m.concat())),
+            (None, Some(d)) => Some(("dq", Repr::Dq, d.to_vec())),
+            (None, None) => None,
+        };
+        if let Some((field, repr, numbers)) = whole {
+            if camera.is_some()
+                || k.angle.is_some()
+                || k.axis.is_some()
+                || k.quat.is_some()
+                || k.euler.is_some()
+                || k.rotation.is_some()
+                || k.translation.is_some()
+            {
+                bail!("{}: a whole rigid motion, given with another rotation or a translation (give it alone)", at(field));
+            }
+            if numbers.iter().any(|v| !v.is_finite()) {
+                bail!("{} is not finite", at(field));
+            }
+            let m = motion_from_numbers(repr, &numbers).with_context(|| at(field))?;
+            posed.push((i, m.dq));
+            quats.push(m.dq.real);
+            continue;
+        }
+        if let Some(t) = k.translation {
+            if t.iter().any(|v| !v.is_finite()) {
+                bail!("{} is not finite", at("translation"));
+            }
+        }
         if let Some(ypr) = camera {
-            if k.angle.is_some() || k.axis.is_some() || k.quat.is_some() || k.euler.is_some() {
+            if k.angle.is_some()
+                || k.axis.is_some()
+                || k.quat.is_some()
+                || k.euler.is_some()
+                || k.rotation.is_some()
+            {
                 bail!("{source}: keys[{i}] must have exactly one of {{angle, axis}}, {{quat}}, {{euler}} or {{yaw, pitch}}");
             }
             cameras = true;
-            quats.push(Quat::from_euler(up.order(), ypr));
+            let q = Quat::from_euler(up.order(), ypr);
+            if let Some(t) = k.translation {
+                posed.push((
+                    i,
+                    DualQuat::from_rotation_translation(q, Vec3::from_array(t)),
+                ));
+            }
+            quats.push(q);
             continue;
         }
-        let q = match (k.angle, k.axis, k.quat, k.euler) {
+        let quat = match (k.quat, k.rotation) {
+            (Some(_), Some(_)) => bail!("{source}: keys[{i}] must have exactly one of {{angle, axis}}, {{quat}}, {{rotation}}, {{euler}} or {{yaw, pitch}}"),
+            (q, r) => q.or(r),
+        };
+        let quat_field = if k.rotation.is_some() {
+            "rotation"
+        } else {
+            "quat"
+        };
+        let q = match (k.angle, k.axis, quat, k.euler) {
             (Some(angle), Some(axis), None, None) => {
                 Quat::from_axis_angle(Vec3::from_array(axis), angle).with_context(|| at("axis"))?
             }
-            (None, None, Some(q), None) => Quat::from_array(q).normalize().with_context(|| at("quat"))?,
+            (None, None, Some(q), None) => Quat::from_array(q).normalize().with_context(|| at(quat_field))?,
             (None, None, None, Some(e)) => {
                 let order = k.order.map_or(default_order, |Order(o)| o);
                 if e.iter().any(|v| !v.is_finite()) {
@@ -332,8 +407,21 @@ fn parse(doc: Doc, source: &str) -> Result<Keys> {
             (None, Some(_), None, None) => bail!("{} is missing (axis needs an angle)", at("angle")),
             _ => bail!("{source}: keys[{i}] must have exactly one of {{angle, axis}}, {{quat}}, {{euler}} or {{yaw, pitch}}"),
         };
+        if let Some(t) = k.translation {
+            posed.push((
+                i,
+                DualQuat::from_rotation_translation(q, Vec3::from_array(t)),
+            ));
+        }
         quats.push(q);
     }
+    let poses = (!posed.is_empty()).then(|| {
+        let mut p: Vec<DualQuat<f64>> = quats.iter().map(|q| DualQuat::from_rotation(*q)).collect();
+        for (i, d) in &posed {
+            p[*i] = *d;
+        }
+        p
+    });
     let times = (with_time > 0).then(|| doc.keys.iter().map(|k| k.time.unwrap_or(0.0)).collect());
     let euler = match triples.first() {
         Some(&(order, _))
@@ -361,6 +449,7 @@ fn parse(doc: Doc, source: &str) -> Result<Keys> {
         tcb: any_tcb.then_some(tcb),
         horizon: doc.horizon.map(HorizonName::up),
         cameras,
+        poses,
         source: source.to_string(),
     })
 }

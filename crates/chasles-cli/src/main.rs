@@ -5,6 +5,8 @@
 //! * `chasles convert` — one rotation or rigid motion between representations
 //!   (Dam et al. 1998, App. B; Kavan et al. 2006, §3).
 //! * `chasles interp` — key-frame interpolation (Dam et al. 1998, chapters 5–7).
+//! * `chasles average` — the mean of measured rigid poses, plain (DIB) or robust
+//!   (Kavan et al. 2006, §7).
 //! * `chasles blend`, `chasles properties` — blending of rigid transformations and the
 //!   measured Table 1 (Kavan et al. 2006, §4–5).
 //! * `chasles skin` — skinning a glTF or JSON rig with any method, on the CPU or the GPU,
@@ -19,6 +21,7 @@
 
 #![forbid(unsafe_code)]
 
+mod average;
 mod blend;
 mod blend_case;
 mod blend_pictures;
@@ -28,6 +31,7 @@ mod clip;
 mod convert;
 mod device;
 mod interp;
+mod interp_rigid;
 mod json;
 mod keyfile;
 mod output;
@@ -91,6 +95,9 @@ enum Command {
     ///       --iterations 500 --frames-dir frames/     (Figure 6.15, as the tour makes it)
     ///   chasles interp --method tcb --tension 0.3 --bias=-0.5 --keys builtin:table5.1
     ///   chasles interp --method c2 --keys camera.toml --horizon Z --out path.csv
+    ///   chasles interp --rigid --method squad --keys poses.toml --gif moving.gif
+    ///       (keys with a translation, matrix or dq; sclerp, squad or spring; rows gain
+    ///       tx,ty,tz)
     #[command(verbatim_doc_comment)]
     Interp {
         /// The method, by its name in the report and App. C.
@@ -125,6 +132,8 @@ enum Command {
         frames_dir: Option<std::path::PathBuf>,
         #[command(flatten)]
         pictures: picture_args::Pictures,
+        #[command(flatten)]
+        rigid: interp_rigid::RigidArgs,
     },
     /// Blend rigid transformations: lin, dec, log, log-iter, qlb, sclerp, dlb, dib (Kavan et al. 2006).
     ///
@@ -147,6 +156,23 @@ enum Command {
         #[command(flatten)]
         pictures: picture_args::Pictures,
     },
+    /// Average measured rigid poses: DIB's rigid mean, or a robust mean (Kavan et al. 2006, §7).
+    ///
+    /// Input (a file or - for stdin): {"poses": [T, ...], "weights": [w, ...]} (weights
+    /// optional) or just the array of poses; T is {"rotation": [w,x,y,z], "translation":
+    /// [x,y,z]}, {"matrix": [[...4 rows...]]} (row-major), {"dq": [8 numbers]} or any other
+    /// object form of convert --jsonl. Output: one JSON object with rotation, translation,
+    /// matrix, dq, iterations (and for --robust: scale, weights, distances, outliers).
+    /// --robust reweights the poses by their distance to the mean (turn in radians and move
+    /// over --length-scale, in quadrature) with Huber's or Tukey's weights, the scale 1.4826
+    /// x the median distance unless --scale fixes it; the start is the pose of least median
+    /// distance to the others.
+    ///
+    /// Examples:
+    ///   chasles average --input poses.json
+    ///   chasles average --input poses.json --robust tukey --out mean.json
+    #[command(verbatim_doc_comment)]
+    Average(average::AverageArgs),
     /// Measure Kavan et al.'s Table 1 on random inputs, with exact FLOP counts (and --claims).
     Properties {
         /// Random cases per property (1 to 10⁷).
@@ -317,6 +343,7 @@ fn run(cli: Cli) -> anyhow::Result<i32> {
         }
         Command::Skin(args) => skin::run(args).map(|_| 0),
         Command::View(args) => view::run(args).map(|_| 0),
+        Command::Average(args) => average::run(args).map(|_| 0),
         Command::Clip(cmd) => clip::run(cmd).map(|_| 0),
         Command::Blend {
             method,
@@ -350,6 +377,7 @@ fn run(cli: Cli) -> anyhow::Result<i32> {
             curve,
             frames_dir,
             pictures,
+            rigid,
         } => interp::run(interp::InterpArgs {
             method,
             keys,
@@ -365,6 +393,7 @@ fn run(cli: Cli) -> anyhow::Result<i32> {
             curve,
             frames_dir,
             pictures,
+            rigid,
         })
         .map(|_| 0),
         Command::Convert {

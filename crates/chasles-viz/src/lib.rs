@@ -24,6 +24,7 @@ pub mod letter;
 pub mod panels;
 pub mod plot;
 pub mod raster;
+pub mod rigid;
 pub mod sphere;
 mod svg;
 

@@ -13,8 +13,9 @@ mod skinning;
 
 use crate::report::Report;
 use chasles_paper::experiments::{
-    algebra, beyond_the_report, blending_claims::blending_claims, dam_figures,
-    identities::identities, interpolation, kavan_figures, squad_and_spring, table_1::table_1,
+    algebra, beyond_the_blending_paper::beyond_the_blending_paper, beyond_the_report,
+    blending_claims::blending_claims, dam_figures, identities::identities, interpolation,
+    kavan_figures, squad_and_spring, table_1::table_1,
 };
 use chasles_paper::{render, Experiment, Figures};
 use std::io::{IsTerminal, Write};
@@ -82,6 +83,10 @@ pub fn run(args: TourArgs) -> anyhow::Result<()> {
         Experiment::new("skinning: Figure 6(c)–(d)", skinning::long_way),
         Experiment::new("skinning: the characters", skinning::characters),
         Experiment::new("beyond Kavan et al. (§7): clips", clips::clips),
+        Experiment::new(
+            "beyond Kavan et al. (§7): poses and rigid key frames",
+            || beyond_the_blending_paper(Figures::Draw),
+        ),
         Experiment::new("identities on random inputs", move || {
             identities(samples, seed)
         }),

@@ -15,8 +15,12 @@
 //! * [`identities`]: both papers' identities on random inputs, f64 and f32.
 //! * [`beyond_the_report`]: Dam et al. §8.2's future work (Spring solved to its optimum,
 //!   §7.6's remark tested, angular velocities at keys).
+//! * [`beyond_the_blending_paper`]: Kavan et al. §7's future work (averaging measured
+//!   poses, plainly and robustly; with [`rigid_keyframes`], key-frame curves of rigid
+//!   motions).
 
 pub mod algebra;
+pub mod beyond_the_blending_paper;
 pub mod beyond_the_report;
 pub mod blending_claims;
 pub mod captions;
@@ -24,6 +28,7 @@ pub mod dam_figures;
 pub mod identities;
 pub mod interpolation;
 pub mod kavan_figures;
+pub mod rigid_keyframes;
 pub mod squad_and_spring;
 pub mod table_1;
 

@@ -1,12 +1,14 @@
 //! Blending of rigid transformations with convex weights (Kavan et al. 2006, §2–5 and
 //! Appendices A–B): [`lin`], [`dec`] (with the spherical average of [`mean`]), [`qlb`],
 //! [`log`] (Alexa's log-matrix blend and its iterative version), [`sclerp`], [`dlb`],
-//! [`dib`].
+//! [`dib`]; and past the paper's blends (its §7), [`average`]: the rigid mean of measured
+//! poses (DIB's fixed point, weighted) and a robust mean that ignores outliers.
 //!
 //! [`blend_matrices`] and [`blend_dual_quats`] run any [`Method`] on 4×4 rigid matrices or
 //! unit dual quaternions; the weights go through [`weights::convex_weights`] (typed errors
 //! for negative, non-finite or non-positive-sum weights; scaled to sum to 1).
 
+pub mod average;
 pub mod dec;
 pub mod dib;
 pub mod dlb;

@@ -12,6 +12,10 @@
 //! [`c2_spline`] (continuous angular acceleration, SciPy's `RotationSpline`), and
 //! [`horizon`]: camera paths whose frames never roll, after any method.
 //!
+//! Rigid motions (issue 22, Kavan et al. §7): [`rigid`] — key frames that carry a rotation
+//! and a translation, by piecewise ScLERP, the dual-quaternion Squad ([`rigid_squad`]) or
+//! Spring on the dual quaternions ([`rigid_spring`](mod@rigid_spring)).
+//!
 //! [`interpolate`] samples a whole curve: every key appears exactly once among the frames,
 //! flagged in [`Frame::key`].
 
@@ -24,6 +28,9 @@ pub mod keys;
 pub mod lerp;
 pub mod lin_euler;
 pub mod lin_mat;
+pub mod rigid;
+pub mod rigid_spring;
+pub mod rigid_squad;
 pub mod slerp;
 pub mod spring;
 mod spring_converged;
@@ -36,6 +43,9 @@ pub use c2_spline::C2Spline;
 pub use catmull_rom::CatmullRom;
 pub use horizon::Up;
 pub use keys::{Hemisphere, KeyFrames};
+pub use rigid::{interpolate_rigid, RigidFrame, RigidKeys, RigidMethod};
+pub use rigid_spring::{rigid_spring, RigidEnergy, RigidSpringConfig, RigidSpringResult};
+pub use rigid_squad::RigidSquad;
 pub use spring::{spring, Level, Solver, SpringConfig, SpringResult, Start, StepRule, Stopped};
 pub use squad::Squad;
 pub use tcb::{KochanekBartels, Tcb, TcbKey};

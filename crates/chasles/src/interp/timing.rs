@@ -65,7 +65,8 @@ pub fn largest_remainder(weights: &[f64], total: usize) -> Vec<usize> {
     };
     let exact: Vec<f64> = w.iter().map(|v| v * total as f64).collect();
     let mut counts: Vec<usize> = exact.iter().map(|v| v.floor() as usize).collect();
-    let mut left = total - counts.iter().sum::<usize>();
+    // Rounding of huge counts in f64 can make the floors overshoot: never below 0.
+    let mut left = total.saturating_sub(counts.iter().sum::<usize>());
     let mut order: Vec<usize> = (0..w.len()).collect();
     order.sort_by(|a, b| {
         (exact[*b] - exact[*b].floor()).total_cmp(&(exact[*a] - exact[*a].floor()))
