@@ -187,21 +187,7 @@ impl PyRig {
     /// A clip by index (int), name, or index as text; the first when None.
     fn clip(&self, clip: Option<&Bound<'_, PyAny>>) -> PyResult<usize> {
         let r = &self.rig;
-        let names = || {
-            let all: Vec<String> = r
-                .animations
-                .iter()
-                .enumerate()
-                .map(|(i, a)| {
-                    if a.name.is_empty() {
-                        i.to_string()
-                    } else {
-                        format!("{} ({i})", a.name)
-                    }
-                })
-                .collect();
-            all.join(", ")
-        };
+        let names = || r.clip_list();
         let Some(c) = clip else {
             if r.animations.is_empty() {
                 return Err(value_error(format!("{}: has no animations", r.name)));
@@ -223,17 +209,13 @@ impl PyRig {
         let a: String = c
             .extract()
             .map_err(|_| value_error("clip must be a name or an index"))?;
-        if let Some(i) = r.animations.iter().position(|x| x.name == a) {
-            return Ok(i);
-        }
-        match a.parse::<usize>() {
-            Ok(i) if i < r.animations.len() => Ok(i),
-            _ => Err(value_error(format!(
+        r.clip_index(&a).map_err(|_| {
+            value_error(format!(
                 "{}: no animation '{a}'; there are: {}",
                 r.name,
                 names()
-            ))),
-        }
+            ))
+        })
     }
 
     /// The pose asked for: a Pose, or clip/time (the rest pose when neither is given).

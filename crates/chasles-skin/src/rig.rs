@@ -257,24 +257,29 @@ impl Rig {
             _ => Err(SkinError::NoClip {
                 rig: self.name.clone(),
                 clip: name.to_string(),
-                available: if self.animations.is_empty() {
-                    "none".to_string()
-                } else {
-                    self.animations
-                        .iter()
-                        .enumerate()
-                        .map(|(i, a)| {
-                            if a.name.is_empty() {
-                                i.to_string()
-                            } else {
-                                format!("{} ({i})", a.name)
-                            }
-                        })
-                        .collect::<Vec<_>>()
-                        .join(", ")
-                },
+                available: self.clip_list(),
             }),
         }
+    }
+
+    /// The clips, for messages: `Walk (0), Run (1)` (a clip without a name by its index),
+    /// or `none`.
+    pub fn clip_list(&self) -> String {
+        if self.animations.is_empty() {
+            return "none".to_string();
+        }
+        self.animations
+            .iter()
+            .enumerate()
+            .map(|(i, a)| {
+                if a.name.is_empty() {
+                    i.to_string()
+                } else {
+                    format!("{} ({i})", a.name)
+                }
+            })
+            .collect::<Vec<_>>()
+            .join(", ")
     }
 
     /// Checks the rig's consistency: counts, indices, finite numbers, an acyclic hierarchy,

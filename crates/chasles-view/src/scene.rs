@@ -329,26 +329,20 @@ pub fn cylinder_pose(rig: &Rig, twist: f32, bend: f32) -> Pose {
 
 /// The index of the clip called `name` (or numbered `name`), or an error listing them.
 pub fn find_clip(rig: &Rig, name: &str) -> Result<usize, ViewError> {
-    if let Some(i) = rig.animations.iter().position(|a| a.name == name) {
-        return Ok(i);
-    }
-    match name.parse::<usize>() {
-        Ok(i) if i < rig.animations.len() => Ok(i),
-        _ => Err(ViewError::UnknownClip {
-            rig: rig.name.clone(),
-            clip: name.into(),
-            known: rig
-                .animations
-                .iter()
-                .enumerate()
-                .map(|(i, a)| {
-                    if a.name.is_empty() {
-                        i.to_string()
-                    } else {
-                        a.name.clone()
-                    }
-                })
-                .collect(),
-        }),
-    }
+    rig.clip_index(name).map_err(|_| ViewError::UnknownClip {
+        rig: rig.name.clone(),
+        clip: name.into(),
+        known: rig
+            .animations
+            .iter()
+            .enumerate()
+            .map(|(i, a)| {
+                if a.name.is_empty() {
+                    i.to_string()
+                } else {
+                    a.name.clone()
+                }
+            })
+            .collect(),
+    })
 }
