@@ -159,18 +159,30 @@ fn width(q: [Quat<f64>; 3], t: [[Quat<f64>; DIM]; 3], w: Width) -> (f64, [f64; T
 /// `z·∂²y_pq` is nonzero only in the blocks `aa: −δₖₗ z·a`, `cc: −δₖₗ z·c`,
 /// `bb: −((z·B_k)(u·B_l) + (z·B_l)(u·B_k))`, `ba: −(z·B_k)(b·A_l)`, `bc: −(z·B_k)(b·C_l)`
 /// (from `∂(P u)` and the retraction's second order; r ⊥ b drops the terms along b).
-/// Zero everything where the width is zero.
+/// Zero everything where the width is zero. `S` is written into `second` when it is given,
+/// only its lower triangle (q ≤ p): the part the band holds (in the caller's block, so that
+/// no 9×9 array is cleared, filled and copied out a term).
 fn curvature_residual(
     q: [Quat<f64>; 3],
     t: [[Quat<f64>; DIM]; 3],
     key_weight: f64,
     w: Width,
-) -> (Quat<f64>, [Quat<f64>; T9], Block) {
+    second: Option<&mut Block>,
+) -> (Quat<f64>, [Quat<f64>; T9]) {
     let zero = Quat::zero();
     let [a, b, c] = q;
-    let (l, lp, lpq) = width(q, t, w);
+    // Width 1 has no derivatives: no blocks of zeros made for it.
+    let shaped = (w != Width::Unit).then(|| width(q, t, w));
+    let (l, lp) = shaped
+        .as_ref()
+        .map_or((1.0, [0.0; T9]), |(l, lp, _)| (*l, *lp));
     if l.is_nan() || l <= 0.0 {
-        return (zero, [zero; T9], [[0.0; T9]; T9]);
+        if let Some(second) = second {
+            for (p, row) in second.iter_mut().enumerate() {
+                row[..=p].fill(0.0);
+            }
+        }
+        return (zero, [zero; T9]);
     }
     let u = a - b * 2.0 + c;
     let bu = b.dot(u);
@@ -188,42 +200,56 @@ fn curvature_residual(
     });
     let sp: [f64; T9] = core::array::from_fn(|p| -1.5 * s * lp[p] / l);
     let cols = core::array::from_fn(|p| yp[p] * s + y * sp[p]);
-    // r·∂²y, blockwise.
+    let Some(second) = second else {
+        return (r, cols);
+    };
+    // r·∂²y, blockwise, in the lower triangle: the blocks aa, cc (diagonal), bb, ba and cb.
     let (ra, rc) = (r.dot(a), r.dot(c));
     let rb: [f64; DIM] = core::array::from_fn(|k| r.dot(t[1][k]));
     let ub: [f64; DIM] = core::array::from_fn(|k| u.dot(t[1][k]));
     let ba: [f64; DIM] = core::array::from_fn(|k| b.dot(t[0][k]));
     let bc: [f64; DIM] = core::array::from_fn(|k| b.dot(t[2][k]));
-    let mut ryy = [[0.0; T9]; T9];
     for k in 0..DIM {
-        ryy[k][k] = -ra;
-        ryy[2 * DIM + k][2 * DIM + k] = -rc;
+        // The zeros of the lower triangle: the aa and cc blocks off their diagonals, the
+        // whole ca block (written one by one: a fill of each row's part was a memset call).
+        for m in 0..k {
+            second[k][m] = 0.0;
+            second[2 * DIM + k][2 * DIM + m] = 0.0;
+        }
+        for x in &mut second[2 * DIM + k][..DIM] {
+            *x = 0.0;
+        }
+        second[k][k] = -ra;
+        second[2 * DIM + k][2 * DIM + k] = -rc;
         for m in 0..DIM {
-            ryy[DIM + k][DIM + m] = -(rb[k] * ub[m] + rb[m] * ub[k]);
-            ryy[DIM + k][m] = -rb[k] * ba[m];
-            ryy[m][DIM + k] = ryy[DIM + k][m];
-            ryy[DIM + k][2 * DIM + m] = -rb[k] * bc[m];
-            ryy[2 * DIM + m][DIM + k] = ryy[DIM + k][2 * DIM + m];
+            if m <= k {
+                second[DIM + k][DIM + m] = -(rb[k] * ub[m] + rb[m] * ub[k]);
+            }
+            second[DIM + k][m] = -rb[k] * ba[m];
+            second[2 * DIM + m][DIM + k] = -rb[k] * bc[m];
         }
     }
-    let mut second = [[0.0; T9]; T9];
-    if w == Width::Unit {
-        for p in 0..T9 {
-            for qq in 0..T9 {
-                second[p][qq] = s * ryy[p][qq];
+    // S in place of r·∂²y.
+    match &shaped {
+        None => {
+            for (p, row) in second.iter_mut().enumerate() {
+                for x in &mut row[..=p] {
+                    *x *= s;
+                }
             }
         }
-    } else {
-        let ry = r.dot(y);
-        let ryp: [f64; T9] = core::array::from_fn(|p| r.dot(yp[p]));
-        for p in 0..T9 {
-            for qq in 0..T9 {
-                let spq = s * (3.75 * lp[p] * lp[qq] / (l * l) - 1.5 * lpq[p][qq] / l);
-                second[p][qq] = spq * ry + sp[p] * ryp[qq] + sp[qq] * ryp[p] + s * ryy[p][qq];
+        Some((_, _, lpq)) => {
+            let ry = r.dot(y);
+            let ryp: [f64; T9] = core::array::from_fn(|p| r.dot(yp[p]));
+            for (p, row) in second.iter_mut().enumerate() {
+                for (qq, x) in row[..=p].iter_mut().enumerate() {
+                    let spq = s * (3.75 * lp[p] * lp[qq] / (l * l) - 1.5 * lpq[p][qq] / l);
+                    *x = spq * ry + sp[p] * ryp[qq] + sp[qq] * ryp[p] + s * *x;
+                }
             }
         }
     }
-    (r, cols, second)
+    (r, cols)
 }
 
 /// One velocity residual `v = √c_w (n₁ − n₂)` (chords to a and to c, [`chord`]), its
@@ -279,22 +305,28 @@ fn normal_equations(
     cfg: &SpringConfig,
     h: &mut Band,
     g: &mut [f64],
+    hessian: bool,
 ) -> f64 {
-    h.clear();
+    if hessian {
+        h.clear();
+    }
     g.fill(0.0);
     let n = q.len();
     let mut f = 0.0;
     let bases: Vec<[Quat<f64>; DIM]> = q.iter().map(|x| basis(*x)).collect();
+    // A term's second-order block (its lower triangle), written by each term in turn.
+    let mut sr: Block = [[0.0; T9]; T9];
     for i in 1..n.saturating_sub(1) {
         let frames = [q[i - 1], q[i], q[i + 1]];
         let t = [bases[i - 1], bases[i], bases[i + 1]];
         let c = if is_key[i] { cfg.key_weight } else { 1.0 };
-        let (r, jr, sr) = curvature_residual(frames, t, c, cfg.width);
-        let (v, jv, sv) = if cfg.velocity_penalty > 0.0 {
-            velocity_residual(frames, t, cfg.velocity_penalty)
-        } else {
-            (0.0, [0.0; T9], [[0.0; T9]; T9])
-        };
+        let (r, jr) = curvature_residual(frames, t, c, cfg.width, hessian.then_some(&mut sr));
+        // (No zero blocks made up for an absent velocity term: the sums below skip it.)
+        let vel = (cfg.velocity_penalty > 0.0)
+            .then(|| velocity_residual(frames, t, cfg.velocity_penalty));
+        let (v, jv) = vel
+            .as_ref()
+            .map_or((0.0, [0.0; T9]), |(v, jv, _)| (*v, *jv));
         f += r.dot(r) + v * v;
         // The term's nine unknowns are consecutive, from `base`; a key frame's columns are
         // zero (it does not move). The columns as rows of numbers (four components and the
@@ -314,23 +346,41 @@ fn normal_equations(
         let rv = [r.w, r.x, r.y, r.z, v];
         for p in 0..T9 {
             g[base + p] += (0..5).map(|c| m[c][p] * rv[c]).sum::<f64>();
+        }
+        if !hessian {
+            continue;
+        }
+        for p in 0..T9 {
             // Row base + p holds columns base + p − BAND … base + p; those of this term,
             // base … base + p, are its last p + 1 entries.
             let row = &mut h.row_mut(base + p)[BAND - p..];
-            for (q, x) in row.iter_mut().enumerate() {
-                *x += m[0][p] * m[0][q]
-                    + m[1][p] * m[1][q]
-                    + m[2][p] * m[2][q]
-                    + m[3][p] * m[3][q]
-                    + m[4][p] * m[4][q]
-                    + (sr[p][q] + sv[p][q]) * free[p] * free[q];
+            if let Some((_, _, sv)) = &vel {
+                for (q, x) in row.iter_mut().enumerate() {
+                    *x += m[0][p] * m[0][q]
+                        + m[1][p] * m[1][q]
+                        + m[2][p] * m[2][q]
+                        + m[3][p] * m[3][q]
+                        + m[4][p] * m[4][q]
+                        + (sr[p][q] + sv[p][q]) * free[p] * free[q];
+                }
+            } else {
+                // No velocity term: its row of m and its part of S are zero.
+                for (q, x) in row.iter_mut().enumerate() {
+                    *x += m[0][p] * m[0][q]
+                        + m[1][p] * m[1][q]
+                        + m[2][p] * m[2][q]
+                        + m[3][p] * m[3][q]
+                        + sr[p][q] * free[p] * free[q];
+                }
             }
         }
     }
-    for (i, held) in fixed.iter().enumerate() {
-        if *held {
-            for k in 0..DIM {
-                h.add(i * DIM + k, i * DIM + k, 1.0);
+    if hessian {
+        for (i, held) in fixed.iter().enumerate() {
+            if *held {
+                for k in 0..DIM {
+                    h.add(i * DIM + k, i * DIM + k, 1.0);
+                }
             }
         }
     }
@@ -432,7 +482,7 @@ pub(super) fn spring_converged(
     let mut g0 = None;
     let (mut current, mut history) = if frames > SINGLE_LEVEL && coarse < frames {
         let q0: Vec<Quat<f64>> = initial.iter().map(|f| f.q).collect();
-        normal_equations(&q0, &is_key, &fixed, cfg, &mut h, &mut g);
+        normal_equations(&q0, &is_key, &fixed, cfg, &mut h, &mut g, false);
         g0 = Some(2.0 * norm(&g));
         let c = spring_converged(
             keys,
@@ -457,7 +507,8 @@ pub(super) fn spring_converged(
     let mut polished = false;
     let mut last_gradient = f64::INFINITY;
     for it in 0..=max_iterations {
-        let f = normal_equations(&q, &is_key, &fixed, cfg, &mut h, &mut g);
+        // After the polishing step only F and the gradient are wanted (the solve ends).
+        let f = normal_equations(&q, &is_key, &fixed, cfg, &mut h, &mut g, !polished);
         let gn = 2.0 * norm(&g);
         history.push(EnergyRecord {
             level,
@@ -499,7 +550,7 @@ pub(super) fn spring_converged(
         let mut accepted = None;
         for attempt in 0..40 {
             if attempt > 0 {
-                normal_equations(&q, &is_key, &fixed, cfg, &mut h, &mut g);
+                normal_equations(&q, &is_key, &fixed, cfg, &mut h, &mut g, true);
             }
             if mu > 0.0 {
                 for (i, d) in diagonal.iter().enumerate() {
@@ -587,7 +638,7 @@ mod tests {
             cfg.velocity_penalty = 0.4;
             let mut h = Band::zeros(q.len() * DIM, BAND).unwrap();
             let mut g = vec![0.0; q.len() * DIM];
-            let f = normal_equations(&q, &is_key, &is_key, &cfg, &mut h, &mut g);
+            let f = normal_equations(&q, &is_key, &is_key, &cfg, &mut h, &mut g, true);
             let (f_report, grad) = energy_and_gradient(&q, &is_key, &cfg);
             assert!(
                 (f - f_report).abs() <= 1e-12 * f_report,
@@ -631,7 +682,7 @@ mod tests {
             cfg.velocity_penalty = 0.4;
             let mut h = Band::zeros(n, BAND).unwrap();
             let mut g = vec![0.0; n];
-            normal_equations(&q, &is_key, &is_key, &cfg, &mut h, &mut g);
+            normal_equations(&q, &is_key, &is_key, &cfg, &mut h, &mut g, true);
             let at = |d: &[(usize, f64)]| {
                 let mut delta = vec![0.0; n];
                 for (i, v) in d {
