@@ -292,32 +292,12 @@ pub fn for_items<T: Send>(
     work: usize,
     f: &(impl Fn(usize, &mut [T]) -> Result<(), Fail> + Sync),
 ) -> Result<(), (usize, String)> {
-    let n = out.len() / size.max(1);
-    if size == 0 || n == 0 {
-        return Ok(());
-    }
-    let threads = rayon::current_num_threads();
-    if threads > 1 && n.saturating_mul(work) >= PARALLEL_NS && n > 1 {
-        let per = (n / (threads * 8)).max(64).min(n);
-        out.par_chunks_mut(per * size)
-            .enumerate()
-            .filter_map(|(c, o)| {
-                for (j, oi) in o.chunks_mut(size).enumerate() {
-                    let i = c * per + j;
-                    if let Err(e) = f(i, oi) {
-                        return Some((i, e.0));
-                    }
-                }
-                None
-            })
-            .min_by_key(|e| e.0)
-            .map_or(Ok(()), Err)
-    } else {
-        for (i, oi) in out.chunks_mut(size).enumerate() {
-            f(i, oi).map_err(|e| (i, e.0))?;
+    for_runs(out, size, work, 64, &|start, run: &mut [T]| {
+        for (j, oi) in run.chunks_mut(size).enumerate() {
+            f(start + j, oi).map_err(|e| (start + j, e.0))?;
         }
         Ok(())
-    }
+    })
 }
 
 /// A failure at item `i` of a batch of leading shape `lead`, as a `ValueError`.
@@ -432,7 +412,7 @@ pub fn map_runs<'py, T: Num, const N: usize>(
                 });
                 f(&ins, oi).map_err(|(j, e)| (start + j, e.0))
             };
-            py.detach(|| for_runs(o, p.size, work, &run))
+            py.detach(|| for_runs(o, p.size, work, 1024, &run))
         } else {
             let item = |i: usize, oi: &mut [T]| {
                 let ins: [&[T]; N] = std::array::from_fn(|k| {
@@ -451,11 +431,12 @@ pub fn map_runs<'py, T: Num, const N: usize>(
 /// Runs `f(start, out)` over runs of consecutive items of `out` (items of `size` numbers;
 /// `start` is the run's first item): one run on the caller's thread for small batches
 /// (`work`: rough nanoseconds an item), else runs of an eighth of a thread's share (at
-/// least 1024 items) on all threads. The failure of the lowest index, if any.
+/// least `min_run` items) on all threads. The failure of the lowest index, if any.
 fn for_runs<T: Send>(
     out: &mut [T],
     size: usize,
     work: usize,
+    min_run: usize,
     f: &(impl Fn(usize, &mut [T]) -> Result<(), (usize, String)> + Sync),
 ) -> Result<(), (usize, String)> {
     let n = out.len() / size.max(1);
@@ -464,7 +445,7 @@ fn for_runs<T: Send>(
     }
     let threads = rayon::current_num_threads();
     if threads > 1 && n.saturating_mul(work) >= PARALLEL_NS && n > 1 {
-        let per = (n / (threads * 8)).max(1024).min(n);
+        let per = (n / (threads * 8)).max(min_run).min(n);
         out.par_chunks_mut(per * size)
             .enumerate()
             .filter_map(|(c, o)| f(c * per, o).err())

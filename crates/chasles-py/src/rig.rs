@@ -327,18 +327,7 @@ impl PyRig {
     /// The clips' names (their index as text when unnamed).
     #[getter]
     fn clips(&self) -> Vec<String> {
-        self.rig
-            .animations
-            .iter()
-            .enumerate()
-            .map(|(i, a)| {
-                if a.name.is_empty() {
-                    i.to_string()
-                } else {
-                    a.name.clone()
-                }
-            })
-            .collect()
+        self.rig.clip_names()
     }
     /// The joints' node names, in skin order.
     #[getter]

@@ -262,12 +262,8 @@ impl Rig {
         }
     }
 
-    /// The clips, for messages: `Walk (0), Run (1)` (a clip without a name by its index),
-    /// or `none`.
-    pub fn clip_list(&self) -> String {
-        if self.animations.is_empty() {
-            return "none".to_string();
-        }
+    /// The clips' names, a clip without a name by its index as text.
+    pub fn clip_names(&self) -> Vec<String> {
         self.animations
             .iter()
             .enumerate()
@@ -275,7 +271,27 @@ impl Rig {
                 if a.name.is_empty() {
                     i.to_string()
                 } else {
-                    format!("{} ({i})", a.name)
+                    a.name.clone()
+                }
+            })
+            .collect()
+    }
+
+    /// The clips, for messages: `Walk (0), Run (1)` (a clip without a name by its index),
+    /// or `none`.
+    pub fn clip_list(&self) -> String {
+        if self.animations.is_empty() {
+            return "none".to_string();
+        }
+        self.clip_names()
+            .into_iter()
+            .zip(&self.animations)
+            .enumerate()
+            .map(|(i, (n, a))| {
+                if a.name.is_empty() {
+                    n
+                } else {
+                    format!("{n} ({i})")
                 }
             })
             .collect::<Vec<_>>()

@@ -332,17 +332,6 @@ pub fn find_clip(rig: &Rig, name: &str) -> Result<usize, ViewError> {
     rig.clip_index(name).map_err(|_| ViewError::UnknownClip {
         rig: rig.name.clone(),
         clip: name.into(),
-        known: rig
-            .animations
-            .iter()
-            .enumerate()
-            .map(|(i, a)| {
-                if a.name.is_empty() {
-                    i.to_string()
-                } else {
-                    a.name.clone()
-                }
-            })
-            .collect(),
+        known: rig.clip_names(),
     })
 }
