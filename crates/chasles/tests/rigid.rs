@@ -556,7 +556,18 @@ fn bad_input_is_a_typed_error() {
     ));
     let e = RigidKeys::new(&k, Some(&[0.0, 1.0, 1.0, 2.0, 3.0])).unwrap_err();
     assert!(matches!(e, Error::BadKeyTime { index: 2, .. }), "{e}");
-    assert!(RigidKeys::new(&k, Some(&[0.0, 1.0])).is_err());
+    let e = RigidKeys::new(&k, Some(&[0.0, 1.0])).unwrap_err();
+    assert!(
+        matches!(
+            e,
+            Error::WrongLength {
+                what: "key times",
+                got: 2,
+                ..
+            }
+        ),
+        "{e}"
+    );
     let keys = RigidKeys::new(&k, None).unwrap();
     for (_, m) in methods() {
         assert!(matches!(
