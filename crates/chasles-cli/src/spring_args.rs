@@ -210,18 +210,7 @@ pub fn configure(
                 bail!("{flag} (or its key-file field) is a control of the report's gradient descent: add --solver report, or leave it out for the converged solver");
             }
         }
-        let start = cfg.start;
-        cfg = SpringConfig::converged();
-        cfg.start = start;
-        if let Some(t) = given.tolerance {
-            cfg.solver = Solver::Converged {
-                tolerance: t,
-                max_iterations: match cfg.solver {
-                    Solver::Converged { max_iterations, .. } => max_iterations,
-                    Solver::Report => 200,
-                },
-            };
-        }
+        cfg = cfg.into_converged(given.tolerance);
     } else {
         cfg.solver = Solver::Report;
         if given.tolerance.is_some() {

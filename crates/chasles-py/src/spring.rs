@@ -122,14 +122,7 @@ pub fn spring_config(
                 )));
             }
         }
-        let start = cfg.start;
-        cfg = SpringConfig::converged();
-        cfg.start = start;
-        if let Some(t) = o.tolerance {
-            if let Solver::Converged { tolerance, .. } = &mut cfg.solver {
-                *tolerance = t;
-            }
-        }
+        cfg = cfg.into_converged(o.tolerance);
     } else {
         cfg.solver = Solver::Report;
         if o.tolerance.is_some() {

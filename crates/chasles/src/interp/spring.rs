@@ -176,6 +176,17 @@ impl SpringConfig {
         };
         c
     }
+    /// This preset's start curve solved by the converged solver ([`SpringConfig::converged`]),
+    /// with `tolerance` in place of 1e-10 when given: what `--solver converged` makes of any
+    /// preset (the command line's and Python's Spring options share it).
+    pub fn into_converged(self, tolerance: Option<f64>) -> Self {
+        let mut c = Self::converged();
+        c.start = self.start;
+        if let (Some(t), Solver::Converged { tolerance, .. }) = (tolerance, &mut c.solver) {
+            *tolerance = t;
+        }
+        c
+    }
     /// App. C `slerpsvupti`: one level, Slerp start, 500 iterations (Figure 6.15).
     pub fn slerpsvupti() -> Self {
         Self::base(
