@@ -8,7 +8,8 @@
 //!   `h · sinc(hΩ)/sinc(Ω)`, so Ω → 0 has no 0/0 (the report's patch `Slerp(q, q, h) ≡ q`
 //!   is the limit, not a special case). Up to a quarter turn (`p·q ≥ 0`) the weights come
 //!   in f32 from two short polynomials of `trig.rs` fitted to f32 ([`slerp_weights_f32`]:
-//!   the squared angle from `1 − p·q`, and the small parts of the sincs; within four f32 ulp
+//!   the squared angle from `1 − p·q = ‖p − q‖²/2` (taken from the difference, which keeps
+//!   small angles), and the small parts of the sincs; within four f32 ulp
 //!   of the true weights, fewer operations than Eberly's series [`slerp_weights_series`],
 //!   which it replaced) and in f64 from the reduced polynomial kernels of `trig.rs` (the ones
 //!   ScLERP uses; [`slerp_weights_reduced`]): no `acos`, `sin`, square root or 0/0, within a
@@ -40,7 +41,7 @@ pub fn slerp_pow<T: Real>(p: Quat<T>, q: Quat<T>, h: T) -> Result<Quat<T>> {
 pub fn slerp<T: Real>(p: Quat<T>, q: Quat<T>, h: T) -> Quat<T> {
     let x = p.dot(q);
     if x >= T::ZERO && (T::ZERO..=T::ONE).contains(&h) {
-        return within_quarter_turn(p, q, x, h);
+        return within_quarter_turn(p, q, h);
     }
     slerp_trig(p, q, h)
 }
@@ -48,9 +49,9 @@ pub fn slerp<T: Real>(p: Quat<T>, q: Quat<T>, h: T) -> Quat<T> {
 /// Slerp for `x = p·q ≥ 0` and `0 ≤ h ≤ 1` (the ranges the polynomials are fitted on) with
 /// no branch and no call: [`slerp_weights_f32`] in f32, the reduced kernels in f64.
 #[inline(always)]
-fn within_quarter_turn<T: Real>(p: Quat<T>, q: Quat<T>, x: T, h: T) -> Quat<T> {
+fn within_quarter_turn<T: Real>(p: Quat<T>, q: Quat<T>, h: T) -> Quat<T> {
     if T::EPSILON > T::from_f64(1e-10) {
-        let (a, b) = slerp_weights_f32(x, h);
+        let (a, b) = slerp_weights_f32_chord(half_chord2(p, q), h);
         p * a + q * b
     } else {
         let (a, b) = slerp_weights_reduced(p.cast(), q.cast(), h.to_f64());
@@ -131,8 +132,21 @@ pub fn slerp_weights_reduced(p: Quat<f64>, q: Quat<f64>, h: f64) -> (f64, f64) {
 /// `acos`, `sin`, square root or 0/0; one division; exact at h = 0 and h = 1.
 #[inline(always)]
 pub fn slerp_weights_f32<T: Real>(x: T, h: T) -> (T, T) {
+    slerp_weights_f32_chord(T::ONE - x, h)
+}
+
+/// `y = ‖p − q‖²/2 = 1 − p·q` from the difference, the form that keeps its precision as Ω
+/// → 0: `1 − p·q` loses the small angle to rounding (one f32 ulp of the cosine is 12 % of
+/// y at Ω = 1e-3), which extrapolation (h far outside [0, 1]) multiplies by h².
+#[inline(always)]
+fn half_chord2<T: Real>(p: Quat<T>, q: Quat<T>) -> T {
+    (p - q).norm_squared() * T::HALF
+}
+
+/// [`slerp_weights_f32`] from `y = 1 − cos Ω` (see [`half_chord2`]).
+#[inline(always)]
+fn slerp_weights_f32_chord<T: Real>(y: T, h: T) -> (T, T) {
     use crate::trig::{angle2_over_2y_f32, sinc_minus_one_f32};
-    let y = T::ONE - x;
     let z = (y + y) * angle2_over_2y_f32(y);
     let g = T::ONE - h;
     let d0 = sinc_minus_one_f32(z);
@@ -193,8 +207,17 @@ const fn series_coefficients() -> ([f64; SERIES_TERMS], [f64; SERIES_TERMS]) {
 }
 
 /// Slerp along the shorter rotation (footnote 7): uses −q when `p·q < 0`.
+///
+/// In f32 it has no branch and no call for any h, extrapolation included (see
+/// `shortest_f32`), so a loop of it is vectorized: over 10⁶ stored pairs about 1.3× glam's
+/// `slerp` per call (`examples/stored_pairs`). In f64 h outside [0, 1] goes to
+/// [`slerp_trig`].
 #[inline(always)]
 pub fn slerp_shortest<T: Real>(p: Quat<T>, q: Quat<T>, h: T) -> Quat<T> {
+    if T::EPSILON > T::from_f64(1e-10) {
+        // f32: every h without a branch or a call (the casts are exact and compile away).
+        return shortest_f32(p.cast(), q.cast(), h.to_f64() as f32).cast();
+    }
     // After the flip p·q ≥ 0: the trigonometric form only to extrapolate (h outside
     // [0, 1]).
     let x = p.dot(q);
@@ -203,7 +226,72 @@ pub fn slerp_shortest<T: Real>(p: Quat<T>, q: Quat<T>, h: T) -> Quat<T> {
         // Extrapolation: past the kernels' fitted range (h Ω/2 ≤ π/4).
         return slerp_trig(p, q * s, h);
     }
-    within_quarter_turn(p, q * s, x * s, h)
+    within_quarter_turn(p, q * s, h)
+}
+
+/// Slerp along the shorter arc in f32 for every `h`, with no branch and no call, so that a
+/// user's loop of [`slerp_shortest`] is vectorized as [`slerp_shortest_batch`] is.
+///
+/// For `0 ≤ h ≤ 1` it is [`slerp_weights_f32`] (the same operations: equal bits). To
+/// extrapolate, `hΩ` is reduced by the nearest multiple kπ (Cody and Waite's three-part π,
+/// as Cephes' `sinf`), `hΩ = kπ + r` with `|r| ≤ π/2`, and by `sin(hΩ) = (−1)ᵏ sin r`,
+/// `sin((1 − h)Ω) = (−1)ᵏ sin(Ω − r)` (folded into `[−π/2, π/2]` by `sin(π − t) = sin t`)
+/// the weights are `(−1)ᵏ (t/Ω) (1 + δ(t²))/(1 + δ(Ω²))`, `δ = sinc − 1` the same polynomial
+/// on the same domain. Where k = 0 (no turn past π/2) `t/Ω` is h or 1 − h itself, so Ω → 0
+/// has no 0/0 there either. Both weights come from the one reduced r: whatever its rounding
+/// (the product hΩ itself carries an error of |hΩ|·2⁻²⁴), the result is a unit quaternion
+/// on the great circle through p and q. NaN or infinite h gives NaN.
+#[inline(always)]
+fn shortest_f32(p: Quat<f32>, q: Quat<f32>, h: f32) -> Quat<f32> {
+    use crate::trig::{angle2_over_2y_f32, sinc_minus_one_f32};
+    use std::f32::consts::{FRAC_1_PI, FRAC_PI_2, PI};
+    // Adding and subtracting 1.5·2²³ rounds to the nearest integer (|v| < 2²²) with no
+    // `round` call (SSE2 has no rounding instruction).
+    const ROUND: f32 = 12_582_912.0;
+    // π = PI_A + PI_B + PI_C with PI_A and PI_B short enough that k·PI_A, k·PI_B are exact.
+    const PI_A: f32 = 3.140625;
+    const PI_B: f32 = 9.675_026e-4;
+    const PI_C: f32 = 1.509_958e-7;
+    let x = p.dot(q);
+    let q = if x < 0.0 { -q } else { q };
+    let y = half_chord2(p, q);
+    let z = (y + y) * angle2_over_2y_f32(y);
+    let g = 1.0 - h;
+    let inside = (0.0..=1.0).contains(&h);
+    // The extrapolation's reduction (computed in every lane, used only outside [0, 1]).
+    let omega = if z > 0.0 { z.sqrt() } else { 0.0 };
+    let xb = h * omega;
+    let k = (xb * FRAC_1_PI + ROUND) - ROUND;
+    let r = ((xb - k * PI_A) - k * PI_B) - k * PI_C;
+    // Within [−π/2, π/2] even where |hΩ| is past 2²² π and the reduction is only rounding
+    // (comparisons, so NaN stays NaN).
+    let r = if r > FRAC_PI_2 { FRAC_PI_2 } else { r };
+    let r = if r < -FRAC_PI_2 { -FRAC_PI_2 } else { r };
+    let t = omega - r;
+    let folded = t > FRAC_PI_2;
+    let t = if folded { PI - t } else { t };
+    let half = k * 0.5;
+    let odd = half != (half + ROUND) - ROUND;
+    let turn = if odd { -1.0 } else { 1.0 } / omega;
+    let simple_b = inside || k == 0.0;
+    let simple_a = inside || (k == 0.0 && !folded);
+    let (cb, ub) = if simple_b {
+        (h, h * h * z)
+    } else {
+        (r * turn, r * r)
+    };
+    let (ca, ua) = if simple_a {
+        (g, g * g * z)
+    } else {
+        (t * turn, t * t)
+    };
+    let d0 = sinc_minus_one_f32(z);
+    let db = sinc_minus_one_f32(ub);
+    let da = sinc_minus_one_f32(ua);
+    let inv = 1.0 / (1.0 + d0);
+    let a = ca + ca * ((da - d0) * inv);
+    let b = cb + cb * ((db - d0) * inv);
+    p * a + q * b
 }
 
 /// [`slerp_shortest`] of every `(p[i], q[i], h[i])` into `out[i]`. When every `h` is in
@@ -234,7 +322,7 @@ pub fn slerp_shortest_batch<T: Real>(
         for (((o, p), q), h) in out.iter_mut().zip(p).zip(q).zip(h) {
             let x = p.dot(*q);
             let s = if x < T::ZERO { -T::ONE } else { T::ONE };
-            *o = within_quarter_turn(*p, *q * s, x * s, *h);
+            *o = within_quarter_turn(*p, *q * s, *h);
         }
     } else {
         for (((o, p), q), h) in out.iter_mut().zip(p).zip(q).zip(h) {
