@@ -1,6 +1,6 @@
 //! The portable scalar kernels, forced on this machine (`fast::set_simd(false)`): every
 //! method through the job agrees with the reference path to 1e-5 as the SIMD kernels do, and
-//! LBS gives the SIMD kernel's numbers bit for bit. One test in its own binary, since the
+//! LBS with the SIMD kernel to rounding. One test in its own binary, since the
 //! switch is process-wide.
 
 use chasles_skin::fast::{set_simd, skin_pose, uses_simd, FastRig};
@@ -42,11 +42,16 @@ fn the_scalar_fallback_skins_every_method_as_the_reference_does() {
                 }
             }
         }
-        if method == Method::Lbs {
-            assert_eq!(
-                scalar, simd,
-                "LBS: the SIMD kernel is the scalar one bit for bit"
-            );
+        // LBS: the SIMD kernel is the scalar one to rounding (fused multiply-adds).
+        let lbs = if method == Method::Lbs { n } else { 0 };
+        for (v, (s, d)) in scalar.iter().zip(&simd).take(lbs).enumerate() {
+            for k in 0..6 {
+                let tol = if k < 3 { 2e-6 * size } else { 4e-6 };
+                assert!(
+                    (s[k] - d[k]).abs() <= tol,
+                    "{method:?} vertex {v}: {s:?} vs {d:?}"
+                );
+            }
         }
         if !had_simd {
             eprintln!("no AVX2+FMA here: the 'SIMD' run was the scalar kernel too");
