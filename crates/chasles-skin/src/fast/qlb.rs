@@ -139,14 +139,14 @@ pub fn sbs<const K: usize>(
 }
 
 /// SBS into `out` with the joints' rows and each of `clusters`' centre for the pose (as
-/// 8 floats, the centre first); on all threads when `parallel`. Every size is checked
+/// 4 floats, the centre first); on all threads when `parallel`. Every size is checked
 /// here: the SIMD kernel indexes `centres` by cluster.
 pub(super) fn sbs_into<const K: usize>(
     rig: &FastRig<K>,
     clusters: &Clusters,
     rows: &[Row],
     table: &Antipodes,
-    centres: &[[f32; 8]],
+    centres: &[[f32; 4]],
     out: Output<'_>,
     parallel: bool,
 ) -> Result<()> {
@@ -185,11 +185,9 @@ pub(super) fn sbs_into<const K: usize>(
     Ok(())
 }
 
-pub(super) fn padded(centres: &[chasles::Vec3<f32>]) -> Vec<[f32; 8]> {
-    centres
-        .iter()
-        .map(|c| [c.x, c.y, c.z, 0.0, 0.0, 0.0, 0.0, 0.0])
-        .collect()
+/// The centres as the kernels read them: 4 floats each, the centre first.
+pub(super) fn padded(centres: &[chasles::Vec3<f32>]) -> Vec<[f32; 4]> {
+    centres.iter().map(|c| [c.x, c.y, c.z, 0.0]).collect()
 }
 
 /// The SBS clusters of a fast rig: its vertices grouped by the joints of positive weight.
