@@ -226,10 +226,6 @@ impl Motions {
     }
 }
 
-/// A joint that adds nothing to a sum: `x + (−0) = x` for every x, −0 included.
-#[cfg(target_arch = "x86_64")]
-const NOTHING: Motion = [-0.0; 24];
-
 /// The rotation centre of one cluster: `min Σ_{a<b} ‖(R_a − R_b) r + t_a − t_b‖²`, with a
 /// Tikhonov pull (1e-6 of the trace) towards the mean of the joints' bind origins for the
 /// rank-deficient directions; that mean where the system cannot be solved (non-finite
@@ -352,7 +348,7 @@ mod tests {
     }
 
     /// Four clusters at once (AVX2 lanes, where the processor has them) give each one's
-    /// centre bit for bit: clusters of 1 to 4 joints side by side (the shorter padded), one
+    /// centre bit for bit: clusters of 1 to 4 joints side by side, one
     /// with a non-finite joint (the prior), equal rotations (the prior by the determinant).
     #[test]
     fn four_at_once_are_each_alone_bit_for_bit() {

@@ -3,7 +3,7 @@
 //! pairs and the rest scalar; the compiler's own vectorization of a four-lane form
 //! shuffled more than it computed, so the lanes are written with intrinsics here.
 
-use super::{pick, solve, Motion, Motions, Num, NOTHING};
+use super::{pick, solve, Motion, Motions, Num};
 use chasles::Vec3;
 use std::arch::x86_64::*;
 use std::ops::{Add, Div, Mul, Sub};
@@ -51,26 +51,26 @@ fn lanes(x: W) -> [f64; 4] {
     out
 }
 
-/// The centres of four clusters: each one's sums over its joints in six registers (a
-/// shorter cluster padded with `NOTHING`), transposed into one register per field,
-/// then `solve` on the registers.
+/// The centres of four clusters: each one's sums over its joints in six registers,
+/// transposed into one register per field, then `solve` on the registers.
 ///
 /// # Safety
 /// The processor must have AVX2.
 #[target_feature(enable = "avx2")]
 pub(super) unsafe fn four(joints: [&[u16]; 4], motions: &Motions) -> [Vec3<f32>; 4] {
-    let most = joints.iter().map(|j| j.len()).max().unwrap_or(0);
+    // Each cluster's sums in six registers, one cluster after the other (all four
+    // clusters' 24 accumulators at once spilled to the stack at every joint).
     let mut s = [[_mm256_setzero_pd(); 6]; 4];
-    for k in 0..most {
-        for (s, joints) in s.iter_mut().zip(joints) {
-            let m: &Motion = joints
-                .get(k)
-                .map_or(&NOTHING, |j| &motions.0[usize::from(*j)]);
-            for (r, s) in s.iter_mut().enumerate() {
+    for (s, joints) in s.iter_mut().zip(joints) {
+        let mut acc = [_mm256_setzero_pd(); 6];
+        for j in joints {
+            let m: &Motion = &motions.0[usize::from(*j)];
+            for (r, a) in acc.iter_mut().enumerate() {
                 // SAFETY: fields 4r … 4r + 3 of the 24.
-                *s = _mm256_add_pd(*s, unsafe { _mm256_loadu_pd(m.as_ptr().add(4 * r)) });
+                *a = _mm256_add_pd(*a, unsafe { _mm256_loadu_pd(m.as_ptr().add(4 * r)) });
             }
         }
+        *s = acc;
     }
     let mut f = [W(_mm256_setzero_pd()); 24];
     for r in 0..6 {
