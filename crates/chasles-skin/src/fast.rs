@@ -342,8 +342,9 @@ fn cover(
 static SIMD_ALLOWED: AtomicBool = AtomicBool::new(true);
 
 /// Allows (the default) or forbids the AVX2+FMA kernels for this process: with `false`
-/// every method runs its portable scalar kernel, as on a processor without AVX2 — to test
-/// or measure that fallback on any machine. Takes effect at the next job.
+/// every method runs its portable scalar kernel, and SBS solves its rotation centres one by
+/// one, as on a processor without AVX2 — to test or measure that fallback on any machine.
+/// Takes effect at the next job.
 pub fn set_simd(allowed: bool) {
     SIMD_ALLOWED.store(allowed, Ordering::Relaxed);
 }

@@ -118,10 +118,9 @@ impl Clusters {
         parallel: bool,
     ) -> Vec<Vec3<f32>> {
         let motions = Motions::new(d, bind);
-        #[cfg(target_arch = "x86_64")]
-        let avx2 = std::arch::is_x86_feature_detected!("avx2");
-        #[cfg(not(target_arch = "x86_64"))]
-        let avx2 = false;
+        // The lanes where the fast path's SIMD kernels run (and not where `fast::set_simd`
+        // forbids them, so that the fallback is measured whole).
+        let avx2 = crate::fast::uses_simd(4);
         // Four clusters at a time (the last few one by one).
         let solve = |(g, out): (usize, &mut [Vec3<f32>])| {
             let c = 4 * g;

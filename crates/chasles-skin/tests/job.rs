@@ -147,6 +147,22 @@ fn every_method_and_layout_through_the_job_is_the_direct_kernel_bit_for_bit() {
     let pose = Pose::animated(&rig, 2, 0.3).unwrap();
     assert_ne!(rig.mesh.positions.len() % 256, 0);
     every_layout::<4>(&rig, &pose);
+    // 259 vertices: a staging buffer of 256 and a last stage of 3, fewer than a SIMD block
+    // (the job skins it as the chunk's last 8, as the packed output does).
+    let mut small = rig.clone();
+    let n = 259;
+    let ends = small.influences.start[n] as usize;
+    small.mesh.positions.truncate(n);
+    small.mesh.normals.truncate(n);
+    small
+        .mesh
+        .triangles
+        .retain(|t| t.iter().all(|&v| (v as usize) < n));
+    small.influences.start.truncate(n + 1);
+    small.influences.joints.truncate(ends);
+    small.influences.weights.truncate(ends);
+    every_layout::<4>(&small, &pose);
+    every_layout::<8>(&small, &pose);
 }
 
 #[test]

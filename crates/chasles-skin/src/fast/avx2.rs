@@ -294,7 +294,11 @@ unsafe fn lbs_blend<const K: usize>(vx: &Vertex<K>, mb: *const f32) -> (__m256, 
 
 /// LBS for the first `v.len() / 8 * 8` vertices, the formulas of [`super::lbs_vertex`] with
 /// fused multiply-adds (so it agrees with it to rounding) and the normal scaled by one
-/// reciprocal of its length; returns how many were done. Each vertex's matrix is blended in
+/// reciprocal of its length; returns how many were done. Where the blended matrix has rank
+/// 1 or less (every cofactor zero in exact arithmetic: no normal to transform), the fused
+/// cofactors keep the rounding of one product, so such a vertex may get a unit normal of
+/// rounding noise where the scalar kernel keeps the bind normal; all-zero matrices keep it
+/// in both. Each vertex's matrix is blended in
 /// registers ([`lbs_blend`]); eight are transposed into twelve lane vectors (rows 0–1 by
 /// [`transpose8`], row 2 by [`transpose4_halves`]) for the transformation.
 ///

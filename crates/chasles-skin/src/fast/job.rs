@@ -162,7 +162,9 @@ pub(super) fn for_chunks<const K: usize>(
 
 /// One chunk through a stack buffer of [`STAGE`] vertices: each stage of `vertices` skinned
 /// into the buffer, then handed with the matching stage of the destination (`stages`, one
-/// item per [`STAGE`] vertices) to `put`.
+/// item per [`STAGE`] vertices) to `put`. A last stage of fewer than 8 vertices in a chunk
+/// of 8 or more is skinned as the chunk's last 8 (only its own handed on): alone it would
+/// go through the scalar kernel, and a vertex's numbers would depend on the output's layout.
 #[inline(always)]
 fn staged<const K: usize, S>(
     first: usize,
@@ -172,7 +174,14 @@ fn staged<const K: usize, S>(
     mut put: impl FnMut(S, &[Out]),
 ) {
     let mut buf = [[0f32; 6]; STAGE];
+    let n = vertices.len();
     for ((s, v), dst) in vertices.chunks(STAGE).enumerate().zip(stages) {
+        if v.len() < 8 && n >= 8 {
+            let o = &mut buf[..8];
+            chunk(first + n - 8, o, &vertices[n - 8..], false);
+            put(dst, &o[8 - v.len()..]);
+            continue;
+        }
         let o = &mut buf[..v.len()];
         chunk(first + s * STAGE, o, v, false);
         put(dst, o);

@@ -8,9 +8,10 @@ use chasles::Vec3;
 use std::arch::x86_64::*;
 use std::ops::{Add, Div, Mul, Sub};
 
-/// Four clusters' values of one quantity.
+/// Four clusters' values of one quantity. Private to this module: its operators run AVX2
+/// instructions, and only [`four`] (which requires AVX2) makes one.
 #[derive(Clone, Copy)]
-pub(super) struct W(__m256d);
+struct W(__m256d);
 
 macro_rules! op {
     ($trait:ident, $f:ident, $intrinsic:ident) => {

@@ -32,8 +32,8 @@ pub fn slerp_pow<T: Real>(p: Quat<T>, q: Quat<T>, h: T) -> Result<Quat<T>> {
 /// Eq. 6.13 for unit p and q, exact for Ω → 0 and defined for q = −p (see module docs).
 ///
 /// For `p·q ≥ 0` (Ω ≤ π/2, every shorter-arc Slerp) the weights `sin(hΩ)/sin Ω` come, in
-/// f32 (any `Real` with ε > 1e-10), from [`slerp_weights_f32`] (two short polynomials,
-/// within four f32 ulp), and in f64 from the
+/// f32 (any `Real` with ε > 1e-10), from [`slerp_weights_f32`]'s two short polynomials
+/// (within four f32 ulp; `1 − cos Ω` taken from the chord, `‖p − q‖²/2`), and in f64 from the
 /// reduced polynomial kernels ([`slerp_weights_reduced`]: no `acos`, `sin` or square root,
 /// within a few ulp); beyond a quarter turn the trigonometric form, [`slerp_trig`], kept
 /// out of line so that the common path inlines small.
@@ -47,7 +47,8 @@ pub fn slerp<T: Real>(p: Quat<T>, q: Quat<T>, h: T) -> Quat<T> {
 }
 
 /// Slerp for `x = p·q ≥ 0` and `0 ≤ h ≤ 1` (the ranges the polynomials are fitted on) with
-/// no branch and no call: [`slerp_weights_f32`] in f32, the reduced kernels in f64.
+/// no branch and no call: [`slerp_weights_f32`]'s polynomials from the chord in f32, the
+/// reduced kernels in f64.
 #[inline(always)]
 fn within_quarter_turn<T: Real>(p: Quat<T>, q: Quat<T>, h: T) -> Quat<T> {
     if T::EPSILON > T::from_f64(1e-10) {
@@ -232,15 +233,17 @@ pub fn slerp_shortest<T: Real>(p: Quat<T>, q: Quat<T>, h: T) -> Quat<T> {
 /// Slerp along the shorter arc in f32 for every `h`, with no branch and no call, so that a
 /// user's loop of [`slerp_shortest`] is vectorized as [`slerp_shortest_batch`] is.
 ///
-/// For `0 ≤ h ≤ 1` it is [`slerp_weights_f32`] (the same operations: equal bits). To
+/// For `0 ≤ h ≤ 1` it is the batch form's arithmetic (the polynomials of
+/// [`slerp_weights_f32`] with `y` from the chord, [`half_chord2`]: equal bits). To
 /// extrapolate, `hΩ` is reduced by the nearest multiple kπ (Cody and Waite's three-part π,
 /// as Cephes' `sinf`), `hΩ = kπ + r` with `|r| ≤ π/2`, and by `sin(hΩ) = (−1)ᵏ sin r`,
 /// `sin((1 − h)Ω) = (−1)ᵏ sin(Ω − r)` (folded into `[−π/2, π/2]` by `sin(π − t) = sin t`)
 /// the weights are `(−1)ᵏ (t/Ω) (1 + δ(t²))/(1 + δ(Ω²))`, `δ = sinc − 1` the same polynomial
 /// on the same domain. Where k = 0 (no turn past π/2) `t/Ω` is h or 1 − h itself, so Ω → 0
-/// has no 0/0 there either. Both weights come from the one reduced r: whatever its rounding
-/// (the product hΩ itself carries an error of |hΩ|·2⁻²⁴), the result is a unit quaternion
-/// on the great circle through p and q. NaN or infinite h gives NaN.
+/// has no 0/0 there either. Both weights come from the one reduced r, so the result stays
+/// on the great circle through p and q; like the trigonometric form, its error grows as
+/// ε·max(|h|, 1/sin Ω) (the final `a p + b q` cancels large weights), and hΩ itself carries
+/// a rounding of |hΩ|·2⁻²⁴. NaN or infinite h, or an hΩ past f32's range, gives NaN.
 #[inline(always)]
 fn shortest_f32(p: Quat<f32>, q: Quat<f32>, h: f32) -> Quat<f32> {
     use crate::trig::{angle2_over_2y_f32, sinc_minus_one_f32};
@@ -248,7 +251,8 @@ fn shortest_f32(p: Quat<f32>, q: Quat<f32>, h: f32) -> Quat<f32> {
     // Adding and subtracting 1.5·2²³ rounds to the nearest integer (|v| < 2²²) with no
     // `round` call (SSE2 has no rounding instruction).
     const ROUND: f32 = 12_582_912.0;
-    // π = PI_A + PI_B + PI_C with PI_A and PI_B short enough that k·PI_A, k·PI_B are exact.
+    // π = PI_A + PI_B + PI_C, PI_A (8 bits) and PI_B (11 bits) short enough that k·PI_A and
+    // k·PI_B are exact for |k| < 2¹³ (|hΩ| < 2.5·10⁴); beyond, r picks up their rounding.
     const PI_A: f32 = 3.140625;
     const PI_B: f32 = 9.675_026e-4;
     const PI_C: f32 = 1.509_958e-7;
@@ -272,7 +276,7 @@ fn shortest_f32(p: Quat<f32>, q: Quat<f32>, h: f32) -> Quat<f32> {
     let t = if folded { PI - t } else { t };
     let half = k * 0.5;
     let odd = half != (half + ROUND) - ROUND;
-    let turn = if odd { -1.0 } else { 1.0 } / omega;
+    let turn = (if odd { -1.0 } else { 1.0 }) / omega;
     let simple_b = inside || k == 0.0;
     let simple_a = inside || (k == 0.0 && !folded);
     let (cb, ub) = if simple_b {
