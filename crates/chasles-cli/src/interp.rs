@@ -18,7 +18,6 @@ use chasles::interp::{
 };
 use chasles::{EulerOrder, Quat};
 use indicatif::{ProgressBar, ProgressStyle};
-use serde_json::json;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -418,24 +417,54 @@ pub fn compute(args: &InterpArgs) -> Result<Run> {
 
 /// CSV with the header `index,t,w,x,y,z,velocity,key` (key: the key index, or empty).
 pub fn to_csv(run: &Run) -> String {
-    let mut s = String::from("index,t,w,x,y,z,velocity,key\n");
-    for (i, (f, v)) in run.frames.iter().zip(&run.velocity).enumerate() {
-        let key = f.key.map_or(String::new(), |k| k.to_string());
-        let cols = [f.t, f.q.w, f.q.x, f.q.y, f.q.z, *v].map(num);
-        let _ = writeln!(s, "{i},{},{key}", cols.join(","));
-    }
-    s
+    frames_csv(COLUMNS, rows(run))
 }
 
 /// A JSON array of objects with the CSV's names (key: index or null).
 pub fn to_json(run: &Run) -> String {
-    let rows: Vec<_> = run
-        .frames
-        .iter()
-        .zip(&run.velocity)
+    frames_json(COLUMNS, rows(run))
+}
+
+/// The columns of a frame between its index and its key.
+const COLUMNS: [&str; 6] = ["t", "w", "x", "y", "z", "velocity"];
+
+/// Each frame's numbers under [`COLUMNS`], and its key.
+fn rows(run: &Run) -> impl Iterator<Item = ([f64; 6], Option<usize>)> + '_ {
+    let frames = run.frames.iter().zip(&run.velocity);
+    frames.map(|(f, v)| ([f.t, f.q.w, f.q.x, f.q.y, f.q.z, *v], f.key))
+}
+
+/// Frames as CSV, for `chasles interp` and `interp --rigid` alike: the header
+/// `index,<columns>,key`, then a row a frame — its index, its numbers ([`num`]) and its key
+/// index (empty where it is no key).
+pub(crate) fn frames_csv<const N: usize>(
+    columns: [&str; N],
+    rows: impl Iterator<Item = ([f64; N], Option<usize>)>,
+) -> String {
+    let mut s = format!("index,{},key\n", columns.join(","));
+    for (i, (cols, key)) in rows.enumerate() {
+        let key = key.map_or(String::new(), |k| k.to_string());
+        let _ = writeln!(s, "{i},{},{key}", cols.map(num).join(","));
+    }
+    s
+}
+
+/// The rows of [`frames_csv`] as a JSON array of objects with the CSV's names, in its order
+/// (key: the key index, or null).
+pub(crate) fn frames_json<const N: usize>(
+    columns: [&str; N],
+    rows: impl Iterator<Item = ([f64; N], Option<usize>)>,
+) -> String {
+    let rows: Vec<serde_json::Value> = rows
         .enumerate()
-        .map(|(i, (f, v))| {
-            json!({"index": i, "t": f.t, "w": f.q.w, "x": f.q.x, "y": f.q.y, "z": f.q.z, "velocity": v, "key": f.key})
+        .map(|(i, (cols, key))| {
+            let mut o = serde_json::Map::new();
+            o.insert("index".into(), i.into());
+            for (c, v) in columns.iter().zip(cols) {
+                o.insert((*c).into(), v.into());
+            }
+            o.insert("key".into(), key.into());
+            o.into()
         })
         .collect();
     serde_json::to_string_pretty(&rows).unwrap_or_else(|_| "[]".into())

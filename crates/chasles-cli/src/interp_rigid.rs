@@ -9,9 +9,9 @@
 //! of the R's stem and the R at eight frames.
 
 use crate::choice::InterpMethod;
-use crate::interp::InterpArgs;
+use crate::interp::{frames_csv, frames_json, InterpArgs};
 use crate::keyfile;
-use crate::output::{extension, num, Pending};
+use crate::output::{extension, Pending};
 use crate::picture_args::MAX_GIF_FRAMES;
 use anyhow::{bail, Context, Result};
 use chasles::analysis::velocity::velocity_chord;
@@ -20,7 +20,6 @@ use chasles::interp::{
     rigid_spring, RigidEnergy, RigidFrame, RigidKeys, RigidMethod, RigidSpringConfig,
 };
 use chasles::{DualQuat, Quat};
-use serde_json::json;
 use std::fmt::Write as _;
 use std::time::Instant;
 
@@ -226,30 +225,23 @@ pub fn compute(args: &InterpArgs) -> Result<RigidRun> {
 
 /// CSV with the header `index,t,w,x,y,z,tx,ty,tz,velocity,key`.
 pub fn to_csv(run: &RigidRun) -> String {
-    let mut s = String::from("index,t,w,x,y,z,tx,ty,tz,velocity,key\n");
-    for (i, (f, v)) in run.frames.iter().zip(&run.velocity).enumerate() {
-        let key = f.key.map_or(String::new(), |k| k.to_string());
-        let (q, t) = (f.dq.real, f.dq.translation());
-        let cols = [f.t, q.w, q.x, q.y, q.z, t.x, t.y, t.z, *v].map(num);
-        let _ = writeln!(s, "{i},{},{key}", cols.join(","));
-    }
-    s
+    frames_csv(COLUMNS, rows(run))
 }
 
 /// A JSON array of objects with the CSV's names.
 pub fn to_json(run: &RigidRun) -> String {
-    let rows: Vec<_> = run
-        .frames
-        .iter()
-        .zip(&run.velocity)
-        .enumerate()
-        .map(|(i, (f, v))| {
-            let (q, t) = (f.dq.real, f.dq.translation());
-            json!({"index": i, "t": f.t, "w": q.w, "x": q.x, "y": q.y, "z": q.z,
-                   "tx": t.x, "ty": t.y, "tz": t.z, "velocity": v, "key": f.key})
-        })
-        .collect();
-    serde_json::to_string_pretty(&rows).unwrap_or_else(|_| "[]".into())
+    frames_json(COLUMNS, rows(run))
+}
+
+/// The columns of a frame between its index and its key.
+const COLUMNS: [&str; 9] = ["t", "w", "x", "y", "z", "tx", "ty", "tz", "velocity"];
+
+/// Each frame's numbers under [`COLUMNS`] (its rotation and translation), and its key.
+fn rows(run: &RigidRun) -> impl Iterator<Item = ([f64; 9], Option<usize>)> + '_ {
+    run.frames.iter().zip(&run.velocity).map(|(f, v)| {
+        let (q, t) = (f.dq.real, f.dq.translation());
+        ([f.t, q.w, q.x, q.y, q.z, t.x, t.y, t.z, *v], f.key)
+    })
 }
 
 /// Runs `chasles interp --rigid` (the paths' extensions already checked).

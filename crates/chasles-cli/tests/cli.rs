@@ -1120,15 +1120,6 @@ fn properties_table_and_claims() {
     assert!(!o.status.success());
 }
 
-/// A built-in model's file on disk (`chasles skin` takes paths).
-fn gltf(name: &str) -> String {
-    chasles_models::on_disk()
-        .unwrap()
-        .join(name)
-        .display()
-        .to_string()
-}
-
 #[test]
 fn skin_writes_obj_ply_json_and_whole_clips() {
     let dir = tempfile::tempdir().unwrap();
@@ -1137,7 +1128,7 @@ fn skin_writes_obj_ply_json_and_whole_clips() {
         let o = chasles(&[
             "skin",
             "--rig",
-            &gltf("Fox.glb"),
+            &model("Fox.glb"),
             "--anim",
             "Run",
             "--time",
@@ -1159,7 +1150,7 @@ fn skin_writes_obj_ply_json_and_whole_clips() {
     let o = chasles(&[
         "skin",
         "--rig",
-        &gltf("SimpleSkin.gltf"),
+        &model("SimpleSkin.gltf"),
         "--all-frames",
         "--fps",
         "2",
@@ -1195,7 +1186,7 @@ fn skin_errors_are_one_line_and_leave_no_file() {
         (
             vec![
                 "--rig".into(),
-                gltf("Fox.glb"),
+                model("Fox.glb"),
                 "--method".into(),
                 "blend".into(),
                 "--out".into(),
@@ -1206,7 +1197,7 @@ fn skin_errors_are_one_line_and_leave_no_file() {
         (
             vec![
                 "--rig".into(),
-                gltf("Fox.glb"),
+                model("Fox.glb"),
                 "--anim".into(),
                 "Swim".into(),
                 "--out".into(),
@@ -1217,7 +1208,7 @@ fn skin_errors_are_one_line_and_leave_no_file() {
         (
             vec![
                 "--rig".into(),
-                gltf("Fox.glb"),
+                model("Fox.glb"),
                 "--out".into(),
                 dir.path().join("x.txt").to_str().unwrap().into(),
             ],
@@ -1244,7 +1235,7 @@ fn skin_errors_are_one_line_and_leave_no_file() {
         (
             vec![
                 "--rig".into(),
-                gltf("Fox.glb"),
+                model("Fox.glb"),
                 "--all-frames".into(),
                 "--fps".into(),
                 "0".into(),
@@ -1517,7 +1508,7 @@ fn skin_pictures_of_a_real_clip() {
     let o = chasles(&[
         "skin",
         "--rig",
-        &gltf("CesiumMan.glb"),
+        &model("CesiumMan.glb"),
         "--plot",
         &p("volume.svg"),
         "--sphere",
@@ -1577,7 +1568,7 @@ fn skin_on_the_gpu_matches_the_cpu() {
         let o = chasles(&[
             "skin",
             "--rig",
-            &gltf("CesiumMan.glb"),
+            &model("CesiumMan.glb"),
             "--time",
             "0.7",
             "--method",
@@ -1622,7 +1613,7 @@ fn skin_on_the_gpu_matches_the_cpu() {
         let o = chasles(&[
             "skin",
             "--rig",
-            &gltf("CesiumMan.glb"),
+            &model("CesiumMan.glb"),
             "--method",
             "log",
             "--device",

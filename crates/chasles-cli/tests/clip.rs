@@ -6,16 +6,8 @@ mod common;
 
 use chasles_skin::clip_compress::ClipSkins;
 use chasles_skin::{gltf_load, Method};
-use common::{chasles, stdout};
+use common::{chasles, model, stdout};
 use std::path::Path;
-
-fn model(file: &str) -> String {
-    chasles_models::on_disk()
-        .unwrap()
-        .join(file)
-        .display()
-        .to_string()
-}
 
 fn s(p: &Path) -> String {
     p.display().to_string()

@@ -10,16 +10,8 @@ mod browser;
 mod common;
 
 use browser::{url, Browser};
-use common::{chasles, stdout};
+use common::{chasles, model, stdout};
 use std::path::Path;
-
-fn model(file: &str) -> String {
-    chasles_models::on_disk()
-        .unwrap()
-        .join(file)
-        .display()
-        .to_string()
-}
 
 /// The JSON a page embeds.
 fn page_data(path: &Path) -> serde_json::Value {

@@ -97,6 +97,16 @@ impl Channel {
         }
     }
 
+    /// The key interval `[times[k], times[k + 1]]` that time t falls in (the first before
+    /// the first key, the last after the last) and t's place in it, `u ∈ [0, 1]`. Needs two
+    /// keys or more.
+    pub fn interval(&self, t: f32) -> (usize, f32) {
+        let n = self.times.len();
+        let k = self.times.partition_point(|x| *x <= t).clamp(1, n - 1) - 1;
+        let (t0, t1) = (self.times[k], self.times[k + 1]);
+        (k, ((t - t0) / (t1 - t0)).clamp(0.0, 1.0))
+    }
+
     /// The channel's value at time t.
     pub fn sample(&self, t: f32) -> [f32; 4] {
         let n = self.times.len();
@@ -106,10 +116,8 @@ impl Channel {
         if t >= self.times[n - 1] {
             return self.value(n - 1);
         }
-        let k = self.times.partition_point(|x| *x <= t) - 1;
-        let (t0, t1) = (self.times[k], self.times[k + 1]);
-        let dt = t1 - t0;
-        let u = (t - t0) / dt;
+        let (k, u) = self.interval(t);
+        let dt = self.times[k + 1] - self.times[k];
         match self.interpolation {
             Interpolation::Step => self.value(k),
             Interpolation::Linear => {

@@ -212,13 +212,8 @@ fn screw_motion_between_kept_keys_stays_near_what_the_file_plays() {
                 .frames
                 .iter()
                 .map(|t| {
-                    let k = ch
-                        .times
-                        .partition_point(|x| x <= t)
-                        .clamp(1, ch.times.len() - 1)
-                        - 1;
-                    let (t0, t1) = (ch.times[k], ch.times[k + 1]);
-                    let u = f64::from(((t - t0) / (t1 - t0)).clamp(0.0, 1.0));
+                    let (k, u) = ch.interval(*t);
+                    let u = f64::from(u);
                     let m = sclerp(dq(k), dq(k + 1), u).unwrap().translation();
                     [m.x as f32, m.y as f32, m.z as f32, 0.0]
                 })
@@ -280,13 +275,8 @@ fn the_written_cubic_form_stays_close_to_squad_itself() {
             let squad =
                 Squad::new(&KeyFrames::new(&keys, None, Hemisphere::Chain).unwrap()).unwrap();
             for t in &done.frames {
-                let k = ch
-                    .times
-                    .partition_point(|x| x <= t)
-                    .clamp(1, ch.times.len() - 1)
-                    - 1;
-                let (t0, t1) = (ch.times[k], ch.times[k + 1]);
-                let h = f64::from(((t - t0) / (t1 - t0)).clamp(0.0, 1.0));
+                let (k, h) = ch.interval(*t);
+                let h = f64::from(h);
                 let want = squad.eval(k, h);
                 let got = Quat::from_array(ch.sample(*t)).cast::<f64>();
                 let chord = (want - got).norm().min((want + got).norm());

@@ -44,19 +44,8 @@ fn scale_for(keys: &[DualQuat<f64>]) -> f64 {
 /// pair), the one in which the keys' origins spread most (the largest area of its projected covariance), tilted a little from above, on the
 /// side the keys' letters face (the mean of their z axes).
 fn view_direction(keys: &[DualQuat<f64>]) -> Vec3<f64> {
-    let pts: Vec<Vec3<f64>> = keys.iter().map(|d| d.translation()).collect();
-    let n = pts.len().max(1) as f64;
-    let mean = pts.iter().fold(Vec3::zero(), |s, p| s + *p) * (1.0 / n);
     let spread = |d: Vec3<f64>| {
-        let (e1, e2) = (d.any_perpendicular(), d.cross(d.any_perpendicular()));
-        let (mut a, mut b, mut c) = (0.0, 0.0, 0.0);
-        for p in &pts {
-            let q = *p - mean;
-            let (x, y) = (q.dot(e1), q.dot(e2));
-            a += x * x;
-            b += x * y;
-            c += y * y;
-        }
+        let (_, [a, b, c]) = projected_spread(keys, d);
         a * c - b * b
     };
     let mut best = (f64::NEG_INFINITY, Vec3::new(0.0, 0.0, 1.0));
@@ -87,15 +76,14 @@ fn view_direction(keys: &[DualQuat<f64>]) -> Vec3<f64> {
     d + Vec3::new(0.15, -0.2, 0.35)
 }
 
-/// The up direction that lays the keys' spread across the picture: perpendicular to `from`
-/// and to the keys' main direction in the picture's plane, on z's side (z when the keys do
-/// not move).
-fn level_up(keys: &[DualQuat<f64>], from: Vec3<f64>) -> Vec3<f64> {
-    let f = from.normalize().unwrap_or(Vec3::new(0.0, 0.0, 1.0));
-    let (e1, e2) = (f.any_perpendicular(), f.cross(f.any_perpendicular()));
-    let pts: Vec<Vec3<f64>> = keys.iter().map(|d| d.translation()).collect();
+/// The spread of the keys' origins seen along the unit `d`: the axes `e1`, `e2` of the plane
+/// across d, and `[a, b, c]` = Σx², Σxy, Σy² of the origins' offsets from their mean in
+/// those axes (the projected covariance, unnormalized).
+fn projected_spread(keys: &[DualQuat<f64>], d: Vec3<f64>) -> ((Vec3<f64>, Vec3<f64>), [f64; 3]) {
+    let pts: Vec<Vec3<f64>> = keys.iter().map(|k| k.translation()).collect();
     let n = pts.len().max(1) as f64;
     let mean = pts.iter().fold(Vec3::zero(), |s, p| s + *p) * (1.0 / n);
+    let (e1, e2) = (d.any_perpendicular(), d.cross(d.any_perpendicular()));
     let (mut a, mut b, mut c) = (0.0, 0.0, 0.0);
     for p in &pts {
         let q = *p - mean;
@@ -104,6 +92,15 @@ fn level_up(keys: &[DualQuat<f64>], from: Vec3<f64>) -> Vec3<f64> {
         b += x * y;
         c += y * y;
     }
+    ((e1, e2), [a, b, c])
+}
+
+/// The up direction that lays the keys' spread across the picture: perpendicular to `from`
+/// and to the keys' main direction in the picture's plane, on z's side (z when the keys do
+/// not move).
+fn level_up(keys: &[DualQuat<f64>], from: Vec3<f64>) -> Vec3<f64> {
+    let f = from.normalize().unwrap_or(Vec3::new(0.0, 0.0, 1.0));
+    let ((e1, e2), [a, b, c]) = projected_spread(keys, f);
     if a + c < 1e-18 {
         return Vec3::new(0.0, 0.0, 1.0);
     }

@@ -14,8 +14,11 @@ use chasles::interp::{
     Timing,
 };
 use chasles::{DualQuat, Error, Quat, Vec3};
+use common::random_rigid;
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
+
+mod common;
 
 fn rt(axis: [f64; 3], angle: f64, t: [f64; 3]) -> DualQuat<f64> {
     DualQuat::from_rotation_translation(
@@ -33,27 +36,6 @@ fn keys5() -> Vec<DualQuat<f64>> {
         rt([0.2, -1.0, 0.5], 2.8, [5.0, 0.0, 2.5]),
         rt([1.0, 0.0, 0.3], 1.0, [6.0, 2.0, 2.0]),
     ]
-}
-
-/// A random rigid motion: uniform rotation, translation in [−2, 2]³.
-fn random_rigid(rng: &mut StdRng) -> DualQuat<f64> {
-    let q = loop {
-        let q = Quat::new(
-            rng.random_range(-1.0..1.0),
-            rng.random_range(-1.0..1.0),
-            rng.random_range(-1.0..1.0),
-            rng.random_range(-1.0..1.0),
-        );
-        if q.norm() > 0.1 && q.norm() <= 1.0 {
-            break q.normalize().unwrap();
-        }
-    };
-    let t = Vec3::new(
-        rng.random_range(-2.0..2.0),
-        rng.random_range(-2.0..2.0),
-        rng.random_range(-2.0..2.0),
-    );
-    DualQuat::from_rotation_translation(q, t)
 }
 
 /// The distance of two poses as points of ℝ⁸, either sign.

@@ -37,3 +37,12 @@ pub fn stdout(o: &Output) -> String {
     );
     String::from_utf8(o.stdout.clone()).unwrap()
 }
+
+/// A built-in model's file on disk (`chasles skin`, `view` and `clip` take paths).
+pub fn model(file: &str) -> String {
+    chasles_models::on_disk()
+        .unwrap()
+        .join(file)
+        .display()
+        .to_string()
+}
