@@ -5,14 +5,34 @@
 //! or half report behind. (SIGKILL cannot be caught; nothing can clean up after it.)
 
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Mutex;
 
 /// The paths to remove if the run is stopped.
 static LIVE: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
 
+/// Set by the handler before it removes anything.
+static STOPPING: AtomicBool = AtomicBool::new(false);
+
+/// Whether SIGINT or SIGTERM has come: the handler is removing the temporaries and will end
+/// the run with exit 130. An error the run meets after that — a write into the folder the
+/// handler just removed — is the interruption's doing, not an error to report: the caller
+/// waits for the handler instead ([`await_exit`]).
+pub fn stopping() -> bool {
+    STOPPING.load(Ordering::SeqCst)
+}
+
+/// Waits for the handler to end the process (exit 130).
+pub fn await_exit() -> ! {
+    loop {
+        std::thread::park();
+    }
+}
+
 /// Installs the handler (once, at start).
 pub fn install() {
     let _ = ctrlc::set_handler(|| {
+        STOPPING.store(true, Ordering::SeqCst);
         if let Ok(paths) = LIVE.lock() {
             for p in paths.iter() {
                 // The run goes on while this thread removes its temporaries: a folder may

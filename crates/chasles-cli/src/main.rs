@@ -314,6 +314,10 @@ fn main() {
     match result {
         Ok(code) => std::process::exit(code),
         Err(e) => {
+            if cleanup::stopping() {
+                // Stopped: the handler's exit 130 and message, not this error.
+                cleanup::await_exit();
+            }
             eprintln!("error: {e:#}");
             std::process::exit(2);
         }
