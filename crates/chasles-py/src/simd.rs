@@ -150,6 +150,7 @@ mod wide {
         order: EulerOrder,
         out: &mut [[T; 3]],
     ) -> Result<(), BatchError> {
+        chasles::frame::align_frame();
         euler::quats_to_euler(q, order, out)
     }
 
@@ -158,6 +159,7 @@ mod wide {
         m: &[Mat3<T>],
         out: &mut [Quat<T>],
     ) -> Result<(), BatchError> {
+        chasles::frame::align_frame();
         matrix::quats_from_rotation_matrices(m, out)
     }
 
@@ -166,6 +168,7 @@ mod wide {
         q: &[Quat<T>],
         out: &mut [[T; 9]],
     ) -> Result<(), BatchError> {
+        chasles::frame::align_frame();
         matrix::quats_to_rotation_matrices(q, out)
     }
 
@@ -175,6 +178,7 @@ mod wide {
         w: &[[T; N]],
         out: &mut [[T; 8]],
     ) -> Result<(), BatchError> {
+        chasles::frame::align_frame();
         dlb::dlb_batch(q, w, out)
     }
 
@@ -188,6 +192,7 @@ mod wide {
         w: &[[f64; N]],
         out: &mut [[f64; 8]],
     ) -> Result<(), BatchError> {
+        chasles::frame::align_frame();
         const L: usize = dlb::LANES;
         const { assert!(L.is_multiple_of(4), "whole 4x4 transposes") };
         if N == 0 || q.len() != w.len() || q.len() != out.len() {

@@ -67,6 +67,7 @@ pub mod convert;
 pub mod dual;
 pub mod dualquat;
 pub mod error;
+pub mod frame;
 pub mod interop;
 pub mod interp;
 pub mod matrix;

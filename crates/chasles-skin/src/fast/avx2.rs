@@ -73,35 +73,6 @@ unsafe fn blend_one<const K: usize>(vx: &Vertex<K>, db: *const f32) -> __m256 {
     }
 }
 
-/// `table`, or where it has at most N entries its copy in `local`, a buffer in the calling
-/// kernel's own stack frame. Read from the heap, LBS's joint matrices ran the kernel about 3×
-/// slower for a whole run in about one process in five: it depends on where the stack
-/// lands (address-space randomization; `setarch -R` with the environment padded by
-/// 2304–2816 bytes brought it back every time), by all signs 4K aliasing between the
-/// table's loads and the kernel's register spills (a load whose address matches an
-/// in-flight store's in the low 12 bits waits for it). A copy in the frame sits a fixed
-/// distance from the spills: over 32 stack placements 128 bytes apart, no run fell off
-/// (64 joints of 48 bytes, 3 KB). The copy costs a pass over the table per call (a chunk,
-/// or a stage of 256 vertices). QLB and SBS still fall off the same way for some
-/// placements, with their rows copied too and with the sign table bypassed: what they
-/// collide with was not found.
-#[inline(always)]
-fn in_frame<'a, T: Copy, const N: usize>(
-    table: &'a [T],
-    local: &'a mut core::mem::MaybeUninit<[T; N]>,
-) -> &'a [T] {
-    if table.len() > N {
-        return table;
-    }
-    let at = local.as_mut_ptr() as *mut T;
-    // SAFETY: `local` holds N ≥ table.len() values of T, and the two do not overlap (one is
-    // borrowed mutably); the first table.len() are written before the slice is made.
-    unsafe {
-        core::ptr::copy_nonoverlapping(table.as_ptr(), at, table.len());
-        core::slice::from_raw_parts(at, table.len())
-    }
-}
-
 /// `[f(0), …, f(7)]`, written out: through `array::from_fn` the kernels' per-vertex blends
 /// stayed calls, one per vertex.
 #[inline(always)]
@@ -263,6 +234,7 @@ pub unsafe fn dqs<const K: usize>(
     o: &mut [Out],
     stream: bool,
 ) -> usize {
+    chasles::frame::align_frame();
     unsafe {
         let db = d.as_ptr() as *const f32;
         if antipodes.is_empty() {
@@ -342,8 +314,8 @@ pub unsafe fn lbs<const K: usize>(
     stream: bool,
 ) -> usize {
     unsafe {
-        let mut local = std::mem::MaybeUninit::<[[f32; 12]; 64]>::uninit();
-        let mb = in_frame(m, &mut local).as_ptr() as *const f32;
+        chasles::frame::align_frame();
+        let mb = m.as_ptr() as *const f32;
         let zero = _mm256_setzero_ps();
         let one = _mm256_set1_ps(1.0);
         let blocks = v.len() / 8;

@@ -59,6 +59,7 @@ fn lanes(x: W) -> [f64; 4] {
 /// The processor must have AVX2.
 #[target_feature(enable = "avx2")]
 pub(super) unsafe fn four(joints: [&[u16]; 4], motions: &Motions) -> [Vec3<f32>; 4] {
+    chasles::frame::align_frame();
     // Each cluster's sums in six registers, one cluster after the other (all four
     // clusters' 24 accumulators at once spilled to the stack at every joint).
     let mut s = [[_mm256_setzero_pd(); 6]; 4];

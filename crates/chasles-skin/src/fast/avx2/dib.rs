@@ -26,6 +26,7 @@ pub unsafe fn dib<const K: usize>(
     o: &mut [Out],
     stream: bool,
 ) -> usize {
+    chasles::frame::align_frame();
     unsafe {
         let db = d.as_ptr() as *const f32;
         let zero = _mm256_setzero_ps();

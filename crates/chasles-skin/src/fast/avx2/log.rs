@@ -52,6 +52,7 @@ pub unsafe fn log<const K: usize>(
     o: &mut [Out],
     stream: bool,
 ) -> usize {
+    chasles::frame::align_frame();
     unsafe {
         let tb = t.as_ptr() as *const f32;
         let blocks = v.len() / 8;

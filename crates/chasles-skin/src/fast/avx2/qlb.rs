@@ -122,6 +122,7 @@ unsafe fn blocks<const K: usize, const SBS: bool>(
     o: &mut [Out],
     stream: bool,
 ) -> usize {
+    chasles::frame::align_frame();
     unsafe {
         let blocks = v.len() / 8;
         for blk in 0..blocks {
