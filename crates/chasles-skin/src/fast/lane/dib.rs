@@ -9,30 +9,10 @@
 //! hold against the library's `dib` (the scalar fast path itself runs the library's
 //! `dib_convex`, the reference's very calls, so that it equals the reference bit for bit).
 //!
-//! **Second-order step** (past the paper). DIB's fixed point is `Σ wᵢ log(b̂* q̂ᵢ) = 0`; the
-//! paper steps by the update itself, `δ̂ = x̂`, which shrinks the residual by a factor of
-//! order the spread² each time (on the synthetic rig, 98 % of the blocks of eight took two
-//! updates and a third log sum to show convergence). By the Baker–Campbell–Hausdorff series,
-//! `log(exp(−δ̂) exp(x̂ᵢ)) = x̂ᵢ − δ̂ − ½[δ̂, x̂ᵢ] − (1/12)[x̂ᵢ, [x̂ᵢ, δ̂]] + …`; summed with the
-//! weights, with `[â, b̂] = 2 â × b̂` for pure dual quaternions and `δ̂ ≈ x̂` in the
-//! small terms, the residual vanishes to that order for
-//!
-//! ```text
-//! δ̂ = x̂ − ⅓ Σ wᵢ x̂ᵢ × (x̂ᵢ × x̂) = x̂ (1 + tr M / 3) − M x̂ / 3,   M = Σ wᵢ x̂ᵢ x̂ᵢᵀ
-//! ```
-//!
-//! in dual arithmetic (`M = M₀ + ε M₁`, [`Spread`]): on the sphere it is Newton's step to
-//! second order in the angles (across a log, the Hessian of the squared distance is
-//! `φ cot φ ≈ 1 − φ²/3`; along it, 1). The fixed point and the stopping rule are the
-//! paper's, so the blend is the same to within the rule's reach, and it ends nearer the
-//! exact blend (its last update leaves less behind; the tests check both). On the
-//! synthetic rig 99.4 % of the blocks stop after one update and the log sum that shows
-//! it, where the paper's step took two. In f64 over 5000 random blends of 2–4 transforms
-//! (a prototype, run once): rotated by up to 1 rad and moved by up to 1, 98.8 % needed one
-//! update against 70 % with the paper's step; rotated by up to 3.1 rad and moved by up to
-//! 100, 2.6 updates on average against 4.2 or more, and in every group the final distance
-//! from the exact blend was the paper's step's to within 15 %. The GPU shader and the
-//! scalar kernels keep the paper's step.
+//! **Second-order step** (past the paper): where the paper steps by the update itself,
+//! `δ̂ = x̂`, the lanes step by `δ̂ = x̂ (1 + tr M / 3) − M x̂ / 3`, `M = Σ wᵢ x̂ᵢ x̂ᵢᵀ`, to
+//! the same fixed point under the same stopping rule: one update where the paper's step
+//! needs two (derivation and measurements in [`second_order`]).
 //!
 //! No trigonometric calls. For `r̂ = b̂* q̂ᵢ` taken to `w ≥ 0`, with `r0 = (w, a)`,
 //! `rε = (wε, b)`, `n = ‖a‖`, `s = n²` (eq. 2 and the library's `DualQuat::log`):
@@ -60,9 +40,12 @@
 //! (a positive dual number, which normalizing removes) is left out, and `½ ln‖r0‖²` is taken
 //! as `½ (‖r0‖² − 1)` (r̂ is a product of unit dual quaternions: off by under 1e-14).
 
+mod second_order;
+
 use super::{dot, dqmul, horner, taylor, Lane};
 use crate::skinning::{DIB_PRECISION, DIB_UPDATES};
 use chasles::blend::STALL_FACTOR;
+use second_order::Spread;
 
 /// `tan(π/8) = √2 − 1`: where the angle reductions change.
 const TAN_PI_8: f32 = 0.414_213_57;
@@ -221,90 +204,6 @@ pub(in crate::fast) fn convex<L: Lane, const K: usize>(
     }
     let slots = (0..K).rev().find(|&k| L::any(used[k])).map_or(0, |k| k + 1);
     (positive.map(|x| x.div(sum)), used, slots)
-}
-
-/// The weighted second moment of the logarithms `x̂ᵢ = aᵢ + ε bᵢ` of one DIB update, as a
-/// symmetric dual 3×3 matrix `M = Σ wᵢ x̂ᵢ x̂ᵢᵀ = M₀ + ε M₁` (`M₀ = Σ wᵢ aᵢ aᵢᵀ`,
-/// `M₁ = Σ wᵢ (aᵢ bᵢᵀ + bᵢ aᵢᵀ)`; entries xx, yy, zz, xy, xz, yz), for [`Spread::step`].
-struct Spread<L> {
-    m0: [L; 6],
-    /// `M₁`'s off-diagonal entries xy, xz, yz.
-    m1: [L; 3],
-    /// `Σ wᵢ aᵢ ⊙ bᵢ`: half `M₁`'s diagonal.
-    half_diag: [L; 3],
-}
-
-impl<L: Lane> Default for Spread<L> {
-    fn default() -> Self {
-        let zero = L::splat(0.0);
-        Spread {
-            m0: [zero; 6],
-            m1: [zero; 3],
-            half_diag: [zero; 3],
-        }
-    }
-}
-
-impl<L: Lane> Spread<L> {
-    /// Adds `w x̂ x̂ᵀ` for the logarithm `l` (`[·, a, ·, b]`).
-    #[inline(always)]
-    fn add(&mut self, w: L, l: &[L; 8]) {
-        let (a, b) = ([l[1], l[2], l[3]], [l[5], l[6], l[7]]);
-        let wa = a.map(|c| w.mul(c));
-        let m = &mut self.m0;
-        m[0] = wa[0].madd(a[0], m[0]);
-        m[1] = wa[1].madd(a[1], m[1]);
-        m[2] = wa[2].madd(a[2], m[2]);
-        m[3] = wa[0].madd(a[1], m[3]);
-        m[4] = wa[0].madd(a[2], m[4]);
-        m[5] = wa[1].madd(a[2], m[5]);
-        for (c, h) in self.half_diag.iter_mut().enumerate() {
-            *h = wa[c].madd(b[c], *h);
-        }
-        for (e, (i, j)) in [(0, 1), (0, 2), (1, 2)].into_iter().enumerate() {
-            self.m1[e] = wa[i].madd(b[j], wa[j].madd(b[i], self.m1[e]));
-        }
-    }
-
-    /// The second-order DIB step for the update `x̂ = Σ wᵢ x̂ᵢ` (the module docs'
-    /// "Second-order step"): `δ̂ = x̂ (1 + tr M / 3) − M x̂ / 3` in dual arithmetic; its
-    /// scalar parts are `x̂`'s (the exponential does not read them).
-    #[inline(always)]
-    fn step(&self, x: &[L; 8]) -> [L; 8] {
-        let third = L::splat(1.0 / 3.0);
-        let [xx, yy, zz, xy, xz, yz] = self.m0;
-        let m0 = [[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]];
-        let h = self.half_diag;
-        let [p, q, r] = self.m1;
-        let m1 = [
-            [h[0].add(h[0]), p, q],
-            [p, h[1].add(h[1]), r],
-            [q, r, h[2].add(h[2])],
-        ];
-        let (a, b) = ([x[1], x[2], x[3]], [x[5], x[6], x[7]]);
-        // f = 1 + tr M₀ / 3, g = tr M₁ / 3 (the dual part of 1 + tr M / 3).
-        let f = xx.add(yy).add(zz).madd(third, L::splat(1.0));
-        let g = h[0].add(h[1]).add(h[2]).mul(L::splat(2.0 / 3.0));
-        let (m0a, m0b, m1a) = (mat_vec(&m0, &a), mat_vec(&m0, &b), mat_vec(&m1, &a));
-        let real = [0, 1, 2].map(|i| a[i].madd(f, zero_minus(m0a[i].mul(third))));
-        let dual = [0, 1, 2]
-            .map(|i| b[i].madd(f, a[i].madd(g, zero_minus(m0b[i].add(m1a[i]).mul(third)))));
-        [
-            x[0], real[0], real[1], real[2], x[4], dual[0], dual[1], dual[2],
-        ]
-    }
-}
-
-/// `m v` for a 3×3 `m` given by rows.
-#[inline(always)]
-fn mat_vec<L: Lane>(m: &[[L; 3]; 3], v: &[L; 3]) -> [L; 3] {
-    [0, 1, 2].map(|i| m[i][2].madd(v[2], m[i][1].madd(v[1], m[i][0].mul(v[0]))))
-}
-
-/// `−v`.
-#[inline(always)]
-fn zero_minus<L: Lane>(v: L) -> L {
-    L::splat(0.0).sub(v)
 }
 
 /// The DIB blend of the first `slots` joint dual quaternions `q` with the convex weights

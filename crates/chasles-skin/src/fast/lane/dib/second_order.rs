@@ -1,0 +1,111 @@
+//! DIB's second-order step (past the paper: Kavan et al. 2006, §4, the box "DIB").
+//!
+//! DIB's fixed point is `Σ wᵢ log(b̂* q̂ᵢ) = 0`; the paper steps by the update itself,
+//! `δ̂ = x̂`, which shrinks the residual by a factor of order the spread² each time. By the Baker–Campbell–Hausdorff series,
+//! `log(exp(−δ̂) exp(x̂ᵢ)) = x̂ᵢ − δ̂ − ½[δ̂, x̂ᵢ] − (1/12)[x̂ᵢ, [x̂ᵢ, δ̂]] + …`; summed with the
+//! weights, with `[â, b̂] = 2 â × b̂` for pure dual quaternions and `δ̂ ≈ x̂` in the small
+//! terms, the residual vanishes to that order for
+//!
+//! ```text
+//! δ̂ = x̂ − ⅓ Σ wᵢ x̂ᵢ × (x̂ᵢ × x̂) = x̂ (1 + tr M / 3) − M x̂ / 3,   M = Σ wᵢ x̂ᵢ x̂ᵢᵀ
+//! ```
+//!
+//! in dual arithmetic (`M = M₀ + ε M₁`, [`Spread`]): on the sphere it is Newton's step to
+//! second order in the angles (across a log, the Hessian of the squared distance is
+//! `φ cot φ ≈ 1 − φ²/3`; along it, 1). The fixed point and the stopping rule are the
+//! paper's, so the blend is the same to within the rule's reach, and it ends nearer the
+//! exact blend (its last update leaves less behind; the tests check both). On the
+//! synthetic rig 99.4 % of the blocks of eight stop after one update and the log sum that
+//! shows it, where the paper's step took two for 97 %. Over 5000 random blends of 2–4
+//! transforms (`cargo run --release -p chasles-skin --example dib_step`, f64, the step
+//! written there again independently): rotated by up to 1 rad and moved by up to 1, 99.9 %
+//! needed at most one update against 72 % with the paper's step; rotated by up to 3.1 rad
+//! and moved by up to 100, 2.6 updates on average against 4.2 (counting more than 11 as
+//! 11); and in every group its largest distance from the exact blend was no larger than
+//! the paper's step's. The GPU shader and the scalar kernels keep the paper's step.
+
+use super::super::Lane;
+
+/// The weighted second moment of the logarithms `x̂ᵢ = aᵢ + ε bᵢ` of one DIB update, as a
+/// symmetric dual 3×3 matrix `M = Σ wᵢ x̂ᵢ x̂ᵢᵀ = M₀ + ε M₁` (`M₀ = Σ wᵢ aᵢ aᵢᵀ`,
+/// `M₁ = Σ wᵢ (aᵢ bᵢᵀ + bᵢ aᵢᵀ)`; entries xx, yy, zz, xy, xz, yz), for [`Spread::step`].
+pub(super) struct Spread<L> {
+    m0: [L; 6],
+    /// `M₁`'s off-diagonal entries xy, xz, yz.
+    m1: [L; 3],
+    /// `Σ wᵢ aᵢ ⊙ bᵢ`: half `M₁`'s diagonal.
+    half_diag: [L; 3],
+}
+
+impl<L: Lane> Default for Spread<L> {
+    fn default() -> Self {
+        let zero = L::splat(0.0);
+        Spread {
+            m0: [zero; 6],
+            m1: [zero; 3],
+            half_diag: [zero; 3],
+        }
+    }
+}
+
+impl<L: Lane> Spread<L> {
+    /// Adds `w x̂ x̂ᵀ` for the logarithm `l` (`[·, a, ·, b]`).
+    #[inline(always)]
+    pub(super) fn add(&mut self, w: L, l: &[L; 8]) {
+        let (a, b) = ([l[1], l[2], l[3]], [l[5], l[6], l[7]]);
+        let wa = a.map(|c| w.mul(c));
+        let m = &mut self.m0;
+        m[0] = wa[0].madd(a[0], m[0]);
+        m[1] = wa[1].madd(a[1], m[1]);
+        m[2] = wa[2].madd(a[2], m[2]);
+        m[3] = wa[0].madd(a[1], m[3]);
+        m[4] = wa[0].madd(a[2], m[4]);
+        m[5] = wa[1].madd(a[2], m[5]);
+        for (c, h) in self.half_diag.iter_mut().enumerate() {
+            *h = wa[c].madd(b[c], *h);
+        }
+        for (e, (i, j)) in [(0, 1), (0, 2), (1, 2)].into_iter().enumerate() {
+            self.m1[e] = wa[i].madd(b[j], wa[j].madd(b[i], self.m1[e]));
+        }
+    }
+
+    /// The second-order DIB step for the update `x̂ = Σ wᵢ x̂ᵢ` (the module docs'
+    /// formula): `δ̂ = x̂ (1 + tr M / 3) − M x̂ / 3` in dual arithmetic; its
+    /// scalar parts are `x̂`'s (the exponential does not read them).
+    #[inline(always)]
+    pub(super) fn step(&self, x: &[L; 8]) -> [L; 8] {
+        let third = L::splat(1.0 / 3.0);
+        let [xx, yy, zz, xy, xz, yz] = self.m0;
+        let m0 = [[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]];
+        let h = self.half_diag;
+        let [p, q, r] = self.m1;
+        let m1 = [
+            [h[0].add(h[0]), p, q],
+            [p, h[1].add(h[1]), r],
+            [q, r, h[2].add(h[2])],
+        ];
+        let (a, b) = ([x[1], x[2], x[3]], [x[5], x[6], x[7]]);
+        // f = 1 + tr M₀ / 3, g = tr M₁ / 3 (the dual part of 1 + tr M / 3).
+        let f = xx.add(yy).add(zz).madd(third, L::splat(1.0));
+        let g = h[0].add(h[1]).add(h[2]).mul(L::splat(2.0 / 3.0));
+        let (m0a, m0b, m1a) = (mat_vec(&m0, &a), mat_vec(&m0, &b), mat_vec(&m1, &a));
+        let real = [0, 1, 2].map(|i| a[i].madd(f, zero_minus(m0a[i].mul(third))));
+        let dual = [0, 1, 2]
+            .map(|i| b[i].madd(f, a[i].madd(g, zero_minus(m0b[i].add(m1a[i]).mul(third)))));
+        [
+            x[0], real[0], real[1], real[2], x[4], dual[0], dual[1], dual[2],
+        ]
+    }
+}
+
+/// `m v` for a 3×3 `m` given by rows.
+#[inline(always)]
+fn mat_vec<L: Lane>(m: &[[L; 3]; 3], v: &[L; 3]) -> [L; 3] {
+    [0, 1, 2].map(|i| m[i][2].madd(v[2], m[i][1].madd(v[1], m[i][0].mul(v[0]))))
+}
+
+/// `−v`.
+#[inline(always)]
+fn zero_minus<L: Lane>(v: L) -> L {
+    L::splat(0.0).sub(v)
+}
