@@ -12,7 +12,8 @@
 //! **Second-order step** (past the paper): where the paper steps by the update itself,
 //! `δ̂ = x̂`, the lanes step by `δ̂ = x̂ (1 + tr M / 3) − M x̂ / 3`, `M = Σ wᵢ x̂ᵢ x̂ᵢᵀ`, to
 //! the same fixed point under the same stopping rule: one update where the paper's step
-//! needs two (derivation and measurements in [`second_order`]).
+//! needs two (derivation and measurements in [`second_order`]). The influences' logarithms
+//! are taken two at a time, interleaved ([`Wide`]).
 //!
 //! No trigonometric calls. For `r̂ = b̂* q̂ᵢ` taken to `w ≥ 0`, with `r0 = (w, a)`,
 //! `rε = (wε, b)`, `n = ‖a‖`, `s = n²` (eq. 2 and the library's `DualQuat::log`):
@@ -42,7 +43,7 @@
 
 mod second_order;
 
-use super::{dot, dqmul, horner, taylor, Lane};
+use super::{dot, dqmul, horner, taylor, Lane, Wide};
 use crate::skinning::{DIB_PRECISION, DIB_UPDATES};
 use chasles::blend::STALL_FACTOR;
 use second_order::Spread;
@@ -239,10 +240,21 @@ pub(in crate::fast) fn dib<L: Lane, const K: usize>(
         });
         let mut x = [zero; 8];
         let mut spread = Spread::default();
-        for k in 0..slots {
-            let l = log(&dqmul(&conj, &q[k]));
-            x = eight(|c| w[k].madd(l[c], x[c]));
-            spread.add(w[k], &l);
+        // Two influences' logarithms at a time, interleaved (`Wide`); slots past `slots`
+        // hold the identity with weight 0 and add exact zeros.
+        let conj2 = eight(|c| Wide([conj[c]; 2]));
+        for g in (0..slots).step_by(2) {
+            let at = |i: usize| (g + i).min(K - 1);
+            let q2 = eight(|c| Wide([q[at(0)][c], q[at(1)][c]]));
+            let l2 = log(&dqmul(&conj2, &q2));
+            for i in 0..2 {
+                let k = g + i;
+                if k < K {
+                    let l = eight(|c| l2[c].0[i]);
+                    x = eight(|c| w[k].madd(l[c], x[c]));
+                    spread.add(w[k], &l);
+                }
+            }
         }
         let norm = dot(&x, &x).sqrt();
         active = L::and(active, keep_going(norm, last));

@@ -53,7 +53,7 @@ impl<L: Lane> Spread<L> {
     #[inline(always)]
     pub(super) fn add(&mut self, w: L, l: &[L; 8]) {
         let (a, b) = ([l[1], l[2], l[3]], [l[5], l[6], l[7]]);
-        let wa = a.map(|c| w.mul(c));
+        let wa = [w.mul(a[0]), w.mul(a[1]), w.mul(a[2])];
         let m = &mut self.m0;
         m[0] = wa[0].madd(a[0], m[0]);
         m[1] = wa[1].madd(a[1], m[1]);
@@ -89,11 +89,17 @@ impl<L: Lane> Spread<L> {
         let f = xx.add(yy).add(zz).madd(third, L::splat(1.0));
         let g = h[0].add(h[1]).add(h[2]).mul(L::splat(2.0 / 3.0));
         let (m0a, m0b, m1a) = (mat_vec(&m0, &a), mat_vec(&m0, &b), mat_vec(&m1, &a));
-        let real = [0, 1, 2].map(|i| a[i].madd(f, zero_minus(m0a[i].mul(third))));
-        let dual = [0, 1, 2]
-            .map(|i| b[i].madd(f, a[i].madd(g, zero_minus(m0b[i].add(m1a[i]).mul(third)))));
+        let real = |i: usize| a[i].madd(f, zero_minus(m0a[i].mul(third)));
+        let dual = |i: usize| b[i].madd(f, a[i].madd(g, zero_minus(m0b[i].add(m1a[i]).mul(third))));
         [
-            x[0], real[0], real[1], real[2], x[4], dual[0], dual[1], dual[2],
+            x[0],
+            real(0),
+            real(1),
+            real(2),
+            x[4],
+            dual(0),
+            dual(1),
+            dual(2),
         ]
     }
 }
@@ -101,7 +107,8 @@ impl<L: Lane> Spread<L> {
 /// `m v` for a 3×3 `m` given by rows.
 #[inline(always)]
 fn mat_vec<L: Lane>(m: &[[L; 3]; 3], v: &[L; 3]) -> [L; 3] {
-    [0, 1, 2].map(|i| m[i][2].madd(v[2], m[i][1].madd(v[1], m[i][0].mul(v[0]))))
+    let row = |i: usize| m[i][2].madd(v[2], m[i][1].madd(v[1], m[i][0].mul(v[0])));
+    [row(0), row(1), row(2)]
 }
 
 /// `−v`.
