@@ -73,12 +73,17 @@ def test_the_gpu_skins_as_the_cpu(method, cesium):
     gpu, gpu_n = cesium.skin(clip=0, time=0.7, method=method, device="gpu")
     assert gpu.dtype == np.float32 and gpu.shape == cpu.shape
     # f32 on both, different operation orders (and the GPU's fused multiply-adds): the
-    # mesh is about 1.8 units tall, so 1e-5 is a few ulp of its coordinates.
-    assert np.abs(gpu - cpu).max() < 1e-5, (method, adapter)
+    # mesh is about 1.8 units tall, so 1e-5 is a few ulp of its coordinates. DIB: the
+    # CPU's SIMD kernel takes a second-order step and the shader the paper's, to the same
+    # fixed point under the same stopping rule (update below 1e-5), so the two stop at
+    # different points within the rule's reach of the exact blend: 2e-5 × (1 + 2 × the
+    # lever, under 1.8 here), below 1e-4.
+    tol = 1e-4 if method == "dib" else 1e-5
+    assert np.abs(gpu - cpu).max() < tol, (method, adapter)
     assert np.abs(gpu_n - cpu_n).max() < 1e-4
     clip, _ = cesium.skin_clip(0, fps=10, method=method, device="gpu")
     ref, _ = cesium.skin_clip(0, fps=10, method=method)
-    assert clip.shape == ref.shape and np.abs(clip - ref).max() < 1e-5
+    assert clip.shape == ref.shape and np.abs(clip - ref).max() < tol
     # auto takes a hardware GPU only; a software one (lavapipe) is no faster than the CPU.
     assert cesium.skinning_device("sbs", "auto") == "cpu"
     assert cesium.skinning_device(method, "cpu") == "cpu"

@@ -9,8 +9,8 @@ use chasles::blend::dlb::dlb;
 use chasles::{DualQuat, Quat, Vec3};
 use chasles_skin::synthetic;
 
-/// The stopping rule's precision (`chasles_skin::skinning::DIB_PRECISION`).
-const PRECISION: f64 = 1e-5;
+/// The stopping rule's precision, the skinning's.
+const PRECISION: f64 = chasles_skin::skinning::DIB_PRECISION as f64;
 /// More updates than this count as this many.
 const CAP: usize = 11;
 

@@ -234,7 +234,6 @@ pub unsafe fn dqs<const K: usize>(
     o: &mut [Out],
     stream: bool,
 ) -> usize {
-    chasles::frame::align_frame();
     unsafe {
         let db = d.as_ptr() as *const f32;
         if antipodes.is_empty() {
@@ -256,6 +255,7 @@ unsafe fn dqs_blocks<const K: usize>(
     stream: bool,
     blend: impl Fn(&Vertex<K>) -> __m256,
 ) -> usize {
+    chasles::frame::align_frame();
     unsafe {
         let blocks = v.len() / 8;
         for blk in 0..blocks {
@@ -313,8 +313,8 @@ pub unsafe fn lbs<const K: usize>(
     o: &mut [Out],
     stream: bool,
 ) -> usize {
+    chasles::frame::align_frame();
     unsafe {
-        chasles::frame::align_frame();
         let mb = m.as_ptr() as *const f32;
         let zero = _mm256_setzero_ps();
         let one = _mm256_set1_ps(1.0);

@@ -17,8 +17,6 @@ use std::arch::x86_64::*;
 pub(super) mod dib;
 mod wide;
 
-pub(super) use wide::Wide;
-
 /// What the algebra needs of a number: ring operations, division, square root, constants,
 /// the three multiply-adds, and per-lane comparisons and choices (DIB's branch-free
 /// logarithm and stopping rule).

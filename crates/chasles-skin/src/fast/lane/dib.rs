@@ -35,15 +35,18 @@
 //! with `G(z) = Σ (−1)ᵏ 2(k+1)/(2k+3) zᵏ` (the library's series) and, in the last two rows
 //! (n > 0.38 ‖r0‖, no cancellation), `h = θ/n`, `∂h/∂s = (w n/‖r0‖² − θ)/(2 n s)`. The
 //! exponential's `cos √s`, `sinc √s` and `d sinc √s / ds` are Taylor series in `s = ‖a‖²`
-//! for the update's `a`, truncated below 1e-8 at `s = (π/2)²` (a convex blend of
-//! half-angles in [0, π/2] stays in it). Two shortcuts, both exact after the normalization
+//! for the step's `a`, truncated below 1e-8 at `s = (π/2)²` (a convex blend of half-angles
+//! in [0, π/2] stays in it; the second-order step can reach a little past it, where the
+//! neglected terms stay below 1e-7, and a step's error costs only speed: the stopping rule
+//! looks at the logarithms, not at the step). Two shortcuts, both exact after the normalization
 //! that follows, which only the update's norm sees: the exponential's scalar factor `e^ŵ`
 //! (a positive dual number, which normalizing removes) is left out, and `½ ln‖r0‖²` is taken
 //! as `½ (‖r0‖² − 1)` (r̂ is a product of unit dual quaternions: off by under 1e-14).
 
 mod second_order;
 
-use super::{dot, dqmul, horner, taylor, Lane, Wide};
+use super::wide::Wide;
+use super::{dot, dqmul, horner, taylor, Lane};
 use crate::skinning::{DIB_PRECISION, DIB_UPDATES};
 use chasles::blend::STALL_FACTOR;
 use second_order::Spread;
@@ -240,8 +243,8 @@ pub(in crate::fast) fn dib<L: Lane, const K: usize>(
         });
         let mut x = [zero; 8];
         let mut spread = Spread::default();
-        // Two influences' logarithms at a time, interleaved (`Wide`); slots past `slots`
-        // hold the identity with weight 0 and add exact zeros.
+        // Two influences' logarithms at a time, interleaved (`Wide`); where `slots` is odd
+        // the pair's second is computed and dropped.
         let conj2 = eight(|c| Wide([conj[c]; 2]));
         for g in (0..slots).step_by(2) {
             let at = |i: usize| (g + i).min(K - 1);
@@ -249,7 +252,7 @@ pub(in crate::fast) fn dib<L: Lane, const K: usize>(
             let l2 = log(&dqmul(&conj2, &q2));
             for i in 0..2 {
                 let k = g + i;
-                if k < K {
+                if k < slots {
                     let l = eight(|c| l2[c].0[i]);
                     x = eight(|c| w[k].madd(l[c], x[c]));
                     spread.add(w[k], &l);

@@ -27,6 +27,26 @@ impl<L: Lane, const N: usize> Wide<L, N> {
         }
         Wide(a)
     }
+
+    /// `f(self[i], b[i], c[i])` for each i.
+    #[inline(always)]
+    fn zip3(self, b: Self, c: Self, f: impl Fn(L, L, L) -> L) -> Self {
+        let mut a = self.0;
+        for i in 0..N {
+            a[i] = f(a[i], b.0[i], c.0[i]);
+        }
+        Wide(a)
+    }
+
+    /// `f(self[i], b[i])` for each i, a mask.
+    #[inline(always)]
+    fn compare(self, b: Self, f: impl Fn(L, L) -> L::Mask) -> [L::Mask; N] {
+        let mut m = [f(self.0[0], b.0[0]); N];
+        for i in 1..N {
+            m[i] = f(self.0[i], b.0[i]);
+        }
+        m
+    }
 }
 
 impl<L: Lane, const N: usize> Lane for Wide<L, N> {
@@ -53,19 +73,11 @@ impl<L: Lane, const N: usize> Lane for Wide<L, N> {
     }
     #[inline(always)]
     fn lt(self, b: Self) -> Self::Mask {
-        let mut m = [L::splat(0.0).lt(L::splat(0.0)); N];
-        for i in 0..N {
-            m[i] = self.0[i].lt(b.0[i]);
-        }
-        m
+        self.compare(b, L::lt)
     }
     #[inline(always)]
     fn le(self, b: Self) -> Self::Mask {
-        let mut m = [L::splat(0.0).lt(L::splat(0.0)); N];
-        for i in 0..N {
-            m[i] = self.0[i].le(b.0[i]);
-        }
-        m
+        self.compare(b, L::le)
     }
     #[inline(always)]
     fn select(m: Self::Mask, a: Self, b: Self) -> Self {
@@ -117,27 +129,15 @@ impl<L: Lane, const N: usize> Lane for Wide<L, N> {
     }
     #[inline(always)]
     fn madd(self, b: Self, c: Self) -> Self {
-        let mut r = self.0;
-        for i in 0..N {
-            r[i] = self.0[i].madd(b.0[i], c.0[i]);
-        }
-        Wide(r)
+        self.zip3(b, c, L::madd)
     }
     #[inline(always)]
     fn msub(self, b: Self, c: Self) -> Self {
-        let mut r = self.0;
-        for i in 0..N {
-            r[i] = self.0[i].msub(b.0[i], c.0[i]);
-        }
-        Wide(r)
+        self.zip3(b, c, L::msub)
     }
     #[inline(always)]
     fn nmadd(self, b: Self, c: Self) -> Self {
-        let mut r = self.0;
-        for i in 0..N {
-            r[i] = self.0[i].nmadd(b.0[i], c.0[i]);
-        }
-        Wide(r)
+        self.zip3(b, c, L::nmadd)
     }
     #[inline(always)]
     fn horner<const M: usize>(c: &[f32; M], s: Self) -> Self {

@@ -116,3 +116,73 @@ fn mat_vec<L: Lane>(m: &[[L; 3]; 3], v: &[L; 3]) -> [L; 3] {
 fn zero_minus<L: Lane>(v: L) -> L {
     L::splat(0.0).sub(v)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `x̂ − ⅓ Σ wᵢ x̂ᵢ × (x̂ᵢ × x̂)` in f64, by the double cross product of dual vectors
+    /// (`â × (b̂ × ĉ) = b̂ (â · ĉ) − ĉ (â · b̂)`, each dot a dual number): the formula the
+    /// step's `M` form comes from, written the other way.
+    fn by_cross_products(x: &[f64; 8], logs: &[[f64; 8]], w: &[f64]) -> [f64; 8] {
+        let dot = |p: &[f64], q: &[f64]| p[0] * q[0] + p[1] * q[1] + p[2] * q[2];
+        let (a, b) = (&x[1..4], &x[5..8]);
+        let mut d = *x;
+        for (l, wi) in logs.iter().zip(w) {
+            let (ai, bi) = (&l[1..4], &l[5..8]);
+            let (p0, p1) = (dot(ai, a), dot(ai, b) + dot(bi, a));
+            let (s0, s1) = (dot(ai, ai), 2.0 * dot(ai, bi));
+            for c in 0..3 {
+                d[1 + c] -= wi / 3.0 * (ai[c] * p0 - a[c] * s0);
+                d[5 + c] -= wi / 3.0 * (ai[c] * p1 + bi[c] * p0 - b[c] * s0 - a[c] * s1);
+            }
+        }
+        d
+    }
+
+    /// [`Spread::step`] is the double-cross-product formula, both parts, on random
+    /// logarithms (half-angles up to 1.5, dual parts up to 3) and convex weights of 1–4.
+    #[test]
+    fn the_step_is_the_double_cross_product_formula() {
+        let mut s: u64 = 0x2545_F491_4F6C_DD1D;
+        let mut next = move || {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            (s >> 40) as f32 / (1u64 << 24) as f32 - 0.5
+        };
+        for trial in 0..2000 {
+            let n = 1 + trial % 4;
+            let logs: Vec<[f32; 8]> = (0..n)
+                .map(|_| {
+                    let mut l = [0f32; 8];
+                    (1..4).for_each(|c| l[c] = 1.7 * next());
+                    (5..8).for_each(|c| l[c] = 6.0 * next());
+                    (l[0], l[4]) = (next(), next());
+                    l
+                })
+                .collect();
+            let raw: Vec<f32> = (0..n).map(|_| next() + 0.6).collect();
+            let w: Vec<f32> = raw.iter().map(|r| r / raw.iter().sum::<f32>()).collect();
+            let mut x = [0f32; 8];
+            let mut spread = Spread::default();
+            for (l, wi) in logs.iter().zip(&w) {
+                (0..8).for_each(|c| x[c] += wi * l[c]);
+                spread.add(*wi, l);
+            }
+            let got = spread.step(&x);
+            let want = by_cross_products(
+                &x.map(f64::from),
+                &logs.iter().map(|l| l.map(f64::from)).collect::<Vec<_>>(),
+                &w.iter().map(|w| f64::from(*w)).collect::<Vec<_>>(),
+            );
+            for c in 0..8 {
+                let tol = 1e-5 * (1.0 + want[c].abs());
+                assert!(
+                    (f64::from(got[c]) - want[c]).abs() <= tol,
+                    "{trial}, {c}: {got:?} against {want:?}"
+                );
+            }
+        }
+    }
+}
