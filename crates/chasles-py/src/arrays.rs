@@ -111,6 +111,26 @@ macro_rules! dispatch {
 }
 pub(crate) use dispatch;
 
+/// The iterative methods' `precision` (positive and finite) and `max_iterations` (at most
+/// 10 000: they converge in tens, and the cap bounds a call's time), checked.
+pub fn check_iterations(precision: Option<f64>, max_iterations: Option<usize>) -> PyResult<()> {
+    if let Some(p) = precision {
+        if !(p > 0.0 && p.is_finite()) {
+            return Err(value_error(format!(
+                "precision must be positive and finite, got {p}"
+            )));
+        }
+    }
+    if let Some(n) = max_iterations {
+        if n > 10_000 {
+            return Err(value_error(format!(
+                "max_iterations must be at most 10000 (the iterations converge in tens; a cap, not a goal), got {n}"
+            )));
+        }
+    }
+    Ok(())
+}
+
 /// `obj` as a C-contiguous, aligned array of T (numpy's `require`); a `ValueError` naming
 /// the argument when it is not numbers.
 pub fn array<'py, T: Num>(

@@ -171,20 +171,7 @@ pub fn blend<'py>(
     scalar_first: bool,
 ) -> PyResult<Bound<'py, PyAny>> {
     let m = self::method(method)?;
-    if let Some(p) = precision {
-        if !(p > 0.0 && p.is_finite()) {
-            return Err(value_error(format!(
-                "precision must be positive and finite, got {p}"
-            )));
-        }
-    }
-    if let Some(n) = max_iterations {
-        if n > 10_000 {
-            return Err(value_error(format!(
-                "max_iterations must be at most 10000 (the iterative methods converge in tens; a cap, not a goal), got {n}"
-            )));
-        }
-    }
+    crate::arrays::check_iterations(precision, max_iterations)?;
     if let Some(c) = center {
         if c.iter().any(|v| !v.is_finite()) {
             return Err(value_error("center is not finite"));

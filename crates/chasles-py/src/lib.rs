@@ -27,6 +27,7 @@
 use pyo3::prelude::*;
 
 pub mod arrays;
+pub mod average;
 pub mod blend;
 pub mod convert;
 pub mod dualquat;
@@ -81,6 +82,7 @@ fn chasles_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
         w!(interp::squad, m)?,
         w!(interp::spring, m)?,
         w!(blend::blend, m)?,
+        w!(average::average, m)?,
         w!(blend::sclerp, m)?,
         w!(skin::skin, m)?,
         w!(rig::models, m)?,

@@ -11,6 +11,7 @@ from ._chasles import (  # noqa: F401
     Pose,
     Rig,
     __version__,
+    average,
     blend,
     dq_from_matrix,
     dq_from_rt,
@@ -54,6 +55,7 @@ from ._scipy import from_scipy, to_scipy  # noqa: E402
 __all__ = [
     "Pose",
     "Rig",
+    "average",
     "blend",
     "dq_from_matrix",
     "dq_from_rt",

@@ -156,6 +156,20 @@ def blend(
     """Blends of (..., n, 8) dual quaternions or (..., n, 4, 4) matrices with weights (..., n)."""
 def sclerp(a: ArrayLike, b: ArrayLike, t: ArrayLike, *, scalar_first: bool = True) -> Array:
     """Screw linear interpolation."""
+def average(
+    poses: ArrayLike,
+    weights: Optional[ArrayLike] = None,
+    loss: Optional[str] = None,
+    *,
+    tuning: Optional[float] = None,
+    scale: Optional[float] = None,
+    length_scale: float = 1.0,
+    precision: Optional[float] = None,
+    max_iterations: Optional[int] = None,
+    full_output: bool = False,
+    scalar_first: bool = True,
+) -> Union[Array, Tuple[Array, Array, Array, Array, NDArray[np.int64], NDArray[np.bool_]]]:
+    """The rigid (or Huber's / Tukey's robust) mean of (..., n, 8) unit dual quaternions."""
 
 # Skinning (src/skin.rs, src/rig.rs)
 def skin(
