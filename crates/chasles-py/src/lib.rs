@@ -35,6 +35,7 @@ pub mod interp;
 pub mod pickle;
 pub mod quat;
 pub mod rig;
+pub mod rigid;
 pub mod simd;
 pub mod skin;
 pub mod spring;
@@ -81,6 +82,7 @@ fn chasles_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
         w!(interp::interpolate, m)?,
         w!(interp::squad, m)?,
         w!(interp::spring, m)?,
+        w!(rigid::interpolate_rigid_py, m)?,
         w!(blend::blend, m)?,
         w!(average::average, m)?,
         w!(blend::sclerp, m)?,

@@ -156,6 +156,21 @@ def blend(
     """Blends of (..., n, 8) dual quaternions or (..., n, 4, 4) matrices with weights (..., n)."""
 def sclerp(a: ArrayLike, b: ArrayLike, t: ArrayLike, *, scalar_first: bool = True) -> Array:
     """Screw linear interpolation."""
+def interpolate_rigid(
+    keys: ArrayLike,
+    method: str = "sclerp",
+    frames: int = 200,
+    *,
+    times: Optional[ArrayLike] = None,
+    energy: str = "split",
+    length_scale: float = 1.0,
+    tolerance: Optional[float] = None,
+    max_iterations: Optional[int] = None,
+    full_output: bool = False,
+    scalar_first: bool = True,
+    max_frames: int = 1_000_000,
+) -> Union[Array, Tuple[Array, Array, NDArray[np.int64]]]:
+    """A curve of rigid poses (..., frames, 8) through keys (..., K, 8): sclerp, squad or spring."""
 def average(
     poses: ArrayLike,
     weights: Optional[ArrayLike] = None,
