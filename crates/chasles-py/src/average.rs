@@ -31,18 +31,20 @@ struct Settings {
 /// mean that discounts outliers by their distance to it (the turn in radians and the move
 /// over ``length_scale``, in quadrature), with the tuning constant ``tuning`` (1.345 and
 /// 4.685 when None) and the scale ``scale`` (re-estimated each step as 1.4826 × the median
-/// distance when None). ``precision`` and ``max_iterations`` bound the updates (1.5e-10 /
-/// 1.2e-5 for f64 / f32, and 200, when None). With ``full_output`` it returns ``(mean,
+/// distance when None). ``precision`` and ``max_iterations`` bound the updates (when None:
+/// 1.5e-10 / 1.2e-5 for f64 / f32, and at most 50 updates for the rigid mean, 200 for a
+/// robust one, as ``chasles average``; at most 10 000). The dtype is the poses'; the
+/// weights are read as it. With ``full_output`` it returns ``(mean,
 /// weights, distances, scale, iterations, capped)``: each pose's final weight and distance
 /// to the mean, the last scale (NaN for the rigid mean), the updates made and whether it
-/// stopped at the cap. A pose that is not finite or not unit, bad weights or settings
-/// raise ``ValueError`` naming them.
+/// stopped at the cap. A pose that is not finite or not unit, bad weights or settings, and
+/// poses so far apart that their distances overflow raise ``ValueError`` naming them.
 ///
 /// The translations' mean is not their average: the mean is of screw motions, and the
 /// three poses turn as they move (the fourth, 50 away, is an outlier that Tukey's weights
 /// drop).
 ///
-/// >>> import chasles
+/// >>> import chasles, numpy as np
 /// >>> q = chasles.quat_from_axis_angle([0.0, 0.0, 1.0], [0.0, 0.2, 0.4, 3.0])
 /// >>> poses = chasles.dq_from_rt(q, [[0.0, 0, 0], [1.0, 0, 0], [2.0, 0, 0], [50.0, 0, 0]])
 /// >>> m = chasles.average(poses[:3])
@@ -109,38 +111,39 @@ pub fn average<'py>(
         full_output,
         sf: scalar_first,
     };
-    match weights {
-        Some(w) => dispatch!([poses, w], average_t(poses, Some(w), &set)),
-        None => dispatch!([poses], average_t(poses, None, &set)),
-    }
+    dispatch!([poses], average_t(poses, weights, &set))
 }
 
 /// One mean of the `n` poses in `x` (8 numbers each) with the weights `w` (or uniform).
 fn one<T: Num>(x: &[T], w: Option<&[T]>, s: &Settings) -> Result<Average<T>, crate::arrays::Fail> {
     let q: Vec<DualQuat<T>> = x.chunks_exact(8).map(|p| dq_in(p, s.sf)).collect();
-    let mut opt = Options::<T> {
-        max_iterations: 200,
-        ..Options::default()
-    };
+    // `chasles average`'s settings: the library's defaults for the rigid mean (50 updates
+    // at most), `Robust::new`'s for a robust one (200).
+    let mut opt = Options::<T>::default();
     if let Some(p) = s.precision {
         opt.precision = T::from_f64(p);
     }
-    if let Some(i) = s.max_iterations {
-        opt.max_iterations = i;
-    }
-    Ok(match s.loss {
-        None => mean(&q, w, &opt)?,
+    let a = match s.loss {
+        None => {
+            opt.max_iterations = s.max_iterations.unwrap_or(opt.max_iterations);
+            mean(&q, w, &opt)?
+        }
         Some(loss) => {
-            let robust = Robust {
-                loss,
-                tuning: s.tuning.map(T::from_f64),
-                scale: s.scale.map_or(Scale::Mad, |v| Scale::Fixed(T::from_f64(v))),
-                length_scale: T::from_f64(s.length_scale),
-                options: opt,
-            };
+            let mut robust = Robust::<T>::new(loss);
+            robust.tuning = s.tuning.map(T::from_f64);
+            robust.scale = s.scale.map_or(Scale::Mad, |v| Scale::Fixed(T::from_f64(v)));
+            robust.length_scale = T::from_f64(s.length_scale);
+            robust.options.precision = opt.precision;
+            robust.options.max_iterations =
+                s.max_iterations.unwrap_or(robust.options.max_iterations);
             robust_mean(&q, w, &robust)?
         }
-    })
+    };
+    finite(
+        &a.distances,
+        "a pose's distance to the mean (the poses are beyond the range of this precision)",
+    )?;
+    Ok(a)
 }
 
 fn average_t<'py, T: Num>(

@@ -260,6 +260,12 @@ fn curves_t<'py, T: Num>(
             (Plan::Spring(cfg, converged), total)
         }
     };
+    if frames == 0 {
+        // An empty output would skip every check of the keys.
+        return Err(value_error(
+            "frames must be at least the number of keys, got 0",
+        ));
+    }
     if frames > c.max_frames {
         return Err(value_error(format!(
             "{frames} frames is more than max_frames={} (raise it to make longer curves)",

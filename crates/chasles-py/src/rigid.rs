@@ -25,11 +25,15 @@ struct Curve {
 /// constant speed, the rigid Slerp), ``"squad"`` (Dam et al.'s Squad with ScLERP and the
 /// dual-quaternion log and exp: C¹ at the keys) or ``"spring"`` (the curve of least
 /// curvature energy through the keys: ``energy="split"``, the rotations' Spring energy plus
-/// the translations' second differences, or ``"screw"``, the dual-quaternion curve's own,
-/// with the length ``length_scale`` that weighs as much as a radian; ``tolerance`` and
-/// ``max_iterations`` bound its Gauss–Newton steps). Every key is one of the frames; the
+/// the translations' second differences — two separate problems, so ``length_scale``
+/// changes nothing — or ``"screw"``, the dual-quaternion curve's own, with the length
+/// ``length_scale`` that weighs as much as a radian; its Gauss–Newton steps stop when the
+/// gradient has fallen to ``tolerance`` (in [0, 1), 1e-12 when None) of its start or after
+/// ``max_iterations`` (1 to 10 000, 100 when None); the screw energy's solve grows faster
+/// than the frames: 0.6 s at 10⁴, about 20 s at 10⁵). Every key is one of the frames; the
 /// others are shared equally among the intervals, or by the key ``times`` (..., K) when
-/// given. Keys are chained to one hemisphere. Returns (..., frames, 8); with
+/// given. Keys are chained to one hemisphere. The dtype is the keys'; the times are read as
+/// it. Returns (..., frames, 8); with
 /// ``full_output`` also the curve parameter (..., frames) and each frame's key index
 /// (..., frames), -1 between keys. A key that is not unit, too few frames or a bad
 /// setting raise ``ValueError`` naming it.
@@ -60,6 +64,12 @@ pub fn interpolate_rigid_py<'py>(
     scalar_first: bool,
     max_frames: usize,
 ) -> PyResult<Bound<'py, PyAny>> {
+    if frames == 0 {
+        return Err(value_error(
+            "frames must be at least the number of keys, got 0",
+        ));
+    }
+    crate::arrays::check_iterations(None, max_iterations)?;
     if frames > max_frames {
         return Err(value_error(format!(
             "frames {frames} is more than max_frames {max_frames} (raise it to make longer curves)"
@@ -100,10 +110,7 @@ pub fn interpolate_rigid_py<'py>(
         full_output,
         sf: scalar_first,
     };
-    match times {
-        Some(t) => dispatch!([keys, t], curves(keys, Some(t), &c)),
-        None => dispatch!([keys], curves(keys, None, &c)),
-    }
+    dispatch!([keys], curves(keys, times, &c))
 }
 
 /// One curve through the keys `k` (8 numbers each) with the key times `t`, into `out`.

@@ -75,16 +75,22 @@ def test_robust_means_ignore_outliers(rng, loss):
     assert abs(w.sum() - 1) < 1e-12
 
 
-@pytest.mark.parametrize("loss", [None, "huber", "tukey"])
-def test_the_means_equal_the_cli(loss, cli, tmp_path, rng):
+@pytest.mark.parametrize(
+    "loss,options",
+    [(None, {}), ("huber", {}), ("tukey", {}), ("huber", {"tuning": 2.0, "length_scale": 0.5}),
+     ("tukey", {"scale": 0.3, "max_iterations": 3})],
+)
+def test_the_means_equal_the_cli(loss, options, cli, tmp_path, rng):
     poses, _ = noisy_poses(rng, 30, 0.05, outliers=5)
     w = rng.uniform(0.5, 1.0, size=30)
     path = tmp_path / "poses.json"
     path.write_text(json.dumps({"poses": [{"dq": list(p)} for p in poses], "weights": list(w)}))
     args = ["average", "--input", path] + (["--robust", loss] if loss else [])
+    for key, value in options.items():
+        args += ["--" + key.replace("_", "-"), str(value)]
     out = json.loads(cli(*args))
     m, weights, distances, scale, iters, capped = chasles.average(
-        poses, w, loss, full_output=True
+        poses, w, loss, full_output=True, **options
     )
     theirs = np.array(out["dq"])
     assert min(np.abs(m - theirs).max(), np.abs(m + theirs).max()) < 1e-12
@@ -106,10 +112,19 @@ def test_batches_broadcast_and_keep_their_dtype(rng):
     m32 = chasles.average(x.astype(np.float32), w.astype(np.float32))
     assert m32.dtype == np.float32
     assert np.abs(m32 - chasles.average(x, w)).max() < 1e-4
+    # float32 poses with float64 weights: float32, the weights read as it.
+    assert chasles.average(x.astype(np.float32), w).dtype == np.float32
     # scipy's order: the same means, scalar last.
-    xs = np.concatenate([np.roll(x[..., :4], -1, axis=-1), np.roll(x[..., 4:], -1, axis=-1)], axis=-1)
-    ms = chasles.average(xs, w, scalar_first=False)
-    assert np.allclose(np.roll(ms[..., :4], 1, axis=-1), chasles.average(x, w)[..., :4], atol=1e-15)
+    last = lambda a: np.concatenate([np.roll(a[..., :4], -1, axis=-1), np.roll(a[..., 4:], -1, axis=-1)], axis=-1)
+    assert np.array_equal(chasles.average(last(x), w, scalar_first=False), last(chasles.average(x, w)))
+    # Weights broadcast against the batch: (4, 6) for (3, 4, 6, 8) poses.
+    w2 = rng.uniform(0.1, 1.0, size=(4, 6))
+    m2, ww, dd, ss, it, cap = chasles.average(x, w2, full_output=True)
+    assert m2.shape == (3, 4, 8) and ww.shape == dd.shape == (3, 4, 6) and it.shape == (3, 4)
+    assert np.array_equal(m2[2, 1], chasles.average(x[2, 1], w2[1]))
+    # The cap: one update, flagged.
+    _, _, _, _, it, cap = chasles.average(x[0, 0], max_iterations=1, full_output=True)
+    assert it == 1 and cap
 
 
 def test_bad_input_is_a_value_error_naming_it(rng):
@@ -135,5 +150,8 @@ def test_bad_input_is_a_value_error_naming_it(rng):
         chasles.average(np.ones((4, 7)))
     with pytest.raises(ValueError, match="weight"):
         chasles.average(x, [1.0, -1.0, 1.0, 1.0])
-    with pytest.raises(ValueError):
+    with pytest.raises(ValueError, match="no poses|at least one"):
         chasles.average(np.zeros((0, 8)))
+    far = chasles.dq_from_rt(np.tile([1.0, 0, 0, 0], (3, 1)), [[0, 0, 0], [1e200, 0, 0], [0, 1e200, 0]])
+    with pytest.raises(ValueError):
+        chasles.average(far, loss="huber")

@@ -22,18 +22,21 @@ def chained(keys):
     return k
 
 
-@pytest.mark.parametrize("method", METHODS)
+@pytest.mark.parametrize("method", METHODS + ["screw"])
 def test_the_curves_equal_the_cli(method, cli, tmp_path, rng):
     keys = random_dqs(rng, 5, spread=2.0)
     times = np.cumsum(rng.uniform(0.5, 2.0, size=5))
     path = tmp_path / "keys.json"
     path.write_text(json.dumps({"keys": [{"dq": list(k), "time": t} for k, t in zip(keys, times)]}))
     out = tmp_path / "curve.json"
-    cli("interp", "--rigid", "--method", method, "--keys", path, "--frames", "41", "--out", out)
+    screw = {"energy": "screw", "length_scale": 2.0} if method == "screw" else {}
+    name = "spring" if screw else method
+    flags = ["--energy", "screw", "--length-scale", "2"] if screw else []
+    cli("interp", "--rigid", "--method", name, *flags, "--keys", path, "--frames", "41", "--out", out)
     rows = json.loads(out.read_text())
     theirs_r = np.array([[r["w"], r["x"], r["y"], r["z"]] for r in rows])
     theirs_t = np.array([[r["tx"], r["ty"], r["tz"]] for r in rows])
-    curve, t, key = chasles.interpolate_rigid(keys, method, 41, times=times, full_output=True)
+    curve, t, key = chasles.interpolate_rigid(keys, name, 41, times=times, full_output=True, **screw)
     r, tr = chasles.dq_to_rt(curve)
     assert curve.shape == (41, 8)
     assert np.abs(r - theirs_r).max() < 1e-12 and np.abs(tr - theirs_t).max() < 1e-12
@@ -82,11 +85,17 @@ def test_batches_times_and_dtypes(rng):
     c32 = chasles.interpolate_rigid(keys.astype(np.float32), "sclerp", 20)
     assert c32.dtype == np.float32
     assert np.abs(c32 - chasles.interpolate_rigid(keys, "sclerp", 20)).max() < 1e-4
-    screw = chasles.interpolate_rigid(keys[0, 0], "spring", 20, energy="screw", length_scale=2.0)
-    assert screw.shape == (20, 8) and np.isfinite(screw).all()
-    xs = np.concatenate([np.roll(keys[..., :4], -1, axis=-1), np.roll(keys[..., 4:], -1, axis=-1)], axis=-1)
-    back = chasles.interpolate_rigid(xs, "squad", 20, times=times, scalar_first=False)
-    assert np.abs(np.roll(back[..., :4], 1, axis=-1) - c[..., :4]).max() < 1e-15
+    assert chasles.interpolate_rigid(keys.astype(np.float32), times=times).dtype == np.float32
+    # The split Spring's two problems: ℓ changes nothing; fewer steps, a coarser curve.
+    split = chasles.interpolate_rigid(keys[0, 0], "spring", 20)
+    assert np.array_equal(split, chasles.interpolate_rigid(keys[0, 0], "spring", 20, length_scale=5.0))
+    rough = chasles.interpolate_rigid(keys[0, 0], "spring", 20, energy="screw", max_iterations=1, tolerance=0.5)
+    assert rough.shape == (20, 8) and np.isfinite(rough).all()
+    last = lambda a: np.concatenate([np.roll(a[..., :4], -1, axis=-1), np.roll(a[..., 4:], -1, axis=-1)], axis=-1)
+    back = chasles.interpolate_rigid(last(keys), "squad", 20, times=times, scalar_first=False)
+    assert np.array_equal(back, last(c))
+    c2, t2, k2 = chasles.interpolate_rigid(keys, "squad", 20, times=times, full_output=True)
+    assert np.array_equal(c2, c) and t2.shape == k2.shape == (3, 2, 20) and k2.dtype == np.int64
 
 
 def test_bad_input_is_a_value_error_naming_it(rng):
@@ -103,8 +112,12 @@ def test_bad_input_is_a_value_error_naming_it(rng):
         chasles.interpolate_rigid(keys, "squad", length_scale=2.0)
     with pytest.raises(ValueError, match="max_frames"):
         chasles.interpolate_rigid(keys, frames=10**7)
-    with pytest.raises(ValueError):
+    with pytest.raises(ValueError, match="frames"):
         chasles.interpolate_rigid(keys, frames=2)
+    with pytest.raises(ValueError, match="frames must be at least"):
+        chasles.interpolate_rigid(np.full((1, 8), np.nan), "spring", 0)
+    with pytest.raises(ValueError, match="time"):
+        chasles.interpolate_rigid(keys, times=[0.0, 1.0])
     with pytest.raises(ValueError, match=r"keys must have shape \(\.\.\., K, 8\)"):
         chasles.interpolate_rigid(np.ones((3, 4)))
     with pytest.raises(ValueError, match="time"):
