@@ -111,15 +111,22 @@ macro_rules! dispatch {
 }
 pub(crate) use dispatch;
 
+/// A setting that must be positive and finite, checked: the error names it.
+pub fn positive(what: &str, v: f64) -> PyResult<()> {
+    if v > 0.0 && v.is_finite() {
+        Ok(())
+    } else {
+        Err(value_error(format!(
+            "{what} must be positive and finite, got {v}"
+        )))
+    }
+}
+
 /// The iterative methods' `precision` (positive and finite) and `max_iterations` (at most
 /// 10 000: they converge in tens, and the cap bounds a call's time), checked.
 pub fn check_iterations(precision: Option<f64>, max_iterations: Option<usize>) -> PyResult<()> {
     if let Some(p) = precision {
-        if !(p > 0.0 && p.is_finite()) {
-            return Err(value_error(format!(
-                "precision must be positive and finite, got {p}"
-            )));
-        }
+        positive("precision", p)?;
     }
     if let Some(n) = max_iterations {
         if n > 10_000 {
@@ -127,6 +134,22 @@ pub fn check_iterations(precision: Option<f64>, max_iterations: Option<usize>) -
                 "max_iterations must be at most 10000 (the iterations converge in tens; a cap, not a goal), got {n}"
             )));
         }
+    }
+    Ok(())
+}
+
+/// A curve's frame count, checked: none (an empty output would skip every check of the
+/// keys), or more than `max_frames`.
+pub fn check_frames(frames: usize, max_frames: usize) -> PyResult<()> {
+    if frames == 0 {
+        return Err(value_error(
+            "frames must be at least the number of keys, got 0",
+        ));
+    }
+    if frames > max_frames {
+        return Err(value_error(format!(
+            "{frames} frames is more than max_frames={max_frames} (raise it to make longer curves)"
+        )));
     }
     Ok(())
 }
@@ -487,6 +510,13 @@ pub fn part<'py>(a: &Bound<'py, PyAny>, start: isize, end: isize) -> PyResult<Bo
         ],
     )?;
     a.get_item(key)
+}
+
+/// `a[..., k]` as numpy's `dtype` (`"int64"`, `"bool_"`): a count or flag that travelled
+/// in a float output.
+pub fn column_as<'py>(a: &Bound<'py, PyAny>, k: isize, dtype: &str) -> PyResult<Bound<'py, PyAny>> {
+    let np = a.py().import(intern!(a.py(), "numpy"))?;
+    column(a, k)?.call_method1(intern!(a.py(), "astype"), (np.getattr(dtype)?,))
 }
 
 /// `a[..., k]`.

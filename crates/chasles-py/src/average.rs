@@ -80,22 +80,13 @@ pub fn average<'py>(
                 .ok_or_else(|| value_error(format!("unknown loss '{name}': huber, tukey")))?,
         ),
     };
-    let positive = |what: &str, v: f64| {
-        if v > 0.0 && v.is_finite() {
-            Ok(())
-        } else {
-            Err(value_error(format!(
-                "{what} must be positive and finite, got {v}"
-            )))
-        }
-    };
     crate::arrays::check_iterations(precision, max_iterations)?;
     for (what, v) in [("tuning", tuning), ("scale", scale)] {
         if let Some(v) = v {
-            positive(what, v)?;
+            crate::arrays::positive(what, v)?;
         }
     }
-    positive("length_scale", length_scale)?;
+    crate::arrays::positive("length_scale", length_scale)?;
     if loss.is_none() && (tuning.is_some() || scale.is_some() || length_scale != 1.0) {
         return Err(value_error(
             "tuning, scale and length_scale are a robust mean's: give loss='huber' or 'tukey'",
@@ -215,14 +206,11 @@ fn finish<'py, T: Num>(
     if !full {
         return Ok(mean);
     }
-    let np = py.import("numpy")?;
     let n = n as isize;
     let weights = crate::arrays::part(&out, 8, 8 + n)?;
     let distances = crate::arrays::part(&out, 8 + n, 8 + 2 * n)?;
     let scale = crate::arrays::column(&out, 8 + 2 * n)?;
-    let iterations =
-        crate::arrays::column(&out, 9 + 2 * n)?.call_method1("astype", (np.getattr("int64")?,))?;
-    let capped =
-        crate::arrays::column(&out, 10 + 2 * n)?.call_method1("astype", (np.getattr("bool_")?,))?;
+    let iterations = crate::arrays::column_as(&out, 9 + 2 * n, "int64")?;
+    let capped = crate::arrays::column_as(&out, 10 + 2 * n, "bool_")?;
     Ok(PyTuple::new(py, [mean, weights, distances, scale, iterations, capped])?.into_any())
 }

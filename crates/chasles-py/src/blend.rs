@@ -318,11 +318,8 @@ fn finish<'py, T: Num>(
     if !full {
         return Ok(result);
     }
-    let np = py.import("numpy")?;
-    let rigid = crate::arrays::column(&out, each as isize)?
-        .call_method1("astype", (np.getattr("bool_")?,))?;
-    let iters = crate::arrays::column(&out, each as isize + 1)?
-        .call_method1("astype", (np.getattr("int64")?,))?;
+    let rigid = crate::arrays::column_as(&out, each as isize, "bool_")?;
+    let iters = crate::arrays::column_as(&out, each as isize + 1, "int64")?;
     Ok(PyTuple::new(py, [result, rigid, iters])?.into_any())
 }
 

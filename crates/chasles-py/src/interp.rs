@@ -260,18 +260,7 @@ fn curves_t<'py, T: Num>(
             (Plan::Spring(cfg, converged), total)
         }
     };
-    if frames == 0 {
-        // An empty output would skip every check of the keys.
-        return Err(value_error(
-            "frames must be at least the number of keys, got 0",
-        ));
-    }
-    if frames > c.max_frames {
-        return Err(value_error(format!(
-            "{frames} frames is more than max_frames={} (raise it to make longer curves)",
-            c.max_frames
-        )));
-    }
+    crate::arrays::check_frames(frames, c.max_frames)?;
     let t_arr = times.map(|t| array::<T>(t, "times")).transpose()?;
     let mut leads = vec![("keys", leading(&shape, &[k, 4], "keys")?)];
     if let Some(t) = &t_arr {
@@ -349,8 +338,7 @@ fn curves_t<'py, T: Num>(
     if !c.full_output {
         return Ok(out);
     }
-    let np = py.import("numpy")?;
-    let key = column(&out, 5)?.call_method1("astype", (np.getattr("int64")?,))?;
+    let key = crate::arrays::column_as(&out, 5, "int64")?;
     Ok(PyTuple::new(py, [part(&out, 0, 4)?, column(&out, 4)?, key])?.into_any())
 }
 

@@ -19,6 +19,17 @@ struct Curve {
     sf: bool,
 }
 
+impl Curve {
+    /// Numbers a frame: the pose, and with `full_output` its parameter and key index.
+    fn width(&self) -> usize {
+        if self.full_output {
+            10
+        } else {
+            8
+        }
+    }
+}
+
 /// A curve of ``frames`` rigid poses through key poses ``keys`` (..., K, 8 unit dual
 /// quaternions, K ≥ 2; leading dimensions are a batch of key sets, one curve each, on all
 /// cores). ``method`` is ``"sclerp"`` (piecewise ScLERP: the screw motion from key to key at
@@ -64,17 +75,8 @@ pub fn interpolate_rigid_py<'py>(
     scalar_first: bool,
     max_frames: usize,
 ) -> PyResult<Bound<'py, PyAny>> {
-    if frames == 0 {
-        return Err(value_error(
-            "frames must be at least the number of keys, got 0",
-        ));
-    }
+    crate::arrays::check_frames(frames, max_frames)?;
     crate::arrays::check_iterations(None, max_iterations)?;
-    if frames > max_frames {
-        return Err(value_error(format!(
-            "frames {frames} is more than max_frames {max_frames} (raise it to make longer curves)"
-        )));
-    }
     let spring_only =
         energy != "split" || length_scale != 1.0 || tolerance.is_some() || max_iterations.is_some();
     let method = match method {
@@ -125,8 +127,7 @@ fn one<T: Num>(k: &[T], t: Option<&[T]>, c: &Curve, out: &mut [T]) -> Result<(),
             c.frames
         )));
     }
-    let width = if c.full_output { 10 } else { 8 };
-    for (f, o) in frames.iter().zip(out.chunks_exact_mut(width)) {
+    for (f, o) in frames.iter().zip(out.chunks_exact_mut(c.width())) {
         dq_out(f.dq, &mut o[..8], c.sf);
         if c.full_output {
             o[8] = f.t;
@@ -151,13 +152,12 @@ fn curves<'py, T: Num>(
         )));
     }
     let n = shape[shape.len() - 2];
-    let width = if c.full_output { 10 } else { 8 };
     let work = match c.method {
         RigidMethod::Spring(_) => 1_000_000,
         _ => 200 * c.frames,
     };
     let core = [n, 8];
-    let out_core = [c.frames, width];
+    let out_core = [c.frames, c.width()];
     let out = match times {
         Some(times) => {
             let t = array::<T>(times, "times")?;
@@ -183,8 +183,7 @@ fn finish<'py, T: Num>(out: Bound<'py, PyArrayDyn<T>>, full: bool) -> PyResult<B
     if !full {
         return Ok(out);
     }
-    let np = py.import("numpy")?;
-    let key = crate::arrays::column(&out, 9)?.call_method1("astype", (np.getattr("int64")?,))?;
+    let key = crate::arrays::column_as(&out, 9, "int64")?;
     Ok(PyTuple::new(
         py,
         [

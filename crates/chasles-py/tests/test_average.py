@@ -51,6 +51,22 @@ def test_the_rigid_mean_is_dib_and_its_rotation_the_geodesic_mean(rng):
         assert di.shape == (5,) and (di >= np.linalg.norm(rel, axis=1) - 1e-12).all()
 
 
+def test_closed_forms():
+    # A pure move and a pure turn from the identity: the mean is half of each, and each
+    # pose's distance is half the move (in units) or half the turn (in radians).
+    ident = chasles.dq_from_rt([1.0, 0, 0, 0], [0.0, 0, 0])
+    moved = chasles.dq_from_rt([1.0, 0, 0, 0], [3.0, 4.0, 0])
+    m, w, d, s, it, capped = chasles.average(np.stack([ident, moved]), full_output=True)
+    r, t = chasles.dq_to_rt(m)
+    assert np.abs(r - [1, 0, 0, 0]).max() < 1e-15 and np.abs(t - [1.5, 2.0, 0]).max() < 1e-12
+    assert np.abs(d - 2.5).max() < 1e-12 and np.array_equal(w, [0.5, 0.5])
+    turned = chasles.dq_from_rt(chasles.quat_from_axis_angle([0.0, 0, 1], 1.2), [0.0, 0, 0])
+    m, w, d, s, it, capped = chasles.average(np.stack([ident, turned]), [1.0, 3.0], full_output=True)
+    r, t = chasles.dq_to_rt(m)
+    assert abs(chasles.quat_to_rotvec(r)[2] - 0.9) < 1e-12 and np.abs(t).max() < 1e-12
+    assert np.abs(d - [0.9, 0.3]).max() < 1e-12
+
+
 def test_the_mean_is_bi_invariant(rng):
     x = random_dqs(rng, 6, spread=1.5)
     g, h = random_dqs(rng), random_dqs(rng)

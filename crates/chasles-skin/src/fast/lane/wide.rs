@@ -47,6 +47,19 @@ impl<L: Lane, const N: usize> Wide<L, N> {
         }
         m
     }
+
+    /// `f(a[i], b[i])` for each i, of masks.
+    #[inline(always)]
+    fn masks(
+        mut a: [L::Mask; N],
+        b: [L::Mask; N],
+        f: impl Fn(L::Mask, L::Mask) -> L::Mask,
+    ) -> [L::Mask; N] {
+        for i in 0..N {
+            a[i] = f(a[i], b[i]);
+        }
+        a
+    }
 }
 
 impl<L: Lane, const N: usize> Lane for Wide<L, N> {
@@ -65,11 +78,7 @@ impl<L: Lane, const N: usize> Lane for Wide<L, N> {
     }
     #[inline(always)]
     fn sqrt(self) -> Self {
-        let mut r = self.0;
-        for v in r.iter_mut() {
-            *v = v.sqrt();
-        }
-        Wide(r)
+        self.zip(self, |a, _| a.sqrt())
     }
     #[inline(always)]
     fn lt(self, b: Self) -> Self::Mask {
@@ -89,19 +98,11 @@ impl<L: Lane, const N: usize> Lane for Wide<L, N> {
     }
     #[inline(always)]
     fn and(a: Self::Mask, b: Self::Mask) -> Self::Mask {
-        let mut m = a;
-        for i in 0..N {
-            m[i] = L::and(a[i], b[i]);
-        }
-        m
+        Self::masks(a, b, L::and)
     }
     #[inline(always)]
     fn and_not(a: Self::Mask, b: Self::Mask) -> Self::Mask {
-        let mut m = a;
-        for i in 0..N {
-            m[i] = L::and_not(a[i], b[i]);
-        }
-        m
+        Self::masks(a, b, L::and_not)
     }
     #[inline(always)]
     fn any(m: Self::Mask) -> bool {
