@@ -46,17 +46,19 @@ pub struct SkinArgs {
     #[arg(long)]
     pub artifacts: bool,
     /// Measure every method on synthetic meshes of 10^5 and 10^6 vertices beside the glam
-    /// and nalgebra baselines and a copy of the bytes moved (interleaved rounds).
+    /// and nalgebra baselines and a copy of the bytes moved (interleaved rounds); with
+    /// --rig, on that rig in the pose asked for (--pose, --anim/--time; by default the
+    /// first clip half-way through, or the rest pose where there is none).
     #[arg(long)]
     pub bench: bool,
-    /// --bench: the mesh sizes, e.g. 100000,4000000 (each at most 10^8).
-    #[arg(
-        long,
-        value_delimiter = ',',
-        value_name = "N,N,…",
-        default_value = "100000,1000000"
-    )]
-    pub bench_vertices: Vec<usize>,
+    /// --bench: the synthetic mesh sizes, e.g. 100000,4000000 (each at most 10^8; default
+    /// 100000,1000000; not with --rig).
+    #[arg(long, value_delimiter = ',', value_name = "N,N,…")]
+    pub bench_vertices: Option<Vec<usize>>,
+    /// --bench: timed rounds per table (default 21, or 7 for meshes over 2·10^5 vertices;
+    /// at most 10000).
+    #[arg(long, value_name = "N")]
+    pub bench_rounds: Option<usize>,
     /// --bench: the thread counts, e.g. 1,2,4,all (the scaling curve; each at most 1024).
     #[arg(
         long,
@@ -187,41 +189,87 @@ fn threads(s: &str) -> std::result::Result<usize, String> {
     }
 }
 
-/// `chasles skin --bench`: on synthetic meshes of `sizes` vertices (54 joints, 4
-/// influences; the pose's joint data made in each run), on each of `threads`, every
-/// method's fast path beside the careful glam and nalgebra baselines of
-/// [`chasles_skin::peers`] and a memory copy of the 72 bytes each vertex moves (the
-/// bandwidth bound), timed in interleaved rounds ([`chasles_skin::peers::measure`]): the
-/// median rate of each with its spread, our speed over each baseline's (LBS over the LBS
-/// baselines, DQS over the DQS ones) and each kernel's share of the bound, both taken round
-/// by round. A run during which other processes (or the host of a virtual machine) kept
-/// more than a quarter of the CPUs busy is flagged.
-pub fn bench(sizes: &[usize], threads: &[usize]) -> Result<()> {
+/// What `chasles skin --bench` measures: synthetic meshes of some sizes, or a rig of one's
+/// own in one pose (described in words).
+pub enum BenchMesh<'a> {
+    /// [`chasles_skin::peers::measure`]'s meshes of these vertex counts.
+    Synthetic(&'a [usize]),
+    /// A rig, its joint transforms and words for the pose.
+    Rig(&'a Rig, chasles_skin::JointTransforms, String),
+}
+
+/// Each timed sample of a rig skins it this many vertices' worth or more (repeating it).
+const RIG_SAMPLE_VERTICES: usize = 100_000;
+
+/// `chasles skin --bench`: on `mesh` (synthetic meshes, 54 joints, 4 influences; or a rig),
+/// on each of `threads`, every method's fast path (the pose's joint data made in each run)
+/// beside the careful glam and nalgebra baselines of [`chasles_skin::peers`] and a memory
+/// copy of the 72 bytes each vertex moves (the bandwidth bound), timed in `rounds`
+/// interleaved rounds ([`chasles_skin::peers::measure`], [`chasles_skin::peers::measure_rig`];
+/// by default 21, 7 above 2·10⁵ vertices): the median rate of each with its spread, our
+/// speed over each baseline's (LBS over the LBS baselines, DQS over the DQS ones) and each
+/// kernel's share of the bound, both taken round by round. A run during which other
+/// processes (or the host of a virtual machine) kept more than a quarter of the CPUs busy is
+/// flagged.
+pub fn bench(mesh: &BenchMesh, threads: &[usize], rounds: Option<usize>) -> Result<()> {
     use chasles_skin::peers;
-    if let Some(n) = sizes.iter().find(|n| **n == 0 || **n > 100_000_000) {
-        bail!("--bench-vertices: {n} is not between 1 and 10^8");
+    if let Some(r) = rounds.filter(|r| !(1..=10_000).contains(r)) {
+        bail!("--bench-rounds: {r} is not between 1 and 10000");
     }
+    let rounds_for = |n: usize| rounds.unwrap_or(if n <= 200_000 { 21 } else { 7 });
     let load = peers::Load::start();
     let mut tables = Vec::new();
-    for &n in sizes {
-        // Fewer rounds for big meshes: a round of every kernel takes about a second at 10⁶.
-        let rounds = if n <= 200_000 { 21 } else { 7 };
-        for &t in threads {
-            tables.push(peers::measure(n, t, rounds)?);
+    match mesh {
+        BenchMesh::Synthetic(sizes) => {
+            if let Some(n) = sizes.iter().find(|n| **n == 0 || **n > 100_000_000) {
+                bail!("--bench-vertices: {n} is not between 1 and 10^8");
+            }
+            for &n in *sizes {
+                for &t in threads {
+                    tables.push(peers::measure(n, t, rounds_for(n))?);
+                }
+            }
+        }
+        BenchMesh::Rig(rig, jt, when) => {
+            let n = rig.mesh.positions.len();
+            println!(
+                "{}: {n} vertices, {} joints, at most {} influences a vertex, in {when}; each sample skins it {} times",
+                rig.name,
+                rig.joints.len(),
+                rig.influences.max_per_vertex(),
+                RIG_SAMPLE_VERTICES.div_ceil(n.max(1)),
+            );
+            for &t in threads {
+                tables.push(peers::measure_rig(
+                    rig,
+                    jt,
+                    t,
+                    rounds_for(n),
+                    RIG_SAMPLE_VERTICES,
+                )?);
+            }
         }
     }
     println!("{}", peers::markdown(&tables));
     for t in &tables {
         let r = |name: &str| t.rate(name).unwrap_or(f64::NAN);
         let dqs = r("dqs");
+        let centres = if t.mesh == peers::SYNTHETIC {
+            format!(
+                "SBS solved {} rotation centres a pose here, real rigs far fewer",
+                t.centres
+            )
+        } else {
+            format!("SBS solved {} rotation centres a pose", t.centres)
+        };
         println!(
-            "{} vertices, {} thread(s): DQS costs {:.2}× LBS; DQS is {:.1}× Log and {:.1}× SBS (Figure 1: 2.3× and 2.2×; SBS solved {} rotation centres a pose here, real rigs far fewer)",
+            "{} vertices, {} thread(s): DQS costs {:.2}× LBS; DQS is {:.1}× Log, {:.1}× SBS and {:.1}× DIB (Figure 1: 2.3× and 2.2× for Log and SBS; {centres})",
             t.vertices,
             t.threads,
             r("lbs") / dqs,
             dqs / r("log"),
             dqs / r("sbs"),
-            t.centres
+            dqs / r("dib"),
         );
     }
     if let Some(others) = load.others() {
@@ -234,6 +282,42 @@ pub fn bench(sizes: &[usize], threads: &[usize]) -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// `chasles skin --bench`'s mesh and pose from the arguments, then [`bench`].
+fn bench_args(a: &SkinArgs) -> Result<()> {
+    let Some(path) = &a.rig else {
+        let sizes = a.bench_vertices.as_deref().unwrap_or(&[100_000, 1_000_000]);
+        return bench(
+            &BenchMesh::Synthetic(sizes),
+            &a.bench_threads,
+            a.bench_rounds,
+        );
+    };
+    if a.bench_vertices.is_some() {
+        bail!("--bench-vertices sizes the synthetic meshes: not with --rig");
+    }
+    let rig = chasles_skin::load(path)?;
+    let (pose, when) = if a.pose.is_none() && a.anim.is_none() && a.time.is_none() {
+        match rig.animations.first() {
+            Some(clip) => {
+                let t = clip.duration() / 2.0;
+                (
+                    Pose::animated(&rig, 0, t)?,
+                    format!("animation 0 at t = {t} s"),
+                )
+            }
+            None => (Pose::rest(&rig), "the rest pose".to_string()),
+        }
+    } else {
+        chosen_pose(&rig, a)?
+    };
+    let jt = chasles_skin::joint_transforms(&rig, &pose)?;
+    bench(
+        &BenchMesh::Rig(&rig, jt, when),
+        &a.bench_threads,
+        a.bench_rounds,
+    )
 }
 
 /// Writes `pending` all or none and says so on stdout.
@@ -250,7 +334,7 @@ pub fn run(a: SkinArgs) -> Result<()> {
     if a.bench {
         return match a.device {
             crate::device::Device::Gpu => crate::device::bench_gpu(),
-            _ => bench(&a.bench_vertices, &a.bench_threads),
+            _ => bench_args(&a),
         };
     }
     a.pictures.check(&["svg"])?;

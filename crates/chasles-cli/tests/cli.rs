@@ -1665,6 +1665,66 @@ fn a_closed_pipe_ends_quietly() {
 }
 
 #[test]
+fn skin_bench_measures_a_rig_of_ones_own_in_its_clip() {
+    let rig = model("RiggedFigure.glb");
+    let out = stdout(&chasles(&[
+        "skin",
+        "--rig",
+        &rig,
+        "--bench",
+        "--bench-threads",
+        "1",
+        "--bench-rounds",
+        "1",
+    ]));
+    // The mesh, its pose (the first clip half-way through) and the repeats.
+    assert!(
+        out.contains("RiggedFigure.glb: 370 vertices, 19 joints, at most 4 influences a vertex, in animation 0 at t = ")
+            && out.contains("each sample skins it 271 times"),
+        "{out}"
+    );
+    let rows: Vec<Vec<&str>> = out
+        .lines()
+        .filter(|l| l.starts_with("| 370 (RiggedFigure.glb) | 1 |"))
+        .map(|l| l.split('|').map(str::trim).collect())
+        .collect();
+    // Six methods, five baselines (four influences at most) and the copy.
+    assert_eq!(rows.len(), 12, "{out}");
+    let rate = |name: &str| -> f64 {
+        let r = rows
+            .iter()
+            .find(|r| r[3] == name)
+            .unwrap_or_else(|| panic!("{name}: {out}"));
+        r[4].parse().unwrap()
+    };
+    assert!(
+        rate("dib") > 0.0 && rate("glam dqs (Vec4, careful)") > 0.0,
+        "{out}"
+    );
+    assert!(out.contains("× DIB") && out.contains("SBS solved"), "{out}");
+    // Sizes are the synthetic meshes'; rounds are counted.
+    for (args, says) in [
+        (
+            vec!["--bench-vertices", "100"],
+            "--bench-vertices sizes the synthetic meshes: not with --rig",
+        ),
+        (
+            vec!["--bench-rounds", "0"],
+            "--bench-rounds: 0 is not between 1 and 10000",
+        ),
+    ] {
+        let mut all = vec!["skin", "--rig", &rig, "--bench"];
+        all.extend(args);
+        let bad = chasles(&all);
+        assert_eq!(bad.status.code(), Some(2));
+        assert!(
+            String::from_utf8_lossy(&bad.stderr).contains(says),
+            "{says}"
+        );
+    }
+}
+
+#[test]
 fn skin_bench_prints_every_kernel_on_every_thread_count_with_round_by_round_ratios() {
     let out = stdout(&chasles(&[
         "skin",

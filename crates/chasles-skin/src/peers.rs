@@ -20,7 +20,7 @@ use crate::fast::{Out, Vertex};
 use glam::{Mat3A, Vec3A, Vec4};
 
 mod rounds;
-pub use rounds::{markdown, measure, Load, Role, Row, Spread, Table};
+pub use rounds::{markdown, measure, measure_rig, Load, Role, Row, Spread, Table, SYNTHETIC};
 
 /// Every baseline's joints for one pose.
 pub struct Joints {

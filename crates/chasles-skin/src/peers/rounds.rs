@@ -2,14 +2,18 @@
 //! interleaved rounds: each round runs every kernel once, so a slow spell of a shared
 //! machine hits all of them alike, and every ratio is taken within a round (a baseline's time
 //! over our kernel's of the same method, the copy's time over a kernel's) before the median
-//! is taken over the rounds. The one measurement behind `chasles skin --bench` and the
+//! is taken over the rounds, on a synthetic mesh or a rig of one's own. The one measurement behind
+//! `chasles skin --bench` (with `--rig`: [`measure_rig`]) and the
 //! criterion bench's closing table (Kavan et al. 2006, §6: what skinning costs).
 
 use super::{copy_bound, run, Joints, BASELINES};
 use crate::error::Result;
-use crate::fast::{skin_pose, Out};
-use crate::{synthetic, Method};
+use crate::fast::{skin_pose, FastRig, Out, Vertex};
+use crate::{synthetic, JointTransforms, Method, Rig};
 use std::time::Instant;
+
+/// [`Table::mesh`] of [`measure`]'s synthetic meshes.
+pub const SYNTHETIC: &str = "synthetic";
 
 /// A median over rounds with the lowest and highest value.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -60,9 +64,11 @@ pub struct Row {
     pub share: Spread,
 }
 
-/// The figures of one mesh size on one or on all threads.
+/// The figures of one mesh on one or on all threads.
 #[derive(Debug, Clone)]
 pub struct Table {
+    /// The mesh: [`SYNTHETIC`] ([`measure`]) or the rig's name ([`measure_rig`]).
+    pub mesh: String,
     /// Vertices in the mesh.
     pub vertices: usize,
     /// Threads (1, or rayon's count).
@@ -71,6 +77,8 @@ pub struct Table {
     pub centres: usize,
     /// Timed rounds.
     pub rounds: usize,
+    /// How many times each timed sample skins the mesh.
+    pub repeats: usize,
     /// Every kernel: our methods, the baselines, the copy.
     pub rows: Vec<Row>,
 }
@@ -92,35 +100,115 @@ impl Table {
 /// the fast paths' chunks spread over it). The random joints make nearly every vertex its
 /// own SBS cluster: SBS's worst case.
 pub fn measure(n: usize, threads: usize, rounds: usize) -> Result<Table> {
-    let threads = threads.max(1);
-    if threads == 1 {
-        return measure_on(n, false, rounds, 1);
+    let rig = synthetic::rig(n, 54, 7);
+    let jt = synthetic::joints(54, 7);
+    on_threads(threads, |parallel| {
+        let mesh = Mesh::four(SYNTHETIC, &rig, &jt, 1);
+        measure_on(mesh, parallel, rounds, threads.max(1))
+    })
+}
+
+/// [`measure`] on a rig of one's own in the pose `jt` (a character mid-clip, say): every
+/// method's fast path, and, where no vertex has more than four influences, the baselines
+/// (which are written for four). Each timed sample skins the mesh as many times as make
+/// `min_vertices` vertices or more (a character of a few thousand vertices takes
+/// microseconds, too short to time alone), and every rate counts them all; the copy bound
+/// copies the same bytes as often. An error where some vertex has more than 8 influences
+/// (the fast path's widest layout).
+pub fn measure_rig(
+    rig: &Rig,
+    jt: &JointTransforms,
+    threads: usize,
+    rounds: usize,
+    min_vertices: usize,
+) -> Result<Table> {
+    let n = rig.mesh.positions.len().max(1);
+    let reps = min_vertices.div_ceil(n).max(1);
+    if rig.influences.max_per_vertex() <= 4 {
+        let fast = FastRig::<4>::new(rig)?;
+        on_threads(threads, |parallel| {
+            let mesh = Mesh::four(&rig.name, &fast, jt, reps);
+            measure_on(mesh, parallel, rounds, threads.max(1))
+        })
+    } else {
+        let fast = FastRig::<8>::new(rig)?;
+        on_threads(threads, |parallel| {
+            let mesh = Mesh {
+                name: &rig.name,
+                rig: &fast,
+                jt,
+                baselines: None,
+                reps,
+            };
+            measure_on(mesh, parallel, rounds, threads.max(1))
+        })
+    }
+}
+
+/// `f(parallel)` on `threads` threads: the caller's alone (`parallel` false), or a rayon
+/// pool of that many.
+fn on_threads<R: Send>(threads: usize, f: impl FnOnce(bool) -> Result<R> + Send) -> Result<R> {
+    if threads <= 1 {
+        return f(false);
     }
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()
         .map_err(|e| crate::SkinError::Threads(e.to_string()))?;
-    pool.install(|| measure_on(n, true, rounds, threads))
+    pool.install(|| f(true))
 }
 
-/// [`measure`] on the current rayon pool (`parallel`) or the caller's thread.
-fn measure_on(n: usize, parallel: bool, rounds: usize, threads: usize) -> Result<Table> {
-    let rig = synthetic::rig(n, 54, 7);
-    let jt = synthetic::joints(54, 7);
-    let pj = Joints::of(&jt);
-    let v = rig.vertices();
+/// What one table times: a laid-out mesh, its pose, the vertices the baselines read (four
+/// influences; `None` where the layout has more) and how often a sample skins the mesh.
+struct Mesh<'a, const K: usize> {
+    name: &'a str,
+    rig: &'a FastRig<K>,
+    jt: &'a JointTransforms,
+    baselines: Option<&'a [Vertex<4>]>,
+    reps: usize,
+}
+
+impl<'a> Mesh<'a, 4> {
+    /// A four-influence mesh, baselines included.
+    fn four(name: &'a str, rig: &'a FastRig<4>, jt: &'a JointTransforms, reps: usize) -> Self {
+        Mesh {
+            name,
+            rig,
+            jt,
+            baselines: Some(rig.vertices()),
+            reps,
+        }
+    }
+}
+
+/// [`measure`] and [`measure_rig`] on the current rayon pool (`parallel`) or the caller's
+/// thread.
+fn measure_on<const K: usize>(
+    mesh: Mesh<K>,
+    parallel: bool,
+    rounds: usize,
+    threads: usize,
+) -> Result<Table> {
+    let Mesh {
+        rig,
+        jt,
+        reps,
+        baselines,
+        ..
+    } = mesh;
+    let n = rig.vertices().len();
+    let pj = Joints::of(jt);
     let mut out = vec![[0f32; 6]; n];
     let src = vec![1u8; n * 36];
     let mut dst = vec![0u8; n * 36];
     type Run<'a> = Box<dyn FnMut(&mut [Out]) -> Result<()> + 'a>;
     let mut kernels: Vec<(String, Role, Run)> = Vec::new();
     for m in Method::ALL {
-        let (rig, jt) = (&rig, &jt);
         let f: Run = Box::new(move |o| skin_pose(rig, jt, m, o, parallel));
         kernels.push((m.name().into(), Role::Ours(m), f));
     }
-    for (name, f) in BASELINES {
-        let pj = &pj;
+    for (name, f) in baselines.map_or(&[][..], |_| &BASELINES[..]) {
+        let (pj, v) = (&pj, baselines.unwrap_or_default());
         let method = if name.contains("lbs") {
             Method::Lbs
         } else {
@@ -130,7 +218,7 @@ fn measure_on(n: usize, parallel: bool, rounds: usize, threads: usize) -> Result
             run(v, o, parallel, &|v, o| f(v, pj, o));
             Ok(())
         });
-        kernels.push((name.into(), Role::Baseline(method), f));
+        kernels.push(((*name).into(), Role::Baseline(method), f));
     }
     let (src, dst) = (&src, &mut dst);
     let copy: Run = Box::new(move |_| {
@@ -142,7 +230,9 @@ fn measure_on(n: usize, parallel: bool, rounds: usize, threads: usize) -> Result
     for round in 0..=rounds.max(1) {
         for (k, (_, _, f)) in kernels.iter_mut().enumerate() {
             let start = Instant::now();
-            f(&mut out)?;
+            for _ in 0..reps {
+                f(&mut out)?;
+            }
             if round > 0 {
                 secs[k].push(start.elapsed().as_secs_f64());
             }
@@ -153,13 +243,14 @@ fn measure_on(n: usize, parallel: bool, rounds: usize, threads: usize) -> Result
     // `a`'s time over `b`'s, round by round: `b`'s speed over `a`'s.
     let over =
         |a: usize, b: usize| Spread::of(secs[a].iter().zip(&secs[b]).map(|(a, b)| a / b).collect());
+    let skinned = (n * reps) as f64;
     let rows = kernels
         .iter()
         .enumerate()
         .map(|(k, (name, role, _))| Row {
             name: name.clone(),
             role: *role,
-            rate: Spread::of(secs[k].iter().map(|t| n as f64 / t).collect()),
+            rate: Spread::of(secs[k].iter().map(|t| skinned / t).collect()),
             ours_over: match role {
                 Role::Baseline(m) => ours(*m).map(|o| over(k, o)),
                 _ => None,
@@ -168,17 +259,19 @@ fn measure_on(n: usize, parallel: bool, rounds: usize, threads: usize) -> Result
         })
         .collect();
     Ok(Table {
+        mesh: mesh.name.to_string(),
         vertices: n,
         threads,
         centres: rig.clusters().len(),
         rounds: rounds.max(1),
+        repeats: reps,
         rows,
     })
 }
 
 /// The Markdown table of `tables`: per kernel the median rate with its spread, our speed
 /// over each baseline and every kernel's share of the copy bound (medians of the rounds'
-/// ratios, with their spreads).
+/// ratios, with their spreads). A rig's rows name it beside its vertex count.
 pub fn markdown(tables: &[Table]) -> String {
     let mut s = String::from(
         "| vertices | threads | kernel | M vertices/s (median) | spread | ours / it (median, spread) | share of the bound (median, spread) |\n|---|---|---|---|---|---|---|\n",
@@ -191,7 +284,11 @@ pub fn markdown(tables: &[Table]) -> String {
             });
             s += &format!(
                 "| {} | {} | {} | {:.1} | {:.1}–{:.1} | {ours} | {:.2} ({:.2}–{:.2}) |\n",
-                t.vertices,
+                if t.mesh == SYNTHETIC {
+                    t.vertices.to_string()
+                } else {
+                    format!("{} ({})", t.vertices, t.mesh)
+                },
                 t.threads,
                 r.name,
                 m(r.rate.median),
