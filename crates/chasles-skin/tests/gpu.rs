@@ -385,3 +385,50 @@ fn cpu_and_gpu_reject_the_same_poses() {
         "both outcomes met: {ok} ok, {refused} refused"
     );
 }
+
+/// DIB on the GPU (ScLERP in closed form for a vertex of at most two influences, Lemma 3)
+/// and on the CPU's fast path (one update for such a vertex, the iteration for the others)
+/// agree within the stopping rule's reach on a mesh of one to four influences a vertex.
+#[test]
+fn gpu_dib_matches_the_fast_path_with_one_to_four_influences() {
+    use chasles_skin::fast::{dib, FastRig};
+    let base = chasles_skin::synthetic::rig(4000, 54, 11);
+    let vertices = base
+        .vertices()
+        .iter()
+        .enumerate()
+        .map(|(i, v)| {
+            let mut v = *v;
+            let n = 1 + (i * 7919 / 5) % 4;
+            let s: f32 = v.w[..n].iter().sum();
+            v.w = std::array::from_fn(|k| if k < n { v.w[k] / s } else { 0.0 });
+            v
+        })
+        .collect();
+    let rig = FastRig::from_vertices(vertices, base.centres().to_vec()).unwrap();
+    let jt = chasles_skin::synthetic::joints(54, 3);
+    let gpu = match GpuSkinner::from_fast(&rig) {
+        Ok(g) => g,
+        Err(GpuError::NoAdapter(why)) => {
+            eprintln!("skipping: no adapter ({why})");
+            return;
+        }
+        Err(e) => panic!("{e}"),
+    };
+    let mut out = vec![[0f32; 6]; 4000];
+    dib(&rig, &jt.dual_quats, &mut out, false).unwrap();
+    let g = gpu.skin(&jt, Method::Dib).unwrap();
+    for (k, (c, (p, n))) in out
+        .iter()
+        .zip(g.positions.iter().zip(&g.normals))
+        .enumerate()
+    {
+        let (p, n) = (p.to_array(), n.to_array());
+        for i in 0..3 {
+            assert!(
+                (c[i] - p[i]).abs() < 1e-4 && (c[3 + i] - n[i]).abs() < 1e-4,
+                "vertex {k}: {c:?} against {p:?} {n:?}"
+            );
+        }
+    }
+}

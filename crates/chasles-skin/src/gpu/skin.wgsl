@@ -66,7 +66,8 @@ fn store(i: u32, m: Moved) {
     skinned[i] = Skinned(vec4<f32>(m.p, 1.0), vec4<f32>(m.n, 0.0));
 }
 
-// Dual quaternion iterative blending (Kavan et al. §5): start at DLB, then repeatedly move
+// Dual quaternion iterative blending (Kavan et al. §5): a vertex of at most two influences
+// takes ScLERP in closed form (Lemma 3); the others start at DLB, then repeatedly move
 // b by exp(Σ wᵢ log(b* qᵢ)), at most dib_updates times, stopping as the CPU does (below
 // dib_precision, or stuck under dib_stall times that). The three are the CPU's own
 // constants (chasles_skin::skinning::DIB_PRECISION, DIB_UPDATES and
@@ -173,6 +174,23 @@ fn dib(@builtin(global_invocation_id) id: vec3<u32>) {
         sum = Dq(sum.r + q[k].r * w, sum.d + q[k].d * w);
     }
     var b = dqnormalize(sum);
+    if (wn.z == 0.0 && wn.w == 0.0) {
+        // Lemma 3: DIB of two is ScLERP, q0 (q0* q1)^w1 with q0* q1 in its positive
+        // hemisphere, in closed form (one influence: q0 itself).
+        if (wn.y > 0.0) {
+            var rel = dqmul(Dq(qconj(q[0].r), qconj(q[0].d)), q[1]);
+            if (rel.r.x < 0.0) {
+                rel = Dq(-rel.r, -rel.d);
+            }
+            let l = dqlog(rel);
+            let x = Dq(vec4<f32>(0.0, l.r.yzw * wn.y), vec4<f32>(0.0, l.d.yzw * wn.y));
+            b = dqnormalize(dqmul(q[0], dqexp(x)));
+        } else {
+            b = dqnormalize(q[0]);
+        }
+        store(i, rigid_move(b, v.p.xyz, v.n.xyz));
+        return;
+    }
     var last = 3.0e38;
     for (var step = 0u; step < dib_updates; step = step + 1u) {
         let bc = Dq(qconj(b.r), qconj(b.d));

@@ -175,6 +175,100 @@ mod tests {
         }
     }
 
+    /// `rig` with `count(i)` influences on vertex i (its heaviest, the weights scaled to
+    /// sum to 1).
+    fn with_counts(
+        rig: &crate::fast::FastRig<4>,
+        count: impl Fn(usize) -> usize,
+    ) -> crate::fast::FastRig<4> {
+        let vertices = rig
+            .vertices()
+            .iter()
+            .enumerate()
+            .map(|(i, v)| {
+                let mut v = *v;
+                let n = count(i);
+                let s: f32 = v.w[..n].iter().sum();
+                v.w = core::array::from_fn(|k| if k < n { v.w[k] / s } else { 0.0 });
+                v
+            })
+            .collect();
+        crate::fast::FastRig::from_vertices(vertices, rig.centres().to_vec()).unwrap()
+    }
+
+    /// Lemma 3 (a vertex of at most two influences stops after one update) holds a vertex
+    /// to its own numbers whatever its block-mates need: the kernel on the mesh and on the
+    /// mesh without its first 1–7 vertices (every block made of other vertices) gives each
+    /// vertex the same bits. Influence counts 1–4 mixed in blocks, and runs of blocks of one
+    /// and two only.
+    #[test]
+    fn a_vertex_is_skinned_alike_whatever_its_block_mates() {
+        if !simd(4) {
+            eprintln!("no AVX2+FMA here: nothing to compare");
+            return;
+        }
+        let rig = with_counts(&synthetic::rig(1200, 54, 5), |i| {
+            let h = (i * 7919) % 13;
+            if (i / 40) % 2 == 0 {
+                1 + h % 2
+            } else {
+                1 + h % 4
+            }
+        });
+        let d = crate::fast::dual_quats8(&synthetic::joints(54, 3));
+        let run = |v: &[Vertex<4>]| {
+            let mut out = vec![[f32::NAN; 6]; v.len()];
+            // SAFETY: AVX2 and FMA are present (`simd`), the joint indices are below 54 =
+            // d.len(), `out` is as long as the vertices.
+            let done = unsafe { dib(v, &d, &(), &mut out, false) };
+            out.truncate(done);
+            out
+        };
+        let whole = run(rig.vertices());
+        for shift in 1..8 {
+            let part = run(&rig.vertices()[shift..]);
+            for (k, o) in part
+                .iter()
+                .enumerate()
+                .filter(|(k, _)| shift + k < whole.len())
+            {
+                assert_eq!(
+                    *o,
+                    whole[shift + k],
+                    "vertex {}, shifted by {shift}",
+                    shift + k
+                );
+            }
+        }
+    }
+
+    /// A vertex of one or two influences, after its single update and no pass to show it
+    /// converged, is as near the exact blend (ScLERP) as the scalar kernel leaves it (the
+    /// library's f32 DIB, which takes that pass) — f32's rounding, up to 0.4 of the
+    /// stopping rule's reach — at 60° poses and at every angle.
+    #[test]
+    fn two_influences_end_as_near_the_exact_blend_as_the_scalar_kernel() {
+        if !simd(4) {
+            eprintln!("no AVX2+FMA here: nothing to compare");
+            return;
+        }
+        let rig = with_counts(&synthetic::rig(2000, 54, 9), |i| 1 + (i * 31) % 2);
+        for d in [
+            crate::fast::dual_quats8(&synthetic::joints(54, 3)),
+            joints(54),
+        ] {
+            for (k, (simd, scalar, _)) in compare(&rig, &d).into_iter().enumerate() {
+                let reach = reach(rig.vertices()[k].p);
+                assert!(simd <= reach / 2.0, "{k}: {simd:e} against {reach:e}");
+                // 0.008 of the reach at most when written.
+                assert!(
+                    simd <= scalar + reach / 50.0,
+                    "{k}: {simd:e} against {scalar:e}"
+                );
+            }
+        }
+    }
+
     #[test]
     fn unused_joints_may_be_anything_and_used_nan_joints_give_nan() {
         if !simd(4) {

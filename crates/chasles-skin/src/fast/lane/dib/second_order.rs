@@ -140,6 +140,46 @@ mod tests {
         d
     }
 
+    /// Where the logarithms lie on one screw, `x̂ᵢ = ĉᵢ L̂` with dual numbers `ĉᵢ` (DIB of two
+    /// transforms from its DLB start: Lemma 3's proof), `M x̂ = (tr M) x̂` and the
+    /// second-order step is the paper's, `δ̂ = x̂`: so one update of either reaches ScLERP.
+    #[test]
+    fn on_one_screw_the_step_is_the_update() {
+        let mut s: u64 = 0x9E37_79B9_7F4A_7C15;
+        let mut next = move || {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            (s >> 40) as f32 / (1u64 << 24) as f32 - 0.5
+        };
+        for trial in 0..2000 {
+            let (a, b) = ([0; 3].map(|_| 2.0 * next()), [0; 3].map(|_| 4.0 * next()));
+            let n = 2 + trial % 3;
+            let c: Vec<(f32, f32)> = (0..n).map(|_| (next(), next())).collect();
+            let raw: Vec<f32> = (0..n).map(|_| next() + 0.6).collect();
+            let w: Vec<f32> = raw.iter().map(|r| r / raw.iter().sum::<f32>()).collect();
+            let mut x = [0f32; 8];
+            let mut spread = Spread::default();
+            for ((c0, c1), wi) in c.iter().zip(&w) {
+                // (c0 + ε c1)(a + ε b) = c0 a + ε (c0 b + c1 a).
+                let mut l = [0f32; 8];
+                for k in 0..3 {
+                    l[1 + k] = c0 * a[k];
+                    l[5 + k] = c0 * b[k] + c1 * a[k];
+                }
+                (0..8).for_each(|k| x[k] += wi * l[k]);
+                spread.add(*wi, &l);
+            }
+            let step = spread.step(&x);
+            for k in 0..8 {
+                assert!(
+                    (step[k] - x[k]).abs() <= 2e-6 * (1.0 + x[k].abs()),
+                    "{trial}, {k}: {step:?} against {x:?}"
+                );
+            }
+        }
+    }
+
     /// [`Spread::step`] is the double-cross-product formula, both parts, on random
     /// logarithms (half-angles up to 1.5, dual parts up to 3) and convex weights of 1–4.
     #[test]
