@@ -59,15 +59,10 @@ pub struct SkinArgs {
     /// at most 10000).
     #[arg(long, value_name = "N")]
     pub bench_rounds: Option<usize>,
-    /// --bench: the thread counts, e.g. 1,2,4,all (the scaling curve; each at most 1024).
-    #[arg(
-        long,
-        value_delimiter = ',',
-        value_name = "N,N,…",
-        default_value = "1,all",
-        value_parser = threads
-    )]
-    pub bench_threads: Vec<usize>,
+    /// --bench: the thread counts, e.g. 1,2,4,all (the scaling curve; each at most 1024;
+    /// default 1,all).
+    #[arg(long, value_delimiter = ',', value_name = "N,N,…", value_parser = threads)]
+    pub bench_threads: Option<Vec<usize>>,
     #[command(flatten)]
     pub pictures: Pictures,
     /// Where to skin: cpu, gpu (any adapter, lavapipe included) or auto (a hardware GPU for lbs/dqs/dib when there is one).
@@ -204,21 +199,30 @@ const RIG_SAMPLE_VERTICES: usize = 100_000;
 /// `chasles skin --bench`: on `mesh` (synthetic meshes, 54 joints, 4 influences; or a rig),
 /// on each of `threads`, every method's fast path (the pose's joint data made in each run)
 /// beside the careful glam and nalgebra baselines of [`chasles_skin::peers`] and a memory
-/// copy of the 72 bytes each vertex moves (the bandwidth bound), timed in `rounds`
-/// interleaved rounds ([`chasles_skin::peers::measure`], [`chasles_skin::peers::measure_rig`];
-/// by default 21, 7 above 2·10⁵ vertices): the median rate of each with its spread, our
+/// copy of the bytes each vertex moves (the bandwidth bound: 72 with four influences, 96
+/// with eight), timed in `rounds` interleaved rounds ([`chasles_skin::peers::measure`],
+/// [`chasles_skin::peers::measure_rig`]; by default 21, 7 above 2·10⁵ vertices; the caller
+/// checks the range): the median rate of each with its spread, our
 /// speed over each baseline's (LBS over the LBS baselines, DQS over the DQS ones) and each
 /// kernel's share of the bound, both taken round by round. A run during which other
 /// processes (or the host of a virtual machine) kept more than a quarter of the CPUs busy is
 /// flagged.
 pub fn bench(mesh: &BenchMesh, threads: &[usize], rounds: Option<usize>) -> Result<()> {
     use chasles_skin::peers;
-    if let Some(r) = rounds.filter(|r| !(1..=10_000).contains(r)) {
-        bail!("--bench-rounds: {r} is not between 1 and 10000");
-    }
     let rounds_for = |n: usize| rounds.unwrap_or(if n <= 200_000 { 21 } else { 7 });
     let load = peers::Load::start();
     let mut tables = Vec::new();
+    // On a terminal, which table is being timed (hidden when stderr is not one).
+    let count = match mesh {
+        BenchMesh::Synthetic(sizes) => sizes.len(),
+        BenchMesh::Rig(..) => 1,
+    } * threads.len();
+    let bar = indicatif::ProgressBar::new(count as u64);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("timing {msg} [{bar:20}] {pos}/{len} tables")
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+    );
+    let progress = |n: usize, t: usize| bar.set_message(format!("{n} vertices on {t} thread(s)"));
     match mesh {
         BenchMesh::Synthetic(sizes) => {
             if let Some(n) = sizes.iter().find(|n| **n == 0 || **n > 100_000_000) {
@@ -226,20 +230,16 @@ pub fn bench(mesh: &BenchMesh, threads: &[usize], rounds: Option<usize>) -> Resu
             }
             for &n in *sizes {
                 for &t in threads {
+                    progress(n, t);
                     tables.push(peers::measure(n, t, rounds_for(n))?);
+                    bar.inc(1);
                 }
             }
         }
         BenchMesh::Rig(rig, jt, when) => {
             let n = rig.mesh.positions.len();
-            println!(
-                "{}: {n} vertices, {} joints, at most {} influences a vertex, in {when}; each sample skins it {} times",
-                rig.name,
-                rig.joints.len(),
-                rig.influences.max_per_vertex(),
-                RIG_SAMPLE_VERTICES.div_ceil(n.max(1)),
-            );
             for &t in threads {
+                progress(n, t);
                 tables.push(peers::measure_rig(
                     rig,
                     jt,
@@ -247,9 +247,19 @@ pub fn bench(mesh: &BenchMesh, threads: &[usize], rounds: Option<usize>) -> Resu
                     rounds_for(n),
                     RIG_SAMPLE_VERTICES,
                 )?);
+                bar.inc(1);
             }
+            bar.finish_and_clear();
+            println!(
+                "{}: {n} vertices, {} joints, at most {} influences a vertex, in {when}; each sample skins it {} times",
+                rig.name,
+                rig.joints.len(),
+                rig.influences.max_per_vertex(),
+                tables.first().map_or(0, |t| t.repeats),
+            );
         }
     }
+    bar.finish_and_clear();
     println!("{}", peers::markdown(&tables));
     for t in &tables {
         let r = |name: &str| t.rate(name).unwrap_or(f64::NAN);
@@ -286,13 +296,14 @@ pub fn bench(mesh: &BenchMesh, threads: &[usize], rounds: Option<usize>) -> Resu
 
 /// `chasles skin --bench`'s mesh and pose from the arguments, then [`bench`].
 fn bench_args(a: &SkinArgs) -> Result<()> {
+    if let Some(r) = a.bench_rounds.filter(|r| !(1..=10_000).contains(r)) {
+        bail!("--bench-rounds: {r} is not between 1 and 10000");
+    }
+    let all = [1, rayon::current_num_threads()];
+    let threads = a.bench_threads.as_deref().unwrap_or(&all);
     let Some(path) = &a.rig else {
         let sizes = a.bench_vertices.as_deref().unwrap_or(&[100_000, 1_000_000]);
-        return bench(
-            &BenchMesh::Synthetic(sizes),
-            &a.bench_threads,
-            a.bench_rounds,
-        );
+        return bench(&BenchMesh::Synthetic(sizes), threads, a.bench_rounds);
     };
     if a.bench_vertices.is_some() {
         bail!("--bench-vertices sizes the synthetic meshes: not with --rig");
@@ -313,11 +324,22 @@ fn bench_args(a: &SkinArgs) -> Result<()> {
         chosen_pose(&rig, a)?
     };
     let jt = chasles_skin::joint_transforms(&rig, &pose)?;
-    bench(
-        &BenchMesh::Rig(&rig, jt, when),
-        &a.bench_threads,
-        a.bench_rounds,
-    )
+    bench(&BenchMesh::Rig(&rig, jt, when), threads, a.bench_rounds)
+}
+
+/// `chasles skin --bench --device gpu`: the GPU's own table (synthetic meshes of 10^5 to
+/// 10^7 vertices, the shader's clock), which takes none of the CPU table's options.
+fn bench_gpu_args(a: &SkinArgs) -> Result<()> {
+    let given = [
+        ("--rig", a.rig.is_some()),
+        ("--bench-vertices", a.bench_vertices.is_some()),
+        ("--bench-rounds", a.bench_rounds.is_some()),
+        ("--bench-threads", a.bench_threads.is_some()),
+    ];
+    if let Some((flag, _)) = given.iter().find(|(_, g)| *g) {
+        bail!("{flag} is for the CPU's table: --bench --device gpu times synthetic meshes of 10^5 to 10^7 vertices only");
+    }
+    crate::device::bench_gpu()
 }
 
 /// Writes `pending` all or none and says so on stdout.
@@ -333,7 +355,7 @@ fn write_pending(pending: &Pending) -> Result<()> {
 pub fn run(a: SkinArgs) -> Result<()> {
     if a.bench {
         return match a.device {
-            crate::device::Device::Gpu => crate::device::bench_gpu(),
+            crate::device::Device::Gpu => bench_gpu_args(&a),
             _ => bench_args(&a),
         };
     }

@@ -1712,6 +1712,11 @@ fn skin_bench_measures_a_rig_of_ones_own_in_its_clip() {
             vec!["--bench-rounds", "0"],
             "--bench-rounds: 0 is not between 1 and 10000",
         ),
+        // The GPU's table is its own: it takes none of the CPU table's options.
+        (
+            vec!["--device", "gpu"],
+            "--rig is for the CPU's table: --bench --device gpu times synthetic meshes",
+        ),
     ] {
         let mut all = vec!["skin", "--rig", &rig, "--bench"];
         all.extend(args);
@@ -1722,6 +1727,26 @@ fn skin_bench_measures_a_rig_of_ones_own_in_its_clip() {
             "{says}"
         );
     }
+    // A rig of no vertex has nothing to time: an error naming it, before any table.
+    let dir = tempfile::tempdir().unwrap();
+    let empty = dir.path().join("empty.json");
+    std::fs::write(
+        &empty,
+        r#"{"positions": [], "triangles": [], "joints": [{"name": "a", "parent": null}], "influences": []}"#,
+    )
+    .unwrap();
+    let bad = chasles(&["skin", "--rig", empty.to_str().unwrap(), "--bench"]);
+    assert_eq!(bad.status.code(), Some(2));
+    assert!(
+        bad.stdout.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&bad.stdout)
+    );
+    assert!(
+        String::from_utf8_lossy(&bad.stderr).contains("the rig empty.json has no vertices to time"),
+        "{}",
+        String::from_utf8_lossy(&bad.stderr)
+    );
 }
 
 #[test]

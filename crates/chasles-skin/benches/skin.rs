@@ -69,7 +69,7 @@ fn bench(c: &mut Criterion) {
             }
             g.bench_function(format!("memcpy 72 B moved per vertex, {th}"), |b| {
                 b.iter(|| {
-                    peers::copy_bound(&src, &mut dst, parallel);
+                    peers::copy_bound(&src, &mut dst, 36, parallel);
                     black_box(dst[n])
                 })
             });

@@ -9,19 +9,9 @@ use chasles_skin::fast::{
 };
 use chasles_skin::{synthetic, Method};
 use std::hint::black_box;
-use std::time::Instant;
-
-/// The shortest of `runs` timed calls of `f` (after one untimed call), in seconds.
-fn best(runs: usize, mut f: impl FnMut()) -> f64 {
-    f();
-    (0..runs)
-        .map(|_| {
-            let t = Instant::now();
-            f();
-            t.elapsed().as_secs_f64()
-        })
-        .fold(f64::INFINITY, f64::min)
-}
+#[path = "common/best.rs"]
+mod common;
+use common::best;
 
 fn main() {
     let n = 100_000;

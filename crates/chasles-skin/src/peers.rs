@@ -20,7 +20,9 @@ use crate::fast::{Out, Vertex};
 use glam::{Mat3A, Vec3A, Vec4};
 
 mod rounds;
-pub use rounds::{markdown, measure, measure_rig, Load, Role, Row, Spread, Table, SYNTHETIC};
+pub use rounds::{
+    markdown, measure, measure_rig, repeats, Load, Role, Row, Spread, Table, SYNTHETIC,
+};
 
 /// Every baseline's joints for one pose.
 pub struct Joints {
@@ -64,15 +66,17 @@ pub const BASELINES: [Baseline; 5] = [
     ("nalgebra dqs", |v, j, o| nalgebra_dqs(v, &j.nalgebra_dq, o)),
 ];
 
-/// The bandwidth bound: `src` copied into `dst` (36 bytes a vertex read and 36 written,
-/// the 72 bytes each skinned vertex moves: 48 read, 24 written), on one thread or on all
-/// in the fast paths' chunks of 4096 vertices.
-pub fn copy_bound(src: &[u8], dst: &mut [u8], parallel: bool) {
+/// The bandwidth bound: `src` copied into `dst`, `half` bytes a vertex read and as many
+/// written — half the bytes each skinned vertex moves: with four influences 36 + 36 for
+/// its 48 read and 24 written, with eight 48 + 48 for 72 and 24 — on one thread or on
+/// all in the fast paths' chunks of 4096 vertices.
+pub fn copy_bound(src: &[u8], dst: &mut [u8], half: usize, parallel: bool) {
     use rayon::prelude::*;
     let src = std::hint::black_box(src);
+    let chunk = 4096 * half.max(1);
     if parallel {
-        dst.par_chunks_mut(4096 * 36)
-            .zip(src.par_chunks(4096 * 36))
+        dst.par_chunks_mut(chunk)
+            .zip(src.par_chunks(chunk))
             .for_each(|(d, s)| d.copy_from_slice(s));
     } else {
         dst.copy_from_slice(src);

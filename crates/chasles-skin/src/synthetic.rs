@@ -78,6 +78,34 @@ pub fn rig_with<const K: usize>(n: usize, joints: usize, seed: u64) -> FastRig<K
         .unwrap_or_else(|_| unreachable!("indices are drawn below `joints`"))
 }
 
+/// `rig` with the influences in the slots that `keep(i, k)` picks for vertex `i` (slot 0
+/// alone where it picks none), their weights scaled to sum to 1 and the others' made 0, in
+/// place: how a method's cost or result goes with the count (and the slots) of a vertex's
+/// influences, for tests and examples.
+pub fn with_influences<const K: usize>(
+    rig: &FastRig<K>,
+    keep: impl Fn(usize, usize) -> bool,
+) -> FastRig<K> {
+    let vertices = rig
+        .vertices()
+        .iter()
+        .enumerate()
+        .map(|(i, v)| {
+            let mut v = *v;
+            let w: [f32; K] = core::array::from_fn(|k| if keep(i, k) { v.w[k] } else { 0.0 });
+            let s: f32 = w.iter().sum();
+            v.w = if s > 0.0 {
+                w.map(|x| x / s)
+            } else {
+                core::array::from_fn(|k| if k == 0 { 1.0 } else { 0.0 })
+            };
+            v
+        })
+        .collect();
+    FastRig::from_vertices(vertices, rig.centres().to_vec())
+        .unwrap_or_else(|_| unreachable!("the joints are the rig's own"))
+}
+
 /// Random rigid joint transforms within 60° of the identity.
 pub fn joints(joints: usize, seed: u64) -> JointTransforms {
     let mut r = Mix(seed ^ 0xABCD);

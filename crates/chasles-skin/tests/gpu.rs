@@ -9,7 +9,18 @@ use chasles_skin::gpu::{GpuError, GpuSkinner};
 use chasles_skin::{gltf_load, joint_transforms, skin, Method, Pose, Rig};
 
 fn gpu_for(rig: &Rig) -> Option<GpuSkinner> {
-    match GpuSkinner::new(rig) {
+    usable(GpuSkinner::new(rig))
+}
+
+/// [`gpu_for`] on a fast-path layout.
+fn gpu_for_fast(rig: &chasles_skin::fast::FastRig<4>) -> Option<GpuSkinner> {
+    usable(GpuSkinner::from_fast(rig))
+}
+
+/// The skinner, or `None` (said on stderr) where there is no adapter; a panic on any
+/// other error.
+fn usable(made: Result<GpuSkinner, GpuError>) -> Option<GpuSkinner> {
+    match made {
         Ok(g) => Some(g),
         Err(GpuError::NoAdapter(why)) => {
             eprintln!("skipping the GPU test: no adapter ({why}); install mesa-vulkan-drivers for lavapipe");
@@ -118,13 +129,8 @@ fn gpu_matches_the_fast_path_on_a_synthetic_mesh() {
     use chasles_skin::fast::{dqs, dual_quats8, lbs, matrices12};
     let rig = chasles_skin::synthetic::rig(5000, 54, 3);
     let jt = chasles_skin::synthetic::joints(54, 3);
-    let gpu = match GpuSkinner::from_fast(&rig) {
-        Ok(g) => g,
-        Err(GpuError::NoAdapter(why)) => {
-            eprintln!("skipping: no adapter ({why})");
-            return;
-        }
-        Err(e) => panic!("{e}"),
+    let Some(gpu) = gpu_for_fast(&rig) else {
+        return;
     };
     let mut out = vec![[0f32; 6]; 5000];
     for m in [Method::Lbs, Method::Dqs] {
@@ -216,13 +222,8 @@ fn the_skinning_job_runs_on_the_gpu_as_on_the_cpu() {
     let m = chasles_models::CESIUM_MAN;
     let rig = gltf_load::load_slice(m.bytes, m.file).unwrap();
     let fast = FastRig::<4>::new(&rig).unwrap();
-    let gpu = match GpuSkinner::from_fast(&fast) {
-        Ok(g) => g,
-        Err(GpuError::NoAdapter(why)) => {
-            eprintln!("skipping: no adapter ({why})");
-            return;
-        }
-        Err(e) => panic!("{e}"),
+    let Some(gpu) = gpu_for_fast(&fast) else {
+        return;
     };
     let n = fast.vertices().len();
     let jt = joint_transforms(&rig, &Pose::animated(&rig, 0, 0.9).unwrap()).unwrap();
@@ -388,32 +389,44 @@ fn cpu_and_gpu_reject_the_same_poses() {
 
 /// DIB on the GPU (ScLERP in closed form for a vertex of at most two influences, Lemma 3)
 /// and on the CPU's fast path (one update for such a vertex, the iteration for the others)
-/// agree within the stopping rule's reach on a mesh of one to four influences a vertex.
+/// agree within the stopping rule's reach on a mesh of one to four influences a vertex, in
+/// any slots (weights of 0 between them too), with every other joint's dual quaternion
+/// negated (the same transform: the closed form's hemisphere test), some joints turned by
+/// up to 170° and some moved without turning (the logarithm's zero angle).
 #[test]
 fn gpu_dib_matches_the_fast_path_with_one_to_four_influences() {
-    use chasles_skin::fast::{dib, FastRig};
+    use chasles::{DualQuat, Quat, Vec3};
+    use chasles_skin::fast::dib;
     let base = chasles_skin::synthetic::rig(4000, 54, 11);
-    let vertices = base
-        .vertices()
-        .iter()
-        .enumerate()
-        .map(|(i, v)| {
-            let mut v = *v;
-            let n = 1 + (i * 7919 / 5) % 4;
-            let s: f32 = v.w[..n].iter().sum();
-            v.w = std::array::from_fn(|k| if k < n { v.w[k] / s } else { 0.0 });
-            v
-        })
-        .collect();
-    let rig = FastRig::from_vertices(vertices, base.centres().to_vec()).unwrap();
-    let jt = chasles_skin::synthetic::joints(54, 3);
-    let gpu = match GpuSkinner::from_fast(&rig) {
-        Ok(g) => g,
-        Err(GpuError::NoAdapter(why)) => {
-            eprintln!("skipping: no adapter ({why})");
-            return;
+    let rig = chasles_skin::synthetic::with_influences(&base, |i, k| {
+        let h = (i * 7919 / 5) % 9;
+        // Counts 1–4 in the first slots; two in slots 0 and 2, or 1 and 3; three around a
+        // 0; one in slot 2, or in slot 1 (slot 0's weight 0: the closed form's other end).
+        match h {
+            0..=3 => k <= h,
+            4 => k == 0 || k == 2,
+            5 => k == 1 || k == 3,
+            6 => k != 1,
+            7 => k == 2,
+            _ => k == 1,
         }
-        Err(e) => panic!("{e}"),
+    });
+    let mut jt = chasles_skin::synthetic::joints(54, 3);
+    for (j, d) in jt.dual_quats.iter_mut().enumerate() {
+        if j % 5 == 1 {
+            let axis = Vec3::new(1.0, j as f32 * 0.3 - 2.0, 0.5);
+            let q = Quat::from_axis_angle(axis, 2.97 * (j as f32 / 54.0)).unwrap();
+            *d = DualQuat::from_rotation_translation(q, Vec3::new(0.5, -1.0, 0.3));
+        } else if j % 5 == 3 {
+            *d = DualQuat::from_translation(Vec3::new(j as f32 * 0.05, 1.0, -0.5));
+        }
+        if j % 2 == 1 {
+            *d = -*d;
+        }
+    }
+    jt.matrices = jt.dual_quats.iter().map(|d| d.to_matrix4()).collect();
+    let Some(gpu) = gpu_for_fast(&rig) else {
+        return;
     };
     let mut out = vec![[0f32; 6]; 4000];
     dib(&rig, &jt.dual_quats, &mut out, false).unwrap();

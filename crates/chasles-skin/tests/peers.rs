@@ -118,3 +118,72 @@ fn every_baseline_matches_an_f64_reference_on_a_single_influence_mesh() {
         "normals by M are wrong under non-uniform scale"
     );
 }
+
+/// A rig of `vertices` vertices on a line, each with `influences` equal weights on joints
+/// `0..influences` (unparented, at the origin), in its rest pose.
+fn spread_rig(vertices: usize, influences: usize) -> (chasles_skin::Rig, JointTransforms) {
+    use chasles_skin::{Influences, Mesh, Node, Pose, Rig, Trs};
+    let joints = influences.max(1);
+    let mesh = Mesh {
+        positions: (0..vertices)
+            .map(|i| Vec3::new(i as f32, 0.0, 0.0))
+            .collect(),
+        normals: vec![Vec3::new(0.0, 0.0, 1.0); vertices],
+        triangles: vec![],
+    };
+    let nodes = (0..joints)
+        .map(|i| Node {
+            name: format!("j{i}"),
+            parent: None,
+            rest: Trs::default(),
+        })
+        .collect();
+    let list: Vec<(usize, f32)> = (0..influences).map(|j| (j, 1.0)).collect();
+    let rig = Rig::new(
+        format!("spread{influences}"),
+        mesh,
+        nodes,
+        (0..joints).collect(),
+        vec![Mat4::identity(); joints],
+        Influences::from_lists(&vec![list; vertices], joints).unwrap(),
+        vec![],
+    )
+    .unwrap();
+    let jt = chasles_skin::joint_transforms(&rig, &Pose::rest(&rig)).unwrap();
+    (rig, jt)
+}
+
+/// `measure_rig` on rigs of one's own: with four influences every method, the five
+/// baselines and the copy of 72 bytes a vertex; with five to eight (the 8-slot layout)
+/// every method and the copy of the 96 bytes such a vertex moves, no baseline (they are
+/// written for four); each sample repeated to `min_vertices`. A rig of more than eight
+/// influences, or of no vertex, is an error naming it.
+#[test]
+fn measure_rig_times_up_to_eight_influences_and_names_what_it_cannot() {
+    use chasles_skin::SkinError;
+    for (influences, rows, copy) in [
+        (4, 12, "memcpy, 72 B a vertex"),
+        (5, 7, "memcpy, 96 B a vertex"),
+    ] {
+        let (rig, jt) = spread_rig(37, influences);
+        let t = peers::measure_rig(&rig, &jt, 1, 1, 1000).unwrap();
+        assert_eq!((t.vertices, t.repeats, t.rows.len()), (37, 28, rows));
+        assert_eq!(t.mesh, format!("spread{influences}"));
+        assert!(t.rows.iter().any(|r| r.name == copy), "{:?}", t.rows);
+        assert!(t.rows.iter().all(|r| r.rate.median > 0.0), "{:?}", t.rows);
+    }
+    assert_eq!(peers::repeats(370, 100_000), 271);
+    assert_eq!(peers::repeats(200_000, 100_000), 1);
+    let (rig, jt) = spread_rig(5, 9);
+    assert!(matches!(
+        peers::measure_rig(&rig, &jt, 1, 1, 1000),
+        Err(SkinError::TooManyInfluences {
+            most: 9,
+            layout: 8,
+            ..
+        })
+    ));
+    let (rig, jt) = spread_rig(0, 2);
+    let e = peers::measure_rig(&rig, &jt, 1, 1, 1000).unwrap_err();
+    assert_eq!(e.to_string(), "the rig spread2 has no vertices to time");
+}

@@ -161,12 +161,20 @@ fn dib(@builtin(global_invocation_id) id: vec3<u32>) {
     let v = vertices[i];
     let total = v.w.x + v.w.y + v.w.z + v.w.w;
     let wn = v.w / total;
-    let pivot = dual_quats[v.j[0] * 2u];
+    // DLB against the pivot, the first of the heaviest influences (as on the CPU: a layout
+    // built by hand may put a weight of 0 first).
     var q: array<Dq, 4>;
-    var sum = Dq(vec4<f32>(0.0), vec4<f32>(0.0));
+    var heaviest = 0u;
     for (var k = 0u; k < 4u; k = k + 1u) {
         let j = v.j[k] * 2u;
         q[k] = Dq(dual_quats[j], dual_quats[j + 1u]);
+        if (wn[k] > wn[heaviest]) {
+            heaviest = k;
+        }
+    }
+    let pivot = q[heaviest].r;
+    var sum = Dq(vec4<f32>(0.0), vec4<f32>(0.0));
+    for (var k = 0u; k < 4u; k = k + 1u) {
         var w = wn[k];
         if (dot(q[k].r, pivot) < 0.0) {
             w = -w;

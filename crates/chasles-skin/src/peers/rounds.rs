@@ -45,7 +45,8 @@ pub enum Role {
     Ours(Method),
     /// A baseline of [`BASELINES`], compared with our kernel of this method.
     Baseline(Method),
-    /// The copy of the 72 bytes a vertex moves ([`copy_bound`]).
+    /// The copy of the bytes a vertex moves ([`copy_bound`]: 72 with four influences, 96
+    /// with eight).
     Bound,
 }
 
@@ -113,8 +114,8 @@ pub fn measure(n: usize, threads: usize, rounds: usize) -> Result<Table> {
 /// (which are written for four). Each timed sample skins the mesh as many times as make
 /// `min_vertices` vertices or more (a character of a few thousand vertices takes
 /// microseconds, too short to time alone), and every rate counts them all; the copy bound
-/// copies the same bytes as often. An error where some vertex has more than 8 influences
-/// (the fast path's widest layout).
+/// copies the same bytes as often. An error where the mesh has no vertex (nothing to
+/// time) or some vertex has more than 8 influences (the fast path's widest layout).
 pub fn measure_rig(
     rig: &Rig,
     jt: &JointTransforms,
@@ -122,8 +123,15 @@ pub fn measure_rig(
     rounds: usize,
     min_vertices: usize,
 ) -> Result<Table> {
-    let n = rig.mesh.positions.len().max(1);
-    let reps = min_vertices.div_ceil(n).max(1);
+    let n = rig.mesh.positions.len();
+    if n == 0 {
+        return Err(crate::SkinError::Parameter {
+            what: "the rig",
+            value: rig.name.clone(),
+            reason: "has no vertices to time",
+        });
+    }
+    let reps = repeats(n, min_vertices);
     if rig.influences.max_per_vertex() <= 4 {
         let fast = FastRig::<4>::new(rig)?;
         on_threads(threads, |parallel| {
@@ -143,6 +151,12 @@ pub fn measure_rig(
             measure_on(mesh, parallel, rounds, threads.max(1))
         })
     }
+}
+
+/// How many times a sample skins a mesh of `n` vertices to skin `min_vertices` or more
+/// (at least once).
+pub fn repeats(n: usize, min_vertices: usize) -> usize {
+    min_vertices.div_ceil(n.max(1)).max(1)
 }
 
 /// `f(parallel)` on `threads` threads: the caller's alone (`parallel` false), or a rayon
@@ -199,8 +213,12 @@ fn measure_on<const K: usize>(
     let n = rig.vertices().len();
     let pj = Joints::of(jt);
     let mut out = vec![[0f32; 6]; n];
-    let src = vec![1u8; n * 36];
-    let mut dst = vec![0u8; n * 36];
+    // The copy reads and writes half the bytes a vertex moves each: its K-influence
+    // vertex in, its output out (72 B for four influences, 96 for eight).
+    let moved = std::mem::size_of::<Vertex<K>>() + std::mem::size_of::<Out>();
+    let src = vec![1u8; n * moved / 2];
+    let mut dst = vec![0u8; n * moved / 2];
+    let half = moved / 2;
     type Run<'a> = Box<dyn FnMut(&mut [Out]) -> Result<()> + 'a>;
     let mut kernels: Vec<(String, Role, Run)> = Vec::new();
     for m in Method::ALL {
@@ -222,10 +240,10 @@ fn measure_on<const K: usize>(
     }
     let (src, dst) = (&src, &mut dst);
     let copy: Run = Box::new(move |_| {
-        copy_bound(src, dst, parallel);
+        copy_bound(src, dst, half, parallel);
         Ok(())
     });
-    kernels.push(("memcpy, 72 B a vertex".into(), Role::Bound, copy));
+    kernels.push((format!("memcpy, {moved} B a vertex"), Role::Bound, copy));
     let mut secs = vec![Vec::with_capacity(rounds); kernels.len()];
     for round in 0..=rounds.max(1) {
         for (k, (_, _, f)) in kernels.iter_mut().enumerate() {

@@ -175,25 +175,28 @@ mod tests {
         }
     }
 
-    /// `rig` with `count(i)` influences on vertex i (its heaviest, the weights scaled to
-    /// sum to 1).
+    /// The SIMD kernel on `v` with the joints `d` (whose count bounds `v`'s joint
+    /// indices): the outputs of the whole blocks of eight. AVX2 and FMA must be present.
+    fn run(v: &[Vertex<4>], d: &[[f32; 8]]) -> Vec<Out> {
+        assert!(simd(4), "the SIMD kernel needs AVX2 and FMA");
+        assert!(v
+            .iter()
+            .all(|v| v.j.iter().all(|j| usize::from(*j) < d.len())));
+        let mut out = vec![[f32::NAN; 6]; v.len()];
+        // SAFETY: AVX2 and FMA are present, the joint indices are below d.len() (both
+        // checked above), `out` is as long as the vertices.
+        let done = unsafe { dib(v, d, &(), &mut out, false) };
+        out.truncate(done);
+        out
+    }
+
+    /// `rig` with `count(i)` influences on vertex i (its first slots, the weights scaled
+    /// to sum to 1).
     fn with_counts(
         rig: &crate::fast::FastRig<4>,
         count: impl Fn(usize) -> usize,
     ) -> crate::fast::FastRig<4> {
-        let vertices = rig
-            .vertices()
-            .iter()
-            .enumerate()
-            .map(|(i, v)| {
-                let mut v = *v;
-                let n = count(i);
-                let s: f32 = v.w[..n].iter().sum();
-                v.w = core::array::from_fn(|k| if k < n { v.w[k] / s } else { 0.0 });
-                v
-            })
-            .collect();
-        crate::fast::FastRig::from_vertices(vertices, rig.centres().to_vec()).unwrap()
+        synthetic::with_influences(rig, |i, k| k < count(i))
     }
 
     /// Lemma 3 (a vertex of at most two influences stops after one update) holds a vertex
@@ -216,14 +219,7 @@ mod tests {
             }
         });
         let d = crate::fast::dual_quats8(&synthetic::joints(54, 3));
-        let run = |v: &[Vertex<4>]| {
-            let mut out = vec![[f32::NAN; 6]; v.len()];
-            // SAFETY: AVX2 and FMA are present (`simd`), the joint indices are below 54 =
-            // d.len(), `out` is as long as the vertices.
-            let done = unsafe { dib(v, &d, &(), &mut out, false) };
-            out.truncate(done);
-            out
-        };
+        let run = |v: &[Vertex<4>]| run(v, &d);
         let whole = run(rig.vertices());
         for shift in 1..8 {
             let part = run(&rig.vertices()[shift..]);
@@ -239,6 +235,54 @@ mod tests {
                     shift + k
                 );
             }
+        }
+    }
+
+    /// A vertex's influences may sit in any slots, weights of 0 between them (a layout
+    /// built by hand need not put them first): it is skinned to the same bits as with them
+    /// in the first slots — its counts of one and two (no update; one update and no pass
+    /// to show it) are its positive weights' wherever they are.
+    #[test]
+    fn influences_in_any_slots_are_skinned_as_in_the_first() {
+        if !simd(4) {
+            eprintln!("no AVX2+FMA here: nothing to compare");
+            return;
+        }
+        let compact = with_counts(&synthetic::rig(1200, 54, 5), |i| 1 + (i * 7919) % 3);
+        let places: [&[&[usize]]; 3] = [
+            &[&[1], &[3], &[2]],
+            &[&[0, 2], &[1, 3], &[2, 3], &[0, 3]],
+            &[&[0, 2, 3], &[1, 2, 3], &[0, 1, 3]],
+        ];
+        let scattered: Vec<Vertex<4>> = compact
+            .vertices()
+            .iter()
+            .enumerate()
+            .map(|(i, v)| {
+                let count = v.w.iter().filter(|w| **w > 0.0).count();
+                let at = places[count - 1][(i / 3) % places[count - 1].len()];
+                let mut u = Vertex {
+                    j: [0; 4],
+                    w: [0.0; 4],
+                    ..*v
+                };
+                for (s, &p) in at.iter().enumerate() {
+                    (u.j[p], u.w[p]) = (v.j[s], v.w[s]);
+                }
+                u
+            })
+            .collect();
+        let d = crate::fast::dual_quats8(&synthetic::joints(54, 3));
+        let run = |v: &[Vertex<4>]| run(v, &d);
+        let (want, got) = (run(compact.vertices()), run(&scattered));
+        for (k, (g, w)) in got.iter().zip(&want).enumerate() {
+            assert_eq!(
+                g,
+                w,
+                "vertex {k}: {:?} against {:?}",
+                scattered[k],
+                compact.vertices()[k]
+            );
         }
     }
 

@@ -22,7 +22,8 @@
 //! needed at most one update against 72 % with the paper's step; rotated by up to 3.1 rad
 //! and moved by up to 100, 2.6 updates on average against 4.2 (counting more than 11 as
 //! 11); and in every group its largest distance from the exact blend was no larger than
-//! the paper's step's. The GPU shader and the scalar kernels keep the paper's step.
+//! the paper's step's. The scalar kernels keep the paper's step, and so does the GPU shader
+//! for a vertex of three or more influences (for one or two it takes ScLERP in closed form).
 
 use super::super::Lane;
 
@@ -121,6 +122,17 @@ fn zero_minus<L: Lane>(v: L) -> L {
 mod tests {
     use super::*;
 
+    /// A xorshift generator from `seed`: uniform numbers in [−0.5, 0.5).
+    fn uniform(seed: u64) -> impl FnMut() -> f32 {
+        let mut s = seed;
+        move || {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            (s >> 40) as f32 / (1u64 << 24) as f32 - 0.5
+        }
+    }
+
     /// `x̂ − ⅓ Σ wᵢ x̂ᵢ × (x̂ᵢ × x̂)` in f64, by the double cross product of dual vectors
     /// (`â × (b̂ × ĉ) = b̂ (â · ĉ) − ĉ (â · b̂)`, each dot a dual number): the formula the
     /// step's `M` form comes from, written the other way.
@@ -145,13 +157,7 @@ mod tests {
     /// second-order step is the paper's, `δ̂ = x̂`: so one update of either reaches ScLERP.
     #[test]
     fn on_one_screw_the_step_is_the_update() {
-        let mut s: u64 = 0x9E37_79B9_7F4A_7C15;
-        let mut next = move || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            (s >> 40) as f32 / (1u64 << 24) as f32 - 0.5
-        };
+        let mut next = uniform(0x9E37_79B9_7F4A_7C15);
         for trial in 0..2000 {
             let (a, b) = ([0; 3].map(|_| 2.0 * next()), [0; 3].map(|_| 4.0 * next()));
             let n = 2 + trial % 3;
@@ -184,13 +190,7 @@ mod tests {
     /// logarithms (half-angles up to 1.5, dual parts up to 3) and convex weights of 1–4.
     #[test]
     fn the_step_is_the_double_cross_product_formula() {
-        let mut s: u64 = 0x2545_F491_4F6C_DD1D;
-        let mut next = move || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            (s >> 40) as f32 / (1u64 << 24) as f32 - 0.5
-        };
+        let mut next = uniform(0x2545_F491_4F6C_DD1D);
         for trial in 0..2000 {
             let n = 1 + trial % 4;
             let logs: Vec<[f32; 8]> = (0..n)
