@@ -212,12 +212,19 @@ pub fn bench(mesh: &BenchMesh, threads: &[usize], rounds: Option<usize>) -> Resu
     let rounds_for = |n: usize| rounds.unwrap_or(if n <= 200_000 { 21 } else { 7 });
     let load = peers::Load::start();
     let mut tables = Vec::new();
-    // On a terminal, which table is being timed (hidden when stderr is not one).
+    if let BenchMesh::Synthetic(sizes) = mesh {
+        if let Some(n) = sizes.iter().find(|n| **n == 0 || **n > 100_000_000) {
+            bail!("--bench-vertices: {n} is not between 1 and 10^8");
+        }
+    }
+    // On a terminal, which table is being timed (hidden when stderr is not one; cleared
+    // when done or on an error).
     let count = match mesh {
         BenchMesh::Synthetic(sizes) => sizes.len(),
         BenchMesh::Rig(..) => 1,
     } * threads.len();
-    let bar = indicatif::ProgressBar::new(count as u64);
+    let bar =
+        indicatif::ProgressBar::new(count as u64).with_finish(indicatif::ProgressFinish::AndClear);
     bar.set_style(
         indicatif::ProgressStyle::with_template("timing {msg} [{bar:20}] {pos}/{len} tables")
             .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
@@ -225,9 +232,6 @@ pub fn bench(mesh: &BenchMesh, threads: &[usize], rounds: Option<usize>) -> Resu
     let progress = |n: usize, t: usize| bar.set_message(format!("{n} vertices on {t} thread(s)"));
     match mesh {
         BenchMesh::Synthetic(sizes) => {
-            if let Some(n) = sizes.iter().find(|n| **n == 0 || **n > 100_000_000) {
-                bail!("--bench-vertices: {n} is not between 1 and 10^8");
-            }
             for &n in *sizes {
                 for &t in threads {
                     progress(n, t);
@@ -250,6 +254,7 @@ pub fn bench(mesh: &BenchMesh, threads: &[usize], rounds: Option<usize>) -> Resu
                 bar.inc(1);
             }
             bar.finish_and_clear();
+            // After the timing, so that an error (an empty rig) comes alone.
             println!(
                 "{}: {n} vertices, {} joints, at most {} influences a vertex, in {when}; each sample skins it {} times",
                 rig.name,

@@ -1,9 +1,10 @@
 //! DIB's fast path against DQS's by the number of influences a vertex has: 10⁵ synthetic
 //! vertices (54 joints) with their first 1, 2 or 4 influences kept (the first is the
 //! heaviest on average; weights scaled to sum to 1), and with 2 and 4 alternating vertex by
-//! vertex (every block of eight mixed); best of runs on one thread, the two methods in turn, and DIB's cost in DQS's. A vertex of at
-//! most two influences stops after one update (Lemma 3: the pass that shows it converged is
-//! left out), so a block of such vertices makes one update and no second log sum
+//! vertex (every block of eight mixed); best of runs on one thread, the two methods in
+//! turn, and DIB's cost in DQS's. A vertex of at most two influences stops after one update
+//! (Lemma 3: the pass that shows it converged is left out), so a block of such vertices
+//! makes one update and no second log sum
 //! (`cargo run --release -p chasles-skin --example dib_influences`).
 
 use chasles_skin::fast::{dib, dqs, dual_quats8};

@@ -1,5 +1,6 @@
-//! What a pose costs beside its vertices, on a rig of one's own (default: the built-in
-//! RiggedFigure, 370 vertices, 19 joints), its first clip half-way through, one thread:
+//! What a pose costs beside its vertices, on a rig of one's own of up to four influences a
+//! vertex (default: the built-in RiggedFigure, 370 vertices, 19 joints), its first clip
+//! half-way through, one thread:
 //! for each method, `skin_pose` (the joint data made, then the job), the skinning job alone
 //! on a palette made once, and the palette alone, in µs a pose (best of runs of 1000
 //! poses). On a character of a few hundred vertices the palette is a good part of a pose

@@ -50,7 +50,8 @@ pub struct Vertex<const K: usize> {
     pub p: [f32; 3],
     /// Bind normal.
     pub n: [f32; 3],
-    /// Joint indices, heaviest influence first.
+    /// Joint indices, heaviest influence first: DQS, QLB and SBS take slot 0 as the
+    /// antipodality pivot ([`FastRig::new`] puts it there; a layout built by hand must).
     pub j: [u16; K],
     /// Weights, summing to 1.
     pub w: [f32; K],

@@ -401,7 +401,7 @@ fn gpu_dib_matches_the_fast_path_with_one_to_four_influences() {
     let rig = chasles_skin::synthetic::with_influences(&base, |i, k| {
         let h = (i * 7919 / 5) % 9;
         // Counts 1–4 in the first slots; two in slots 0 and 2, or 1 and 3; three around a
-        // 0; one in slot 2, or in slot 1 (slot 0's weight 0: the closed form's other end).
+        // 0; one in slot 2, or in slot 1 (slot 0's weight 0).
         match h {
             0..=3 => k <= h,
             4 => k == 0 || k == 2,

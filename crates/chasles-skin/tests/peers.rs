@@ -164,6 +164,7 @@ fn measure_rig_times_up_to_eight_influences_and_names_what_it_cannot() {
     for (influences, rows, copy) in [
         (4, 12, "memcpy, 72 B a vertex"),
         (5, 7, "memcpy, 96 B a vertex"),
+        (8, 7, "memcpy, 96 B a vertex"),
     ] {
         let (rig, jt) = spread_rig(37, influences);
         let t = peers::measure_rig(&rig, &jt, 1, 1, 1000).unwrap();

@@ -163,13 +163,25 @@ fn dib(@builtin(global_invocation_id) id: vec3<u32>) {
     let wn = v.w / total;
     // DLB against the pivot, the first of the heaviest influences (as on the CPU: a layout
     // built by hand may put a weight of 0 first).
+    // Also the count of positive weights and the slots of the first two, wherever they sit.
     var q: array<Dq, 4>;
     var heaviest = 0u;
+    var used = 0u;
+    var first = 0u;
+    var second = 0u;
     for (var k = 0u; k < 4u; k = k + 1u) {
         let j = v.j[k] * 2u;
         q[k] = Dq(dual_quats[j], dual_quats[j + 1u]);
         if (wn[k] > wn[heaviest]) {
             heaviest = k;
+        }
+        if (wn[k] > 0.0) {
+            if (used == 0u) {
+                first = k;
+            } else if (used == 1u) {
+                second = k;
+            }
+            used = used + 1u;
         }
     }
     let pivot = q[heaviest].r;
@@ -182,19 +194,21 @@ fn dib(@builtin(global_invocation_id) id: vec3<u32>) {
         sum = Dq(sum.r + q[k].r * w, sum.d + q[k].d * w);
     }
     var b = dqnormalize(sum);
-    if (wn.z == 0.0 && wn.w == 0.0) {
-        // Lemma 3: DIB of two is ScLERP, q0 (q0* q1)^w1 with q0* q1 in its positive
-        // hemisphere, in closed form (one influence: q0 itself).
-        if (wn.y > 0.0) {
-            var rel = dqmul(Dq(qconj(q[0].r), qconj(q[0].d)), q[1]);
+    if (used <= 2u) {
+        // Lemma 3: DIB of two is ScLERP, qa (qa* qb)^wb with qa* qb in its positive
+        // hemisphere, in closed form (one influence: that joint itself).
+        let qa = q[first];
+        if (used == 2u) {
+            var rel = dqmul(Dq(qconj(qa.r), qconj(qa.d)), q[second]);
             if (rel.r.x < 0.0) {
                 rel = Dq(-rel.r, -rel.d);
             }
             let l = dqlog(rel);
-            let x = Dq(vec4<f32>(0.0, l.r.yzw * wn.y), vec4<f32>(0.0, l.d.yzw * wn.y));
-            b = dqnormalize(dqmul(q[0], dqexp(x)));
+            let t = wn[second];
+            let x = Dq(vec4<f32>(0.0, l.r.yzw * t), vec4<f32>(0.0, l.d.yzw * t));
+            b = dqnormalize(dqmul(qa, dqexp(x)));
         } else {
-            b = dqnormalize(q[0]);
+            b = dqnormalize(qa);
         }
         store(i, rigid_move(b, v.p.xyz, v.n.xyz));
         return;
