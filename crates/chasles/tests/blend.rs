@@ -146,6 +146,40 @@ proptest! {
         prop_assert_eq!(qlb(&x32, &raw32, c32).unwrap(), qlb_convex(&x32, &w32, c32).unwrap());
     }
 
+    /// The twist of a screw motion in closed form: turning by θ about the axis n through c
+    /// and sliding τ along it is `ω = θ n`, `v = c × ω + τ n` — at θ = π (the quaternion's
+    /// w = 0, D's cotangent 0), just past the series' 1e-2, and between; f64 and f32.
+    #[test]
+    fn the_twist_of_a_screw_is_its_closed_form(
+        axis in prop::array::uniform3(-1.0f64..1.0),
+        c in prop::array::uniform3(-3.0f64..3.0),
+        tau in -2.0f64..2.0,
+        which in 0usize..5,
+    ) {
+        let n = Vec3::from_array(axis);
+        prop_assume!(n.norm() > 0.1);
+        let n = n.normalize().unwrap();
+        let theta = [std::f64::consts::PI, 1.0e-2 + 1e-9, 0.3, 2.0, 3.1][which];
+        let c = Vec3::from_array(c);
+        let r = Quat::from_axis_angle(n, theta).unwrap();
+        // x ↦ R (x − c) + c + τ n.
+        let t = c - r.rotate(c) + n * tau;
+        let m = DualQuat::from_rotation_translation(r, t).to_matrix4();
+        let (w, v) = (n * theta, c.cross(n * theta) + n * tau);
+        let got = log_rigid(&m).unwrap();
+        // At θ = π the axis's sign is either: ω and −ω both turn by π (the slide stays τ n).
+        let sign = if got.w.dot(w) < 0.0 { -1.0 } else { 1.0 };
+        let (w, v) = if sign < 0.0 { (-w, c.cross(-w) + n * tau) } else { (w, v) };
+        prop_assert!((got.w - w).norm() < 1e-12 && (got.v - v).norm() < 1e-11, "{got:?} against {w:?} {v:?}");
+        let m32 = DualQuat::from_rotation_translation(r, t).cast::<f32>().to_matrix4();
+        let got32 = log_rigid(&m32).unwrap();
+        let (w32, v32) = (got32.w.cast::<f64>(), got32.v.cast::<f64>());
+        let scale = 1.0 + v.norm();
+        // f32 at θ = π: the axis's sign again, and rounding through the half-turn.
+        let (w, v) = if w32.dot(w) < 0.0 { (-w, c.cross(-w) + n * tau) } else { (w, v) };
+        prop_assert!((w32 - w).norm() < 1e-5 && (v32 - v).norm() < 2e-5 * scale, "{got32:?} against {w:?} {v:?}");
+    }
+
     #[test]
     fn rigid_log_and_exp_are_inverse(q in prop::array::uniform4(-1.0f64..1.0), t in prop::array::uniform3(-5.0f64..5.0), small in 0usize..4) {
         let q = Quat::from_array(q);
