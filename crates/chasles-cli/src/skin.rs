@@ -240,7 +240,7 @@ pub fn bench(mesh: &BenchMesh, threads: &[usize], rounds: Option<usize>) -> Resu
                 }
             }
         }
-        BenchMesh::Rig(rig, jt, when) => {
+        BenchMesh::Rig(rig, jt, _) => {
             let n = rig.mesh.positions.len();
             for &t in threads {
                 progress(n, t);
@@ -253,18 +253,20 @@ pub fn bench(mesh: &BenchMesh, threads: &[usize], rounds: Option<usize>) -> Resu
                 )?);
                 bar.inc(1);
             }
-            bar.finish_and_clear();
-            // After the timing, so that an error (an empty rig) comes alone.
-            println!(
-                "{}: {n} vertices, {} joints, at most {} influences a vertex, in {when}; each sample skins it {} times",
-                rig.name,
-                rig.joints.len(),
-                rig.influences.max_per_vertex(),
-                tables.first().map_or(0, |t| t.repeats),
-            );
         }
     }
     bar.finish_and_clear();
+    // After the timing, so that an error (an empty rig) comes alone.
+    if let BenchMesh::Rig(rig, _, when) = mesh {
+        println!(
+            "{}: {} vertices, {} joints, at most {} influences a vertex, in {when}; each sample skins it {} times",
+            rig.name,
+            rig.mesh.positions.len(),
+            rig.joints.len(),
+            rig.influences.max_per_vertex(),
+            tables.first().map_or(0, |t| t.repeats),
+        );
+    }
     println!("{}", peers::markdown(&tables));
     for t in &tables {
         let r = |name: &str| t.rate(name).unwrap_or(f64::NAN);

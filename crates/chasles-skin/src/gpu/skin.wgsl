@@ -162,8 +162,8 @@ fn dib(@builtin(global_invocation_id) id: vec3<u32>) {
     let total = v.w.x + v.w.y + v.w.z + v.w.w;
     let wn = v.w / total;
     // DLB against the pivot, the first of the heaviest influences (as on the CPU: a layout
-    // built by hand may put a weight of 0 first).
-    // Also the count of positive weights and the slots of the first two, wherever they sit.
+    // built by hand may put a weight of 0 first); and the count of positive weights and the
+    // slots of the first two, wherever they sit.
     var q: array<Dq, 4>;
     var heaviest = 0u;
     var used = 0u;

@@ -216,9 +216,9 @@ fn measure_on<const K: usize>(
     // The copy reads and writes half the bytes a vertex moves each: its K-influence
     // vertex in, its output out (72 B for four influences, 96 for eight).
     let moved = std::mem::size_of::<Vertex<K>>() + std::mem::size_of::<Out>();
-    let src = vec![1u8; n * moved / 2];
-    let mut dst = vec![0u8; n * moved / 2];
     let half = moved / 2;
+    let src = vec![1u8; n * half];
+    let mut dst = vec![0u8; n * half];
     type Run<'a> = Box<dyn FnMut(&mut [Out]) -> Result<()> + 'a>;
     let mut kernels: Vec<(String, Role, Run)> = Vec::new();
     for m in Method::ALL {

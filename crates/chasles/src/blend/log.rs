@@ -65,7 +65,8 @@ fn coeffs_bc<T: Real>(theta: T) -> (T, T) {
 /// joint's twist in 1.4× less time than through `to_rotation_vector` and `sin_cos`).
 pub fn log_rigid<T: Real>(m: &Mat4<T>) -> Result<Twist<T>> {
     let q = Quat::from_rotation_matrix_unchecked(&m.linear_part());
-    let (v, s) = (q.vector(), q.vector().norm());
+    let v = q.vector();
+    let s = v.norm();
     let w = v * (atan2_over(s, q.w) * T::TWO);
     let theta = w.norm();
     let t = m.translation();

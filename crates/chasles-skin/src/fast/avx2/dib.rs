@@ -219,10 +219,9 @@ mod tests {
             }
         });
         let d = crate::fast::dual_quats8(&synthetic::joints(54, 3));
-        let run = |v: &[Vertex<4>]| run(v, &d);
-        let whole = run(rig.vertices());
+        let whole = run(rig.vertices(), &d);
         for shift in 1..8 {
-            let part = run(&rig.vertices()[shift..]);
+            let part = run(&rig.vertices()[shift..], &d);
             for (k, o) in part
                 .iter()
                 .enumerate()
@@ -273,8 +272,7 @@ mod tests {
             })
             .collect();
         let d = crate::fast::dual_quats8(&synthetic::joints(54, 3));
-        let run = |v: &[Vertex<4>]| run(v, &d);
-        let (want, got) = (run(compact.vertices()), run(&scattered));
+        let (want, got) = (run(compact.vertices(), &d), run(&scattered, &d));
         for (k, (g, w)) in got.iter().zip(&want).enumerate() {
             assert_eq!(
                 g,

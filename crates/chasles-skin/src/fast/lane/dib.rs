@@ -252,14 +252,15 @@ pub(in crate::fast) fn dib<L: Lane, const K: usize>(
     // takes no update. Lemma 3: for two, one update reaches the blend (ScLERP), and the
     // next pass only finds ‖x̂‖ = 0. So a lane of two influences stops after its first
     // update — the pass that would show it converged is left out — and a block of lanes of
-    // at most two (in the first two slots) makes that one update and no more. Both rules count a lane's positive
-    // weights wherever they sit (a layout built by hand need not put them first), so they
-    // hold a lane whatever its block-mates do: a vertex's numbers do not depend on its
-    // neighbours. (A block of one influence a lane still computes the update it does not
+    // at most two (in the first two slots) makes that one update and no more. Both rules
+    // count a lane's positive weights wherever they sit (a layout built by hand need not
+    // put them first), so they hold a lane whatever its block-mates do: a vertex's numbers
+    // do not depend on its neighbours. (A block of one influence a lane still computes the update it does not
     // take: returning before it, here or in the kernel, made the iteration's code 3–5 %
     // slower on CesiumMan.)
     let mut count = zero;
-    // By index: `iter().take(slots)` left a call to `nth` in the kernel.
+    // By index, as the other loops over `slots` here (an iterator form of this loop,
+    // `take(slots).skip(2)`, left a call to `nth` in the kernel).
     #[allow(clippy::needless_range_loop)]
     for k in 0..slots {
         count = count.add(L::select(zero.lt(w[k]), L::splat(1.0), zero));
