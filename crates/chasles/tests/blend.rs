@@ -165,10 +165,11 @@ proptest! {
         // x ↦ R (x − c) + c + τ n.
         let t = c - r.rotate(c) + n * tau;
         let m = DualQuat::from_rotation_translation(r, t).to_matrix4();
-        // The twist, its ω on the side of `near`: at θ = π the axis's sign is either, ω and
-        // −ω both turning by π (the slide stays τ n).
+        // The twist, its ω on the side of `near` at θ = π only: there the axis's sign is
+        // either, ω and −ω both turning by π (the slide stays τ n); below π it is θ n.
+        let half_turn = which == 0;
         let want = |near: Vec3<f64>| {
-            let w = n * theta * if near.dot(n) < 0.0 { -1.0 } else { 1.0 };
+            let w = n * theta * if half_turn && near.dot(n) < 0.0 { -1.0 } else { 1.0 };
             (w, c.cross(w) + n * tau)
         };
         let got = log_rigid(&m).unwrap();

@@ -255,9 +255,9 @@ pub(in crate::fast) fn dib<L: Lane, const K: usize>(
     // at most two (in the first two slots) makes that one update and no more. Both rules
     // count a lane's positive weights wherever they sit (a layout built by hand need not
     // put them first), so they hold a lane whatever its block-mates do: a vertex's numbers
-    // do not depend on its neighbours. (A block of one influence a lane still computes the update it does not
-    // take: returning before it, here or in the kernel, made the iteration's code 3–5 %
-    // slower on CesiumMan.)
+    // do not depend on its neighbours. (A block of one influence a lane still computes the
+    // update it does not take: returning before it, here or in the kernel, made the
+    // iteration's code 3–5 % slower on CesiumMan.)
     let mut count = zero;
     // By index, as the other loops over `slots` here (an iterator form of this loop,
     // `take(slots).skip(2)`, left a call to `nth` in the kernel).
