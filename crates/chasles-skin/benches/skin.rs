@@ -127,7 +127,7 @@ fn figure_1(c: &mut Criterion) {
 /// The skinning job against the per-method functions it replaced, side by side: every
 /// method at 10⁵ vertices on one thread, the palette made once (a job's own cost), into the
 /// packed layout (the kernels' own: no copy), an interleaved vertex buffer of 8 floats a
-/// vertex and split position/normal arrays (both through the stack stage).
+/// vertex and split position/normal arrays (both written in place by the kernels' stores).
 fn job(c: &mut Criterion) {
     use chasles_skin::fast::{Output, Palette, SkinningJob};
     let n = 100_000;

@@ -60,6 +60,7 @@ pub struct Vertex<const K: usize> {
 mod antipodes;
 #[cfg(target_arch = "x86_64")]
 mod avx2;
+mod dest;
 mod dib;
 mod job;
 mod lane;
@@ -69,6 +70,7 @@ mod qlb;
 mod skinner;
 
 use antipodes::Antipodes;
+use dest::Dest;
 pub use dib::dib;
 use job::for_chunks;
 pub use job::{Output, SkinningJob};
@@ -286,17 +288,20 @@ const CHUNK: usize = 4096;
 const STREAM_VERTICES: usize = 1 << 18;
 
 /// The 8-vertex SIMD kernel of a method, if this processor has one: it skins a prefix of
-/// whole blocks and returns how many vertices it did; with the flag (only where the output
-/// is 32-byte aligned, see [`simd_start`]) it writes by non-temporal stores.
-type SimdKernel<const K: usize, J, T> =
-    unsafe fn(&[Vertex<K>], &[J], &T, &mut [Out], bool) -> usize;
+/// whole blocks into the output (any layout, [`Dest`]) and returns how many vertices it
+/// did; with the flag (only where the output is packed and 32-byte aligned, see
+/// [`simd_start`]) it writes by non-temporal stores.
+type SimdKernel<const K: usize, J, T> = unsafe fn(&[Vertex<K>], &[J], &T, Dest<'_>, bool) -> usize;
 
 /// Where a SIMD kernel starts in a chunk's output `o`, and whether it streams: with
-/// `stream`, at the first vertex whose output is 32-byte aligned (24-byte vertices come back
-/// to an alignment every 4; an output that is not 8-byte aligned never reaches 32), the
-/// vertices before it left to the scalar kernel; else at 0, not streaming.
-fn simd_start(o: &[Out], stream: bool) -> (usize, bool) {
-    let addr = o.as_ptr() as usize;
+/// `stream` and a packed `o`, at the first vertex whose output is 32-byte aligned (24-byte
+/// vertices come back to an alignment every 4; an output that is not 8-byte aligned never
+/// reaches 32), the vertices before it left to the scalar kernel; else at 0, not streaming
+/// (interleaved and split outputs are never streamed: their vertices do not fill whole
+/// lines of one array).
+fn simd_start(o: &Dest<'_>, stream: bool) -> (usize, bool) {
+    let addr = o.addr();
+    let stream = stream && o.layout() == dest::Layout::Packed;
     match (0..4).find(|l| (addr + 24 * l).is_multiple_of(32)) {
         Some(lead) if stream && lead + 8 <= o.len() => (lead, true),
         _ => (0, false),
@@ -386,7 +391,7 @@ trait Kernel<const K: usize> {
     /// where `simd` says so (streaming its output where `stream` asks and the output's
     /// alignment allows), the scalar kernel for the rest.
     fn chunk(
-        o: &mut [Out],
+        mut o: Dest<'_>,
         v: &[Vertex<K>],
         joints: &[Self::Joint],
         table: &Self::Table,
@@ -395,20 +400,21 @@ trait Kernel<const K: usize> {
     ) {
         #[cfg(target_arch = "x86_64")]
         if let (true, Some(kernel), true) = (simd, Self::AVX2, v.len() >= 8) {
-            let (lead, streams) = simd_start(o, stream);
+            let (lead, streams) = simd_start(&o, stream);
             cover(v.len(), lead, streams, |from, to, s| {
                 // SAFETY: `simd` is only true when K is 4 or 8 and the processor has AVX2
                 // and FMA (see `simd`); the joint indices were checked against the joint
                 // count when the FastRig was built and `run` checked that `joints` has that
                 // many entries; `table` was made from `joints`; `o` is as long as `v`;
-                // `simd_start` streams only where `o[lead]` is 32-byte aligned.
-                unsafe { kernel(&v[from..to], joints, table, &mut o[from..to], s) }
+                // `simd_start` streams only where `o` is packed and `o[lead]` 32-byte
+                // aligned.
+                unsafe { kernel(&v[from..to], joints, table, o.range(from, to), s) }
             });
             return;
         }
         let _ = (simd, table, stream);
-        for (o, v) in o.iter_mut().zip(v) {
-            *o = Self::vertex(v, joints);
+        for (i, v) in v.iter().enumerate() {
+            o.put(i, Self::vertex(v, joints));
         }
     }
 }
@@ -468,8 +474,8 @@ fn run_with<const K: usize, F: Kernel<K>>(
     check(rig, joints.len(), out.vertices()?)?;
     let simd = simd(K);
     let big = rig.vertices.len() >= STREAM_VERTICES;
-    for_chunks(out, &rig.vertices, parallel, |_, o, v, direct| {
-        F::chunk(o, v, joints, table, simd, big && direct)
+    for_chunks(out, &rig.vertices, parallel, |_, o, v| {
+        F::chunk(o, v, joints, table, simd, big)
     });
     Ok(())
 }

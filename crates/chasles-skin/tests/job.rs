@@ -141,14 +141,14 @@ fn every_method_and_layout_through_the_job_is_the_direct_kernel_bit_for_bit() {
     let (rig, pose) = cesium();
     every_layout::<4>(&rig, &pose);
     every_layout::<8>(&rig, &pose);
-    // A mesh whose size is no multiple of the staging buffer or of the 8-vertex blocks.
+    // A mesh whose size is no multiple of a chunk (4096 vertices).
     let fox = chasles_models::FOX;
     let rig = gltf_load::load_slice(fox.bytes, fox.file).unwrap();
     let pose = Pose::animated(&rig, 2, 0.3).unwrap();
-    assert_ne!(rig.mesh.positions.len() % 256, 0);
+    assert_ne!(rig.mesh.positions.len() % 4096, 0);
     every_layout::<4>(&rig, &pose);
-    // 259 vertices: a staging buffer of 256 and a last stage of 3, fewer than a SIMD block
-    // (the job skins it as the chunk's last 8, as the packed output does).
+    // 259 vertices: 3 past the last whole block of 8, which every layout skins as the
+    // chunk's last 8 (a block overlapping the one before), with the same numbers.
     let mut small = rig.clone();
     let n = 259;
     let ends = small.influences.start[n] as usize;

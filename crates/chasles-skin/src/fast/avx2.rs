@@ -8,17 +8,22 @@
 //! root). LBS likewise: each vertex's K joint matrices are whole-register loads blended in
 //! two registers, eight blends transposed into lanes for the transformation (fused, it
 //! measured 1.1× the unfused kernel that matched the scalar one bit for bit). Both prefetch
-//! the input ahead and write their results back
-//! by a transpose and whole stores (one masked, `store_rows`). Log, QLB/SBS and DIB are in the submodules; DIB ends
-//! with DQS's transformation (`transform`).
+//! the input ahead and write their results back by transposes within register halves and
+//! each vertex's own stores, straight into the caller's layout — packed, an interleaved
+//! vertex buffer or split arrays (`store_rows`; each kernel's loop compiled once per
+//! layout, `Store`) — or, for big packed meshes, by non-temporal stores. Log, QLB/SBS and
+//! DIB are in the submodules; DIB ends with DQS's transformation (`transform`).
 
+use super::dest::Dest;
 use super::lane::{rotate, transform, two_over_norm2};
-use super::{Antipodes, Out, Vertex};
+use super::{Antipodes, Vertex};
 use std::arch::x86_64::*;
+use store::{by_layout, store_rows, Store};
 
 pub mod dib;
 pub mod log;
 pub mod qlb;
+mod store;
 
 /// How many vertices ahead the kernels prefetch their input (tried: 32, 64, 128).
 const PREFETCH: usize = 64;
@@ -121,74 +126,6 @@ fn transpose4_halves(r: [__m256; 4]) -> [__m256; 4] {
     ]
 }
 
-/// Writes eight vertices' results (six lane vectors) to `o[i … i + 7]` by a transpose, seven
-/// whole stores and one 6-lane masked store; or, with `stream` (where `o[i]` is 32-byte
-/// aligned), packed into six registers and written by non-temporal stores.
-#[inline]
-#[target_feature(enable = "avx2,fma")]
-unsafe fn store_rows(o: &mut [Out], i: usize, r: [__m256; 6], stream: bool) {
-    unsafe {
-        let z = _mm256_setzero_ps();
-        let rows = transpose8([r[0], r[1], r[2], r[3], r[4], r[5], z, z]);
-        let ob = o.as_mut_ptr().add(i) as *mut f32;
-        if stream {
-            stream_rows(ob, rows);
-            return;
-        }
-        // Rows 0–6 by whole stores, each overwriting the next vertex's first two floats with
-        // the zeros of its lanes 6–7 before that vertex's own store writes them; row 7 by a
-        // masked store, so nothing past the block is touched. One masked store per block,
-        // not eight: on AMD's Zen a masked store to memory is microcoded and slow; on an
-        // AMD EPYC (Zen 4) eight a block held LBS at 10⁶ vertices on one core to 93 M
-        // vertices/s, one a block lets it reach 165 (`chasles skin --bench`).
-        for (l, row) in rows[..7].iter().enumerate() {
-            _mm256_storeu_ps(ob.add(l * 6), *row);
-        }
-        let mask = _mm256_setr_epi32(-1, -1, -1, -1, -1, -1, 0, 0);
-        _mm256_maskstore_ps(ob.add(42), mask, rows[7]);
-    }
-}
-
-/// Eight vertices' rows (vertex l's six numbers in lanes 0–5 of `rows[l]`) packed back to
-/// back into six registers and written to the 32-byte aligned `ob` by non-temporal stores:
-/// the written lines go to memory without first being read into the cache (a store that
-/// misses reads its line first), so a mesh streamed from memory moves 72 bytes a vertex,
-/// not 96. The caller fences (`_mm_sfence`) before others read the output.
-#[inline]
-#[target_feature(enable = "avx2,fma")]
-unsafe fn stream_rows(ob: *mut f32, rows: [__m256; 8]) {
-    unsafe {
-        let at = |r: __m256, i: [i32; 8]| {
-            _mm256_permutevar8x32_ps(
-                r,
-                _mm256_setr_epi32(i[0], i[1], i[2], i[3], i[4], i[5], i[6], i[7]),
-            )
-        };
-        for h in 0..2 {
-            let [a, b, c, d] = [
-                rows[4 * h],
-                rows[4 * h + 1],
-                rows[4 * h + 2],
-                rows[4 * h + 3],
-            ];
-            // a0–a5 b0 b1 | b2–b5 c0–c3 | c4 c5 d0–d5
-            let p0 = _mm256_blend_ps::<0xC0>(a, at(b, [0, 0, 0, 0, 0, 0, 0, 1]));
-            let p1 = _mm256_blend_ps::<0xF0>(
-                at(b, [2, 3, 4, 5, 0, 0, 0, 0]),
-                at(c, [0, 0, 0, 0, 0, 1, 2, 3]),
-            );
-            let p2 = _mm256_blend_ps::<0xFC>(
-                at(c, [4, 5, 0, 0, 0, 0, 0, 0]),
-                at(d, [0, 0, 0, 1, 2, 3, 4, 5]),
-            );
-            let base = ob.add(24 * h);
-            _mm256_stream_ps(base, p0);
-            _mm256_stream_ps(base.add(8), p1);
-            _mm256_stream_ps(base.add(16), p2);
-        }
-    }
-}
-
 /// One vertex's blended dual quaternion `Σ ±wₖ q̂ₖ`, as [`blend_one`], with the
 /// antipodality signs looked up in the row of `signs` (a table of `joints` columns) for the
 /// vertex's pivot: each signed weight is two broadcast loads and an exclusive or, so the
@@ -231,27 +168,27 @@ pub unsafe fn dqs<const K: usize>(
     v: &[Vertex<K>],
     d: &[[f32; 8]],
     antipodes: &Antipodes,
-    o: &mut [Out],
+    o: Dest<'_>,
     stream: bool,
 ) -> usize {
     unsafe {
         let db = d.as_ptr() as *const f32;
         if antipodes.is_empty() {
-            dqs_blocks(v, o, stream, |vx| blend_one(vx, db))
+            by_layout!(o, S => dqs_blocks::<K, S>(v, o, stream, |vx| blend_one(vx, db)))
         } else {
             let (signs, joints) = (antipodes.signs.as_ptr(), antipodes.joints);
-            dqs_blocks(v, o, stream, |vx| blend_signed(vx, db, signs, joints))
+            by_layout!(o, S => dqs_blocks::<K, S>(v, o, stream, |vx| blend_signed(vx, db, signs, joints)))
         }
     }
 }
 
-/// The DQS kernel's body over whole blocks of eight, with `blend` giving each vertex's
-/// blended dual quaternion.
+/// The DQS kernel's body over whole blocks of eight for the layout `S`, with `blend` giving
+/// each vertex's blended dual quaternion.
 #[inline]
 #[target_feature(enable = "avx2,fma")]
-unsafe fn dqs_blocks<const K: usize>(
+unsafe fn dqs_blocks<const K: usize, S: Store>(
     v: &[Vertex<K>],
-    o: &mut [Out],
+    mut o: Dest<'_>,
     stream: bool,
     blend: impl Fn(&Vertex<K>) -> __m256,
 ) -> usize {
@@ -262,7 +199,7 @@ unsafe fn dqs_blocks<const K: usize>(
             let i = blk * 8;
             let [px, py, pz, nx, ny, nz, _, _] = load_head(v, i);
             let b = transpose8(eight(|l| blend(v.get_unchecked(i + l))));
-            store_rows(o, i, transform(b, [px, py, pz], [nx, ny, nz]), stream);
+            store_rows::<S>(&mut o, i, transform(b, [px, py, pz], [nx, ny, nz]), stream);
         }
         blocks * 8
     }
@@ -310,7 +247,19 @@ pub unsafe fn lbs<const K: usize>(
     v: &[Vertex<K>],
     m: &[[f32; 12]],
     _: &(),
-    o: &mut [Out],
+    o: Dest<'_>,
+    stream: bool,
+) -> usize {
+    unsafe { by_layout!(o, S => lbs_blocks::<K, S>(v, m, o, stream)) }
+}
+
+/// [`lbs`]'s loop for the layout `S`.
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn lbs_blocks<const K: usize, S: Store>(
+    v: &[Vertex<K>],
+    m: &[[f32; 12]],
+    mut o: Dest<'_>,
     stream: bool,
 ) -> usize {
     chasles::frame::align_frame();
@@ -359,7 +308,7 @@ pub unsafe fn lbs<const K: usize>(
             let mx = _mm256_blendv_ps(nx, mul(mx, inv), ok);
             let my = _mm256_blendv_ps(ny, mul(my, inv), ok);
             let mz = _mm256_blendv_ps(nz, mul(mz, inv), ok);
-            store_rows(o, i, [px, py, pz, mx, my, mz], stream);
+            store_rows::<S>(&mut o, i, [px, py, pz, mx, my, mz], stream);
         }
         blocks * 8
     }
@@ -385,7 +334,15 @@ mod tests {
             let mut out: Vec<Out> = vec![[f32::NAN; 6]; 1003];
             // SAFETY: the processor has AVX2 and FMA (`simd`), the synthetic rig's joint
             // indices are below 54 and `out` is as long as the vertices.
-            let done = unsafe { super::lbs(rig.vertices(), &m, &(), &mut out, false) };
+            let done = unsafe {
+                super::lbs(
+                    rig.vertices(),
+                    &m,
+                    &(),
+                    crate::fast::dest::Dest::packed(&mut out),
+                    false,
+                )
+            };
             assert_eq!(done, 1000);
             for (v, o) in rig.vertices().iter().zip(&out[..done]) {
                 let want = lbs_vertex(v, &m);

@@ -2,13 +2,14 @@
 //! [`Palette`] for the pose, and buffers the caller owns ([`Output`]) — in the manner of
 //! ozz-animation's `SkinningJob`. Nothing is allocated while it runs: the kernels write
 //! straight into a packed output (position then normal, 6 floats a vertex: their own
-//! layout), and into any other layout through a small buffer on the stack (256 vertices)
-//! copied out as it fills. Kavan et al. 2006, §6.
+//! layout), and into an interleaved vertex buffer or split arrays by their own stores, each
+//! vertex's six floats and no other ([`super::dest`]). Kavan et al. 2006, §6.
 
+use super::dest::Dest;
 use super::palette::{Joints, Palette};
 use super::qlb::{sbs_into, QlbKernel};
 use super::{
-    dib::DibKernel, log::LogKernel, run_with, DqsKernel, FastRig, LbsKernel, Out, Vertex, CHUNK,
+    dib::DibKernel, log::LogKernel, run_with, DqsKernel, FastRig, LbsKernel, Vertex, CHUNK,
 };
 use crate::error::{same_count, Result, SkinError};
 use bytemuck::cast_slice;
@@ -68,28 +69,22 @@ impl Output<'_> {
     }
 }
 
-/// Vertices staged on the stack between a kernel and a non-packed output: a multiple of
-/// the SIMD kernels' 8-vertex block, 6 KB.
-const STAGE: usize = 256;
-
-/// `chunk(first, out, vertices, direct)` over chunks of [`CHUNK`] vertices into `out`
-/// (`first`: the index of the chunk's first vertex; `direct`: whether `out` is the caller's
-/// packed buffer itself, which a kernel may stream into, rather than the stack stage), on
-/// all threads when `parallel`. `out` holds as many vertices as `vertices` (checked by the
-/// caller).
+/// `chunk(first, out, vertices)` over chunks of [`CHUNK`] vertices into `out` (`first`: the
+/// index of the chunk's first vertex; `out`: the chunk's part of the caller's buffers, in
+/// their layout, which the kernels write straight into), on all threads when `parallel`.
+/// `out` holds as many vertices as `vertices` (checked by the caller).
 pub(super) fn for_chunks<const K: usize>(
     out: Output<'_>,
     vertices: &[Vertex<K>],
     parallel: bool,
-    chunk: impl Fn(usize, &mut [Out], &[Vertex<K>], bool) + Sync,
+    chunk: impl Fn(usize, Dest<'_>, &[Vertex<K>]) + Sync,
 ) {
     if vertices.is_empty() {
         return; // and no chunk size to compute from a stride
     }
     match out {
         Output::Packed(o) => {
-            let each =
-                |(c, (o, v)): (usize, (&mut [Out], &[Vertex<K>]))| chunk(c * CHUNK, o, v, true);
+            let each = |(c, (o, v))| chunk(c * CHUNK, Dest::packed(o), v);
             if parallel {
                 o.par_chunks_mut(CHUNK)
                     .zip(vertices.par_chunks(CHUNK))
@@ -102,21 +97,8 @@ pub(super) fn for_chunks<const K: usize>(
                     .for_each(each);
             }
         }
-        Output::Interleaved { data, stride: 6 } => for_chunks(
-            Output::Packed(bytemuck::cast_slice_mut(data)),
-            vertices,
-            parallel,
-            chunk,
-        ),
         Output::Interleaved { data, stride } => {
-            let each = |(c, (d, v)): (usize, (&mut [f32], &[Vertex<K>]))| {
-                let stages = d.chunks_mut(STAGE * stride);
-                staged(c * CHUNK, v, &chunk, stages, |d, o| {
-                    for (d, x) in d.chunks_exact_mut(stride).zip(o) {
-                        d[..6].copy_from_slice(x);
-                    }
-                })
-            };
+            let each = |(c, (d, v))| chunk(c * CHUNK, Dest::interleaved(d, stride), v);
             if parallel {
                 data.par_chunks_mut(CHUNK * stride)
                     .zip(vertices.par_chunks(CHUNK))
@@ -130,17 +112,7 @@ pub(super) fn for_chunks<const K: usize>(
             }
         }
         Output::Split { positions, normals } => {
-            type Part<'p, const K: usize> =
-                ((&'p mut [[f32; 3]], &'p mut [[f32; 3]]), &'p [Vertex<K>]);
-            let each = |(c, ((p, n), v)): (usize, Part<'_, K>)| {
-                let stages = p.chunks_mut(STAGE).zip(n.chunks_mut(STAGE));
-                staged(c * CHUNK, v, &chunk, stages, |(p, n), o| {
-                    for ((p, n), x) in p.iter_mut().zip(n.iter_mut()).zip(o) {
-                        *p = [x[0], x[1], x[2]];
-                        *n = [x[3], x[4], x[5]];
-                    }
-                })
-            };
+            let each = |(c, ((p, n), v))| chunk(c * CHUNK, Dest::split(p, n), v);
             if parallel {
                 positions
                     .par_chunks_mut(CHUNK)
@@ -157,34 +129,6 @@ pub(super) fn for_chunks<const K: usize>(
                     .for_each(each);
             }
         }
-    }
-}
-
-/// One chunk through a stack buffer of [`STAGE`] vertices: each stage of `vertices` skinned
-/// into the buffer, then handed with the matching stage of the destination (`stages`, one
-/// item per [`STAGE`] vertices) to `put`. A last stage of fewer than 8 vertices in a chunk
-/// of 8 or more is skinned as the chunk's last 8 (only its own handed on): alone it would
-/// go through the scalar kernel, and a vertex's numbers would depend on the output's layout.
-#[inline(always)]
-fn staged<const K: usize, S>(
-    first: usize,
-    vertices: &[Vertex<K>],
-    chunk: &impl Fn(usize, &mut [Out], &[Vertex<K>], bool),
-    stages: impl Iterator<Item = S>,
-    mut put: impl FnMut(S, &[Out]),
-) {
-    let mut buf = [[0f32; 6]; STAGE];
-    let n = vertices.len();
-    for ((s, v), dst) in vertices.chunks(STAGE).enumerate().zip(stages) {
-        if v.len() < 8 && n >= 8 {
-            let o = &mut buf[..8];
-            chunk(first + n - 8, o, &vertices[n - 8..], false);
-            put(dst, &o[8 - v.len()..]);
-            continue;
-        }
-        let o = &mut buf[..v.len()];
-        chunk(first + s * STAGE, o, v, false);
-        put(dst, o);
     }
 }
 

@@ -157,29 +157,29 @@ pub(super) fn sbs_into<const K: usize>(
     let simd = super::simd(K);
     let cluster = clusters.of_vertex();
     let big = n >= super::STREAM_VERTICES;
-    for_chunks(out, rig.vertices(), parallel, |first, o, v, direct| {
+    for_chunks(out, rig.vertices(), parallel, |first, mut o, v| {
         let cl = &cluster[first..first + v.len()];
         #[cfg(target_arch = "x86_64")]
         if simd && v.len() >= 8 {
-            let (lead, streams) = super::simd_start(o, big && direct);
+            let (lead, streams) = super::simd_start(&o, big);
             super::cover(v.len(), lead, streams, |from, to, s| {
                 // SAFETY: `simd` holds only for K = 4 or 8 on a processor with AVX2 and
                 // FMA; the joint indices were checked when the rig was built and `check`
                 // matched `rows` to the joint count; every cluster index is below
                 // `clusters.len()`, which is `centres.len()` (checked above); `table` was
                 // made from `rows`; `o` is as long as `v` and `cl`; `simd_start` streams only
-                // where `o[lead]` is 32-byte aligned.
+                // where `o` is packed and `o[lead]` 32-byte aligned.
                 unsafe {
-                    let (v, cl, o) = (&v[from..to], &cl[from..to], &mut o[from..to]);
+                    let (v, cl, o) = (&v[from..to], &cl[from..to], o.range(from, to));
                     super::avx2::qlb::sbs(v, rows, table, cl, centres, o, s)
                 }
             });
             return;
         }
-        let _ = (simd, big, direct);
-        for ((o, v), c) in o.iter_mut().zip(v).zip(cl) {
+        let _ = (simd, big);
+        for (i, (v, c)) in v.iter().zip(cl).enumerate() {
             let c = &centres[*c as usize];
-            *o = about(v, &blend(v, rows), [c[0], c[1], c[2]]);
+            o.put(i, about(v, &blend(v, rows), [c[0], c[1], c[2]]));
         }
     });
     Ok(())
@@ -244,7 +244,7 @@ mod tests {
             // SAFETY: AVX2 and FMA are present (`simd`), the synthetic rig's joint indices
             // are below 54 = f.len(), the table is empty or made from `f`.
             let looked_up = super::super::antipodes::both_ways(&f, |table, out| unsafe {
-                super::super::avx2::qlb::qlb(rig.vertices(), &f, table, out, false)
+                super::super::avx2::qlb::qlb(rig.vertices(), &f, table, out.into(), false)
             });
             // The two ways to the signs gave the same numbers, bit for bit (`both_ways`),
             // and the SIMD kernel (fused multiply-adds) is the scalar one to rounding.

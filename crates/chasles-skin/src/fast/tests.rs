@@ -3,6 +3,7 @@
 
 use super::*;
 use crate::synthetic;
+use dest::Dest;
 
 /// A SIMD kernel's output on the whole blocks of `rig` (checked to be all of them but
 /// the last few vertices), and the scalar kernel's on the same vertices.
@@ -21,7 +22,7 @@ fn both<const K: usize, F: Kernel<K>>(
             &rig.vertices,
             joints,
             &F::table(joints, n),
-            &mut simd,
+            Dest::packed(&mut simd),
             false,
         )
     };
@@ -98,7 +99,7 @@ fn the_simd_kernels_take_8_influences() {
             &table,
             cl.of_vertex(),
             &padded,
-            &mut o,
+            Dest::packed(&mut o),
             false,
         )
     };
@@ -116,9 +117,11 @@ fn the_simd_kernels_take_8_influences() {
 }
 
 /// Every SIMD kernel writes the same numbers by non-temporal stores (into 32-byte aligned
-/// output) as by ordinary ones, bit for bit.
+/// output) as by ordinary ones, and into interleaved buffers (strides 7, 8 and 11) and
+/// split arrays, bit for bit; in those it writes each vertex's six floats and nothing
+/// else (the other floats of a vertex, and everything past the blocks, keep their marks).
 #[test]
-fn streamed_output_is_the_stored_output() {
+fn every_layout_gets_the_stored_output_and_nothing_else_is_written() {
     if !simd(4) {
         eprintln!("no AVX2+FMA here: nothing to compare");
         return;
@@ -132,32 +135,64 @@ fn streamed_output_is_the_stored_output() {
     let rows = qlb::rows(&jt.dual_quats, rig.centres());
     let cl = clusters(&rig);
     let padded = qlb::padded(&cl.centres(&jt.dual_quats, rig.centres(), false));
-    let sbs = |v: &[Vertex<4>], rows: &[qlb::Row], table: &Antipodes, o: &mut [Out], s| {
+    let sbs = |v: &[Vertex<4>], rows: &[qlb::Row], table: &Antipodes, o: Dest<'_>, s| {
         // SAFETY: as in `both`, and every cluster index is below `padded.len()`.
         unsafe { avx2::qlb::sbs(v, rows, table, cl.of_vertex(), &padded, o, s) }
     };
     let mut buf = vec![[f32::NAN; 6]; n + 4];
-    let (lead, streams) = simd_start(&buf, true);
+    let (lead, streams) = simd_start(&Dest::packed(&mut buf), true);
     assert!(
         streams,
         "a heap buffer is 8-byte aligned: some vertex of the first four is 32"
     );
-    let mut run = |k: &dyn Fn(&mut [Out], bool) -> usize| {
+    let mark = f32::from_bits(0x7fc0_1234); // a NaN no kernel writes
+    let marked = |x: &f32| x.to_bits() == mark.to_bits();
+    let mut run = |k: &dyn Fn(Dest<'_>, bool) -> usize| {
         let stored = {
             let mut o = vec![[f32::NAN; 6]; n];
-            let done = k(&mut o, false);
+            let done = k(Dest::packed(&mut o), false);
             o.truncate(done);
             o
         };
+        let done = stored.len();
         let o = &mut buf[lead..lead + n];
-        o.fill([f32::NAN; 6]);
-        let done = k(o, true);
+        o.fill([mark; 6]);
+        assert_eq!(k(Dest::packed(o), true), done);
         fence_streams();
         assert_eq!(&o[..done], &stored[..], "streamed output differs");
         assert!(
-            o[done..].iter().flatten().all(|x| x.is_nan()),
+            o[done..].iter().flatten().all(marked),
             "wrote past the blocks"
         );
+        for stride in [7, 8, 11] {
+            let mut d = vec![mark; n * stride];
+            assert_eq!(k(Dest::interleaved(&mut d, stride), false), done);
+            for (l, v) in d.chunks_exact(stride).enumerate() {
+                if l < done {
+                    assert_eq!(v[..6], stored[l], "stride {stride}, vertex {l}");
+                    assert!(
+                        v[6..].iter().all(marked),
+                        "stride {stride}: wrote past vertex {l}"
+                    );
+                } else {
+                    assert!(
+                        v.iter().all(marked),
+                        "stride {stride}: wrote past the blocks"
+                    );
+                }
+            }
+        }
+        let (mut p, mut nr) = (vec![[mark; 3]; n], vec![[mark; 3]; n]);
+        assert_eq!(k(Dest::split(&mut p, &mut nr), false), done);
+        for (l, s) in stored.iter().enumerate() {
+            assert_eq!(
+                (&p[l][..], &nr[l][..]),
+                (&s[..3], &s[3..]),
+                "split, vertex {l}"
+            );
+        }
+        let rest = p[done..].iter().chain(&nr[done..]).flatten();
+        assert!(rest.clone().all(marked), "split: wrote past the blocks");
     };
     let signs = Antipodes::new(&d8, n);
     let qsigns = Antipodes::new(&rows, n);
@@ -176,7 +211,7 @@ fn streamed_output_is_the_stored_output() {
 
 /// A mesh big enough to stream ([`STREAM_VERTICES`]): every method's job writes the same
 /// numbers into a packed output (streamed, its first vertices and last few by the scalar
-/// kernel) as into an interleaved one (through the stack stage, not streamed), bit for bit.
+/// kernel) as into an interleaved one (written in place, not streamed), bit for bit.
 #[test]
 fn big_meshes_stream_the_same_numbers() {
     use crate::Method;

@@ -12,9 +12,12 @@
 //! vertex on sorted input, and on the rigs in their own order CesiumMan got slower and the
 //! Fox at most 5–8 % faster, inside the machine's noise (2026-12-03, best of 30 runs each).
 
+use super::super::dest::Dest;
 use super::super::lane::dib::{convex, dib as blend};
-use super::super::{Out, Vertex};
-use super::{eight, load_head, store_rows, transform, transpose4_halves, transpose8};
+use super::super::Vertex;
+use super::{
+    by_layout, eight, load_head, store_rows, transform, transpose4_halves, transpose8, Store,
+};
 use std::arch::x86_64::*;
 
 /// DIB for the first `v.len() / 8 * 8` vertices with the joints' dual quaternions as
@@ -30,7 +33,22 @@ pub unsafe fn dib<const K: usize>(
     v: &[Vertex<K>],
     d: &[[f32; 8]],
     _: &(),
-    o: &mut [Out],
+    o: Dest<'_>,
+    stream: bool,
+) -> usize {
+    unsafe { by_layout!(o, S => dib_blocks::<K, S>(v, d, o, stream)) }
+}
+
+/// [`dib`]'s loop for the layout `S`, a function of its own (each layout's frame its own):
+/// the three layouts' loops inlined into [`dib`] ran 2 % slower (best of runs, 10⁵
+/// vertices of 4 influences, one core, `examples/dib_influences`: 20.5–20.6 before the
+/// layouts, 20.1–20.2 inlined, 20.8 not).
+#[inline(never)]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn dib_blocks<const K: usize, S: Store>(
+    v: &[Vertex<K>],
+    d: &[[f32; 8]],
+    mut o: Dest<'_>,
     stream: bool,
 ) -> usize {
     chasles::frame::align_frame();
@@ -61,7 +79,7 @@ pub unsafe fn dib<const K: usize>(
                 q[k] = eight(|c| _mm256_blendv_ps(identity[c], t[c], used[k]));
             }
             let b = blend(&q, &w, slots);
-            store_rows(o, i, transform(b, [px, py, pz], [nx, ny, nz]), stream);
+            store_rows::<S>(&mut o, i, transform(b, [px, py, pz], [nx, ny, nz]), stream);
         }
         blocks * 8
     }
@@ -70,7 +88,7 @@ pub unsafe fn dib<const K: usize>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fast::{simd, Kernel};
+    use crate::fast::{simd, Kernel, Out};
     use crate::skinning::DIB_PRECISION;
     use crate::synthetic;
     use chasles::{DualQuat, Quat, Vec3};
@@ -110,7 +128,15 @@ mod tests {
         // SAFETY: AVX2 and FMA are present (`simd`), the rig's joint indices are below
         // d.len() (checked by its constructor against the same count), `out` is as long as
         // the vertices.
-        let done = unsafe { dib(rig.vertices(), d, &(), &mut out, false) };
+        let done = unsafe {
+            dib(
+                rig.vertices(),
+                d,
+                &(),
+                crate::fast::dest::Dest::packed(&mut out),
+                false,
+            )
+        };
         assert_eq!(done, n / 8 * 8);
         let each = |(v, o): (&Vertex<K>, &Out)| {
             let want = <crate::fast::dib::DibKernel as Kernel<K>>::vertex(v, d);
@@ -192,7 +218,7 @@ mod tests {
         let mut out = vec![[f32::NAN; 6]; v.len()];
         // SAFETY: AVX2 and FMA are present, the joint indices are below d.len() (both
         // checked above), `out` is as long as the vertices.
-        let done = unsafe { dib(v, d, &(), &mut out, false) };
+        let done = unsafe { dib(v, d, &(), crate::fast::dest::Dest::packed(&mut out), false) };
         out.truncate(done);
         out
     }
@@ -345,7 +371,15 @@ mod tests {
             let mut out = vec![[f32::NAN; 6]; 800];
             // SAFETY: AVX2 and FMA are present, joint indices are below 55 = d.len(),
             // `out` is as long as the vertices.
-            unsafe { dib(rig.vertices(), d, &(), &mut out, false) };
+            unsafe {
+                dib(
+                    rig.vertices(),
+                    d,
+                    &(),
+                    crate::fast::dest::Dest::packed(&mut out),
+                    false,
+                )
+            };
             out
         };
         let want = run(&d);

@@ -15,9 +15,9 @@
 //! algebra's `cross` and `horner` — the generic `exp_twist` inlined here ran 6–9 % slower
 //! (measured side by side with `examples/best_of`), so this kernel keeps its own order.
 
+use super::super::dest::Dest;
 use super::super::lane::{cross, horner, EXP_A as A, EXP_B as B, EXP_C as C};
-use super::super::Out;
-use super::{eight, load_head, store_rows, transpose8};
+use super::{by_layout, eight, load_head, store_rows, transpose8, Store};
 use crate::fast::Vertex;
 use std::arch::x86_64::*;
 
@@ -49,7 +49,19 @@ pub unsafe fn log<const K: usize>(
     v: &[Vertex<K>],
     t: &[[f32; 8]],
     _: &(),
-    o: &mut [Out],
+    o: Dest<'_>,
+    stream: bool,
+) -> usize {
+    unsafe { by_layout!(o, S => log_blocks::<K, S>(v, t, o, stream)) }
+}
+
+/// [`log`]'s loop for the layout `S`.
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn log_blocks<const K: usize, S: Store>(
+    v: &[Vertex<K>],
+    t: &[[f32; 8]],
+    mut o: Dest<'_>,
     stream: bool,
 ) -> usize {
     chasles::frame::align_frame();
@@ -83,7 +95,7 @@ pub unsafe fn log<const K: usize>(
             let f = [f(0), f(1), f(2)];
             let m = |c: usize| add(n[c], cross(f, c));
             let m = [m(0), m(1), m(2)];
-            store_rows(o, i, [q[0], q[1], q[2], m[0], m[1], m[2]], stream);
+            store_rows::<S>(&mut o, i, [q[0], q[1], q[2], m[0], m[1], m[2]], stream);
         }
         blocks * 8
     }
@@ -139,7 +151,15 @@ mod tests {
         let mut out = vec![[f32::NAN; 6]; 1000];
         // SAFETY: AVX2 and FMA are present (`simd`), the synthetic rig's joint indices are
         // below 54 = t.len(), `out` is as long as the vertices.
-        let done = unsafe { log(rig.vertices(), &t, &(), &mut out, false) };
+        let done = unsafe {
+            log(
+                rig.vertices(),
+                &t,
+                &(),
+                crate::fast::dest::Dest::packed(&mut out),
+                false,
+            )
+        };
         assert_eq!(done, 1000);
         for (v, o) in rig.vertices().iter().zip(&out) {
             let want = <crate::fast::log::LogKernel as crate::fast::Kernel<4>>::vertex(v, &t);

@@ -6,8 +6,11 @@
 //! lanes and moved about their centres lane-parallel, with fused multiply-adds (the scalar
 //! kernel's formulas, so the two agree to rounding).
 
-use super::super::{real_dot, Antipodes, Out, Vertex};
-use super::{eight, load_head, rotate, store_rows, transpose8, two_over_norm2, PREFETCH};
+use super::super::dest::Dest;
+use super::super::{real_dot, Antipodes, Vertex};
+use super::{
+    by_layout, eight, load_head, rotate, store_rows, transpose8, two_over_norm2, Store, PREFETCH,
+};
 use std::arch::x86_64::*;
 
 /// Floats per joint row (`super::super::qlb::Row`).
@@ -83,10 +86,10 @@ pub unsafe fn qlb<const K: usize>(
     v: &[Vertex<K>],
     rows: &[[f32; ROW]],
     table: &Antipodes,
-    o: &mut [Out],
+    o: Dest<'_>,
     stream: bool,
 ) -> usize {
-    unsafe { blocks::<K, false>(v, rows, table, &[], &[], o, stream) }
+    unsafe { by_layout!(o, S => blocks::<K, false, S>(v, rows, table, &[], &[], o, stream)) }
 }
 
 /// SBS for the first `v.len() / 8 * 8` vertices, each about its cluster's centre
@@ -102,24 +105,25 @@ pub unsafe fn sbs<const K: usize>(
     table: &Antipodes,
     cluster: &[u32],
     centres: &[[f32; 4]],
-    o: &mut [Out],
+    o: Dest<'_>,
     stream: bool,
 ) -> usize {
-    unsafe { blocks::<K, true>(v, rows, table, cluster, centres, o, stream) }
+    unsafe { by_layout!(o, S => blocks::<K, true, S>(v, rows, table, cluster, centres, o, stream)) }
 }
 
 /// The body over whole blocks of eight: each vertex's blended row, and its centre — its
 /// cluster's with `SBS` (`centres[cluster[i]]`), else the blend of its joints' origins.
-/// Generic over `SBS` rather than taking the blend as a closure: the closure stayed a call.
+/// Generic over `SBS` rather than taking the blend as a closure: the closure stayed a call;
+/// and over the output's layout `S`.
 #[inline]
 #[target_feature(enable = "avx2,fma")]
-unsafe fn blocks<const K: usize, const SBS: bool>(
+unsafe fn blocks<const K: usize, const SBS: bool, S: Store>(
     v: &[Vertex<K>],
     rows: &[[f32; ROW]],
     table: &Antipodes,
     cluster: &[u32],
     centres: &[[f32; 4]],
-    o: &mut [Out],
+    mut o: Dest<'_>,
     stream: bool,
 ) -> usize {
     chasles::frame::align_frame();
@@ -171,8 +175,8 @@ unsafe fn blocks<const K: usize, const SBS: bool>(
             let rotate = |x| rotate(w0, v0, s, x);
             let d = rotate([sub(px, cx), sub(py, cy), sub(pz, cz)]);
             let n = rotate([nx, ny, nz]);
-            store_rows(
-                o,
+            store_rows::<S>(
+                &mut o,
                 i,
                 [
                     add(y[0], d[0]),

@@ -1,0 +1,196 @@
+//! Where the SIMD kernels' results go: eight vertices' six lane vectors stored into the
+//! caller's layout (packed, an interleaved vertex buffer, split arrays: [`Dest`]) by
+//! transposes within register halves and each vertex's own stores, or streamed past the
+//! cache for big packed meshes; each kernel's loop compiled once per layout ([`Store`],
+//! [`by_layout!`]). Kavan et al. 2006, §6: the skinned vertices go to the buffer that draws
+//! them, with no copy between.
+
+use super::super::dest::{Dest, Layout};
+use super::{transpose4_halves, transpose8};
+use std::arch::x86_64::*;
+
+/// An output layout fixed when a kernel's loop is compiled ([`Layout`]): each SIMD kernel's
+/// loop is made once per layout ([`by_layout!`]), so the packed loop carries none of the
+/// other layouts' stores. One loop with the layout chosen per block held the packed output
+/// of LBS and DQS 8 % slower (10⁵ vertices, one core, best of 200 runs: LBS 230 → 209, DQS
+/// 247 → 227 M vertices/s), though the branch always went the same way.
+pub(super) trait Store {
+    /// The layout.
+    const LAYOUT: Layout;
+}
+/// [`Layout::Packed`] for [`Store`].
+pub(super) struct Packed;
+/// [`Layout::Interleaved`] for [`Store`].
+pub(super) struct Interleaved;
+/// [`Layout::Split`] for [`Store`].
+pub(super) struct Split;
+impl Store for Packed {
+    const LAYOUT: Layout = Layout::Packed;
+}
+impl Store for Interleaved {
+    const LAYOUT: Layout = Layout::Interleaved;
+}
+impl Store for Split {
+    const LAYOUT: Layout = Layout::Split;
+}
+
+/// `$body` with the type `$s` naming the [`Store`] of `$o`'s layout: a kernel's loop
+/// monomorphized for each layout, the one for `$o` run.
+macro_rules! by_layout {
+    ($o:expr, $s:ident => $body:expr) => {
+        match $o.layout() {
+            $crate::fast::dest::Layout::Packed => {
+                type $s = $crate::fast::avx2::store::Packed;
+                $body
+            }
+            $crate::fast::dest::Layout::Interleaved => {
+                type $s = $crate::fast::avx2::store::Interleaved;
+                $body
+            }
+            $crate::fast::dest::Layout::Split => {
+                type $s = $crate::fast::avx2::store::Split;
+                $body
+            }
+        }
+    };
+}
+pub(super) use by_layout;
+
+/// Writes eight vertices' results (six lane vectors) to vertices `i … i + 7` of `o`, in its
+/// layout `S`: by [`store_apart`], each vertex's six floats exactly (so an interleaved
+/// buffer's other attributes, and anything past the block, are not touched); or, with
+/// `stream` (a packed `o` whose vertex i is 32-byte aligned), by a full transpose packed
+/// into six registers and written by non-temporal stores ([`stream_rows`]).
+///
+/// The packed output once went by a full 8×8 transpose (24 shuffles a block), seven whole
+/// stores each overwriting the next vertex's first two floats, and one 6-lane masked store
+/// (on AMD's Zen a masked store to memory is microcoded: eight a block held LBS at 10⁶
+/// vertices to 93 M vertices/s, one a block let it reach 165). [`store_apart`]'s 4×4
+/// transposes within halves (12 shuffles) and sixteen narrow stores measured faster on the
+/// same AMD EPYC (Zen 4; 10⁵ vertices, one core, best of 200 runs): LBS 230 → 246–250, DQS
+/// 248 → 267–269 M vertices/s.
+///
+/// # Safety
+/// `i + 8 <= o.len()`, `o` of layout `S`; `stream` only for a packed `o` whose vertex `i` is
+/// 32-byte aligned.
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+pub(super) unsafe fn store_rows<S: Store>(
+    o: &mut Dest<'_>,
+    i: usize,
+    r: [__m256; 6],
+    stream: bool,
+) {
+    unsafe {
+        debug_assert!(i + 8 <= o.len() && o.layout() == S::LAYOUT);
+        let (ob, nb) = o.at(i);
+        if S::LAYOUT == Layout::Packed && stream {
+            let z = _mm256_setzero_ps();
+            stream_rows(ob, transpose8([r[0], r[1], r[2], r[3], r[4], r[5], z, z]));
+            return;
+        }
+        store_apart(ob, nb, o.stride(), S::LAYOUT == Layout::Split, r);
+    }
+}
+
+/// Eight vertices' results (six lane vectors: x, y, z, nx, ny, nz) stored where vertex l's
+/// position is `p + l·stride` and its normal `n + l·stride`, writing those 6 floats and no
+/// other. Each half of a register holds four vertices after 4×4 transposes
+/// ([`transpose4_halves`]), so no lane crosses a half before its store. Packed and
+/// interleaved (`n = p + 3`, `stride ≥ 6`): x y z nx by one 16-byte store, ny nz by one
+/// 8-byte store.
+/// Split (`stride = 3`): x y z and nx ny nz each by a 16-byte store whose fourth float lands
+/// on the next vertex's first, which that vertex's own store (the next in program order)
+/// then writes; the last vertex by an 8-byte and a 4-byte store, so nothing past the block
+/// is touched.
+///
+/// # Safety
+/// The 6 floats of each of the eight vertices must be writable.
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn store_apart(p: *mut f32, n: *mut f32, stride: usize, split: bool, r: [__m256; 6]) {
+    unsafe {
+        // Vertex l's four floats from the halves: l < 4 low, else high.
+        let half = |t: &[__m256; 4], l: usize| {
+            if l < 4 {
+                _mm256_castps256_ps128(t[l])
+            } else {
+                _mm256_extractf128_ps::<1>(t[l - 4])
+            }
+        };
+        let two = |at: *mut f32, x: __m128| _mm_store_sd(at as *mut f64, _mm_castps_pd(x));
+        if split {
+            let a = transpose4_halves([r[0], r[1], r[2], r[3]]);
+            let b = transpose4_halves([r[3], r[4], r[5], r[0]]);
+            for (t, base) in [(&a, p), (&b, n)] {
+                for l in 0..7 {
+                    _mm_storeu_ps(base.add(3 * l), half(t, l));
+                }
+                let last = half(t, 7);
+                two(base.add(21), last);
+                _mm_store_ss(base.add(23), _mm_movehl_ps(last, last));
+            }
+            return;
+        }
+        let a = transpose4_halves([r[0], r[1], r[2], r[3]]);
+        // ny nz of vertices (0, 1), (2, 3) in the low halves, (4, 5), (6, 7) in the high.
+        let lo = _mm256_unpacklo_ps(r[4], r[5]);
+        let hi = _mm256_unpackhi_ps(r[4], r[5]);
+        let yz = [
+            _mm256_castps256_ps128(lo),
+            _mm256_castps256_ps128(hi),
+            _mm256_extractf128_ps::<1>(lo),
+            _mm256_extractf128_ps::<1>(hi),
+        ];
+        for l in 0..8 {
+            _mm_storeu_ps(p.add(l * stride), half(&a, l));
+        }
+        for (k, t) in yz.iter().enumerate() {
+            two(p.add(2 * k * stride + 4), *t);
+            _mm_storeh_pd(
+                p.add((2 * k + 1) * stride + 4) as *mut f64,
+                _mm_castps_pd(*t),
+            );
+        }
+    }
+}
+
+/// Eight vertices' rows (vertex l's six numbers in lanes 0–5 of `rows[l]`) packed back to
+/// back into six registers and written to the 32-byte aligned `ob` by non-temporal stores:
+/// the written lines go to memory without first being read into the cache (a store that
+/// misses reads its line first), so a mesh streamed from memory moves 72 bytes a vertex,
+/// not 96. The caller fences (`_mm_sfence`) before others read the output.
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn stream_rows(ob: *mut f32, rows: [__m256; 8]) {
+    unsafe {
+        let at = |r: __m256, i: [i32; 8]| {
+            _mm256_permutevar8x32_ps(
+                r,
+                _mm256_setr_epi32(i[0], i[1], i[2], i[3], i[4], i[5], i[6], i[7]),
+            )
+        };
+        for h in 0..2 {
+            let [a, b, c, d] = [
+                rows[4 * h],
+                rows[4 * h + 1],
+                rows[4 * h + 2],
+                rows[4 * h + 3],
+            ];
+            // a0–a5 b0 b1 | b2–b5 c0–c3 | c4 c5 d0–d5
+            let p0 = _mm256_blend_ps::<0xC0>(a, at(b, [0, 0, 0, 0, 0, 0, 0, 1]));
+            let p1 = _mm256_blend_ps::<0xF0>(
+                at(b, [2, 3, 4, 5, 0, 0, 0, 0]),
+                at(c, [0, 0, 0, 0, 0, 1, 2, 3]),
+            );
+            let p2 = _mm256_blend_ps::<0xFC>(
+                at(c, [4, 5, 0, 0, 0, 0, 0, 0]),
+                at(d, [0, 0, 0, 1, 2, 3, 4, 5]),
+            );
+            let base = ob.add(24 * h);
+            _mm256_stream_ps(base, p0);
+            _mm256_stream_ps(base.add(8), p1);
+            _mm256_stream_ps(base.add(16), p2);
+        }
+    }
+}
