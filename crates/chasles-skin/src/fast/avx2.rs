@@ -162,7 +162,7 @@ unsafe fn blend_signed<const K: usize>(
 /// # Safety
 /// The processor must have AVX2 and FMA, K must be 4 or 8, every joint index in `v` must be below
 /// `d.len()`, `antipodes` must be empty or made from `d`, and `o.len() >= v.len()`; with
-/// `stream`, `o` must be 32-byte aligned (see [`store_rows`]).
+/// `stream`, `o` must be packed and 32-byte aligned (see [`store_rows`]).
 #[target_feature(enable = "avx2,fma")]
 pub unsafe fn dqs<const K: usize>(
     v: &[Vertex<K>],

@@ -35,10 +35,6 @@ pub(super) struct Dest<'a> {
     _out: PhantomData<&'a mut [f32]>,
 }
 
-// SAFETY: a Dest is a unique borrow of the caller's f32 slices, which may be sent to
-// another thread.
-unsafe impl Send for Dest<'_> {}
-
 impl<'a> Dest<'a> {
     /// The kernels' own layout.
     pub(super) fn packed(o: &'a mut [Out]) -> Self {
@@ -129,10 +125,10 @@ impl<'a> Dest<'a> {
     /// Vertex `i`'s position and normal pointers, for the SIMD kernels' stores.
     ///
     /// # Safety
-    /// `i <= len` (a pointer one vertex past the end may be formed, not written).
+    /// `i < len`.
     pub(super) unsafe fn at(&self, i: usize) -> (*mut f32, *mut f32) {
-        debug_assert!(i <= self.len);
-        // SAFETY: within (or one vertex past) the slices the Dest was made from.
+        debug_assert!(i < self.len);
+        // SAFETY: vertex i's floats lie in the slices the Dest was made from.
         unsafe { (self.pos.add(i * self.stride), self.nrm.add(i * self.stride)) }
     }
 

@@ -27,7 +27,8 @@ use std::arch::x86_64::*;
 ///
 /// # Safety
 /// The processor must have AVX2 and FMA, K must be 4 or 8, every joint index in `v` must be below
-/// `d.len()`, and `o.len() >= v.len()`; with `stream`, `o` must be 32-byte aligned.
+/// `d.len()`, and `o.len() >= v.len()`; with `stream`, `o` must be packed and
+/// 32-byte aligned.
 #[target_feature(enable = "avx2,fma")]
 pub unsafe fn dib<const K: usize>(
     v: &[Vertex<K>],

@@ -43,7 +43,8 @@ unsafe fn blend<const K: usize>(vx: &Vertex<K>, tb: *const f32) -> __m256 {
 ///
 /// # Safety
 /// The processor must have AVX2 and FMA, K must be 4 or 8, every joint index in `v` must be below
-/// `t.len()`, and `o.len() >= v.len()`; with `stream`, `o` must be 32-byte aligned.
+/// `t.len()`, and `o.len() >= v.len()`; with `stream`, `o` must be packed and
+/// 32-byte aligned.
 #[target_feature(enable = "avx2,fma")]
 pub unsafe fn log<const K: usize>(
     v: &[Vertex<K>],

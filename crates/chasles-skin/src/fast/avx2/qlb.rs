@@ -80,7 +80,7 @@ unsafe fn blend<const K: usize, const SBS: bool>(
 /// # Safety
 /// The processor must have AVX2 and FMA, K must be 4 or 8, every joint index in `v` must be below
 /// `rows.len()`, `table` must be empty or made from `rows`, and `o.len() >= v.len()`; with
-/// `stream`, `o` must be 32-byte aligned.
+/// `stream`, `o` must be packed and 32-byte aligned.
 #[target_feature(enable = "avx2,fma")]
 pub unsafe fn qlb<const K: usize>(
     v: &[Vertex<K>],

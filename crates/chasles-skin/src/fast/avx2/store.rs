@@ -118,7 +118,16 @@ unsafe fn store_apart(p: *mut f32, n: *mut f32, stride: usize, split: bool, r: [
                 _mm256_extractf128_ps::<1>(t[l - 4])
             }
         };
-        let two = |at: *mut f32, x: __m128| _mm_store_sd(at as *mut f64, _mm_castps_pd(x));
+        // Floats 0–1 (`two`) or 2–3 (`two_high`) of x to `at`, which may be only 4-byte
+        // aligned: unaligned 8-byte writes (`vmovlps`, `vmovhps`), not `_mm_store_sd` or
+        // `_mm_storeh_pd`, which write a typed f64 and so ask for 8-byte alignment.
+        let two = |at: *mut f32, x: __m128| {
+            (at as *mut f64).write_unaligned(_mm_cvtsd_f64(_mm_castps_pd(x)))
+        };
+        let two_high = |at: *mut f32, x: __m128| {
+            let x = _mm_castps_pd(x);
+            (at as *mut f64).write_unaligned(_mm_cvtsd_f64(_mm_unpackhi_pd(x, x)))
+        };
         if split {
             let a = transpose4_halves([r[0], r[1], r[2], r[3]]);
             let b = transpose4_halves([r[3], r[4], r[5], r[0]]);
@@ -147,10 +156,7 @@ unsafe fn store_apart(p: *mut f32, n: *mut f32, stride: usize, split: bool, r: [
         }
         for (k, t) in yz.iter().enumerate() {
             two(p.add(2 * k * stride + 4), *t);
-            _mm_storeh_pd(
-                p.add((2 * k + 1) * stride + 4) as *mut f64,
-                _mm_castps_pd(*t),
-            );
+            two_high(p.add((2 * k + 1) * stride + 4), *t);
         }
     }
 }
