@@ -8,10 +8,10 @@
 //! root). LBS likewise: each vertex's K joint matrices are whole-register loads blended in
 //! two registers, eight blends transposed into lanes for the transformation (fused, it
 //! measured 1.1× the unfused kernel that matched the scalar one bit for bit). Both prefetch
-//! the input ahead and write their results back by transposes within register halves and
-//! each vertex's own stores, straight into the caller's layout — packed, an interleaved
-//! vertex buffer or split arrays (`store_rows`; each kernel's loop compiled once per
-//! layout, `Store`) — or, for big packed meshes, by non-temporal stores. Log, QLB/SBS and
+//! the input ahead and write their results back by transposes within register halves,
+//! straight into the caller's layout — packed (six whole stores a block; non-temporal for
+//! big meshes), an interleaved vertex buffer or split arrays (each vertex's own stores) —
+//! each kernel's loop compiled once per layout (`store_rows`, `Store`). Log, QLB/SBS and
 //! DIB are in the submodules; DIB ends with DQS's transformation (`transform`).
 
 use super::dest::Dest;

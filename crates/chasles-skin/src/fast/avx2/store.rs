@@ -1,12 +1,12 @@
 //! Where the SIMD kernels' results go: eight vertices' six lane vectors stored into the
-//! caller's layout (packed, an interleaved vertex buffer, split arrays: [`Dest`]) by
-//! transposes within register halves and each vertex's own stores, or streamed past the
-//! cache for big packed meshes; each kernel's loop compiled once per layout ([`Store`],
-//! [`by_layout!`]). Kavan et al. 2006, §6: the skinned vertices go to the buffer that draws
+//! caller's layout ([`Dest`]) after transposes within register halves — into an
+//! interleaved vertex buffer or split arrays by each vertex's own stores, into the packed
+//! layout by six whole-register stores (streamed past the cache for big meshes); each
+//! kernel's loop compiled once per layout ([`Store`], [`by_layout!`]). Kavan et al. 2006, §6: the skinned vertices go to the buffer that draws
 //! them, with no copy between.
 
 use super::super::dest::{Dest, Layout};
-use super::{transpose4_halves, transpose8};
+use super::transpose4_halves;
 use std::arch::x86_64::*;
 
 /// An output layout fixed when a kernel's loop is compiled ([`Layout`]): each SIMD kernel's
@@ -57,18 +57,20 @@ macro_rules! by_layout {
 pub(super) use by_layout;
 
 /// Writes eight vertices' results (six lane vectors) to vertices `i … i + 7` of `o`, in its
-/// layout `S`: by [`store_apart`], each vertex's six floats exactly (so an interleaved
-/// buffer's other attributes, and anything past the block, are not touched); or, with
-/// `stream` (a packed `o` whose vertex i is 32-byte aligned), by a full transpose packed
-/// into six registers and written by non-temporal stores ([`stream_rows`]).
+/// layout `S`. Packed: as the block's 48 floats in six registers ([`pack6`]), by six whole
+/// stores, or with `stream` (where vertex i is 32-byte aligned) by non-temporal ones
+/// ([`stream_rows`]). Interleaved and split: by [`store_apart`], each vertex's six floats
+/// exactly, so an interleaved buffer's other attributes are not touched. Nothing past the
+/// block is written.
 ///
 /// The packed output once went by a full 8×8 transpose (24 shuffles a block), seven whole
 /// stores each overwriting the next vertex's first two floats, and one 6-lane masked store
 /// (on AMD's Zen a masked store to memory is microcoded: eight a block held LBS at 10⁶
-/// vertices to 93 M vertices/s, one a block let it reach 165). [`store_apart`]'s 4×4
-/// transposes within halves (12 shuffles) and sixteen narrow stores measured faster on the
-/// same AMD EPYC (Zen 4; 10⁵ vertices, one core, best of 200 runs): LBS 230 → 246–250, DQS
-/// 248 → 267–269 M vertices/s.
+/// vertices to 93 M vertices/s, one a block let it reach 165), and its streamed form by that
+/// transpose and 16 more shuffles. Best of runs on the same AMD EPYC (Zen 4; 10⁵ vertices,
+/// one core, `examples/best_of`, binaries in turn), [`store_apart`]'s sixteen narrow stores
+/// took LBS from 230 to 246–250 and DQS from 248 to 267–269 M vertices/s; [`pack6`]'s six
+/// whole stores then LBS to 255–257 (DQS, Log and QLB within 2 %).
 ///
 /// # Safety
 /// `i + 8 <= o.len()`, `o` of layout `S`; `stream` only for a packed `o` whose vertex `i` is
@@ -84,21 +86,23 @@ pub(super) unsafe fn store_rows<S: Store>(
     unsafe {
         debug_assert!(i + 8 <= o.len() && o.layout() == S::LAYOUT);
         let (ob, nb) = o.at(i);
-        if S::LAYOUT == Layout::Packed && stream {
-            let z = _mm256_setzero_ps();
-            stream_rows(ob, transpose8([r[0], r[1], r[2], r[3], r[4], r[5], z, z]));
-            return;
+        if S::LAYOUT != Layout::Packed {
+            store_apart(ob, nb, o.stride(), S::LAYOUT == Layout::Split, r);
+        } else if stream {
+            stream_rows(ob, r);
+        } else {
+            for (k, x) in pack6(r).into_iter().enumerate() {
+                _mm256_storeu_ps(ob.add(8 * k), x);
+            }
         }
-        store_apart(ob, nb, o.stride(), S::LAYOUT == Layout::Split, r);
     }
 }
 
 /// Eight vertices' results (six lane vectors: x, y, z, nx, ny, nz) stored where vertex l's
 /// position is `p + l·stride` and its normal `n + l·stride`, writing those 6 floats and no
 /// other. Each half of a register holds four vertices after 4×4 transposes
-/// ([`transpose4_halves`]), so no lane crosses a half before its store. Packed and
-/// interleaved (`n = p + 3`, `stride ≥ 6`): x y z nx by one 16-byte store, ny nz by one
-/// 8-byte store.
+/// ([`transpose4_halves`]), so no lane crosses a half before its store. Interleaved (`n =
+/// p + 3`, `stride > 6`): x y z nx by one 16-byte store, ny nz by one 8-byte store.
 /// Split (`stride = 3`): x y z and nx ny nz each by a 16-byte store whose fourth float lands
 /// on the next vertex's first, which that vertex's own store (the next in program order)
 /// then writes; the last vertex by an 8-byte and a 4-byte store, so nothing past the block
@@ -161,42 +165,45 @@ unsafe fn store_apart(p: *mut f32, n: *mut f32, stride: usize, split: bool, r: [
     }
 }
 
-/// Eight vertices' rows (vertex l's six numbers in lanes 0–5 of `rows[l]`) packed back to
-/// back into six registers and written to the 32-byte aligned `ob` by non-temporal stores:
-/// the written lines go to memory without first being read into the cache (a store that
-/// misses reads its line first), so a mesh streamed from memory moves 72 bytes a vertex,
-/// not 96. The caller fences (`_mm_sfence`) before others read the output.
+/// Eight vertices' results (six lane vectors: x, y, z, nx, ny, nz) as the 48 floats of
+/// the packed layout, in six registers in memory order: the halves' 4×4 transposes of
+/// [`store_apart`], then per half four in-lane shuffles and per register one join of two
+/// halves — 20 shuffles a block (a full 8×8 transpose and then packing its rows took 40).
 #[inline]
 #[target_feature(enable = "avx2,fma")]
-unsafe fn stream_rows(ob: *mut f32, rows: [__m256; 8]) {
+fn pack6(r: [__m256; 6]) -> [__m256; 6] {
+    // a[c]: vertex c's x y z nx in the low half, vertex c + 4's in the high.
+    let a = transpose4_halves([r[0], r[1], r[2], r[3]]);
+    // ny nz of vertices (0, 1) and (2, 3) in the low halves, (4, 5) and (6, 7) in the high.
+    let b01 = _mm256_unpacklo_ps(r[4], r[5]);
+    let b23 = _mm256_unpackhi_ps(r[4], r[5]);
+    // Per half, vertices 0–3 (low) or 4–7 (high), each four floats of the layout:
+    // x0 y0 z0 nx0 | ny0 nz0 x1 y1 | z1 nx1 ny1 nz1 | x2 y2 z2 nx2 | ny2 nz2 x3 y3 | z3 nx3 ny3 nz3
+    let m = _mm256_shuffle_ps::<0x44>(b01, a[1]);
+    let n = _mm256_shuffle_ps::<0xEE>(a[1], b01);
+    let p = _mm256_shuffle_ps::<0x44>(b23, a[3]);
+    let q = _mm256_shuffle_ps::<0xEE>(a[3], b23);
+    [
+        _mm256_permute2f128_ps::<0x20>(a[0], m),
+        _mm256_permute2f128_ps::<0x20>(n, a[2]),
+        _mm256_permute2f128_ps::<0x20>(p, q),
+        _mm256_permute2f128_ps::<0x31>(a[0], m),
+        _mm256_permute2f128_ps::<0x31>(n, a[2]),
+        _mm256_permute2f128_ps::<0x31>(p, q),
+    ]
+}
+
+/// Eight vertices' results written to the 32-byte aligned `ob` in the packed layout
+/// ([`pack6`]) by non-temporal stores: the written lines go to memory without first being
+/// read into the cache (a store that misses reads its line first), so a mesh streamed from
+/// memory moves 72 bytes a vertex, not 96. The caller fences (`_mm_sfence`) before others
+/// read the output.
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn stream_rows(ob: *mut f32, r: [__m256; 6]) {
     unsafe {
-        let at = |r: __m256, i: [i32; 8]| {
-            _mm256_permutevar8x32_ps(
-                r,
-                _mm256_setr_epi32(i[0], i[1], i[2], i[3], i[4], i[5], i[6], i[7]),
-            )
-        };
-        for h in 0..2 {
-            let [a, b, c, d] = [
-                rows[4 * h],
-                rows[4 * h + 1],
-                rows[4 * h + 2],
-                rows[4 * h + 3],
-            ];
-            // a0–a5 b0 b1 | b2–b5 c0–c3 | c4 c5 d0–d5
-            let p0 = _mm256_blend_ps::<0xC0>(a, at(b, [0, 0, 0, 0, 0, 0, 0, 1]));
-            let p1 = _mm256_blend_ps::<0xF0>(
-                at(b, [2, 3, 4, 5, 0, 0, 0, 0]),
-                at(c, [0, 0, 0, 0, 0, 1, 2, 3]),
-            );
-            let p2 = _mm256_blend_ps::<0xFC>(
-                at(c, [4, 5, 0, 0, 0, 0, 0, 0]),
-                at(d, [0, 0, 0, 1, 2, 3, 4, 5]),
-            );
-            let base = ob.add(24 * h);
-            _mm256_stream_ps(base, p0);
-            _mm256_stream_ps(base.add(8), p1);
-            _mm256_stream_ps(base.add(16), p2);
+        for (k, x) in pack6(r).into_iter().enumerate() {
+            _mm256_stream_ps(ob.add(8 * k), x);
         }
     }
 }
