@@ -70,7 +70,9 @@ pub(super) use by_layout;
 /// transpose and 16 more shuffles. Best of runs on the same AMD EPYC (Zen 4; 10⁵ vertices,
 /// one core, `examples/best_of`, binaries in turn), [`store_apart`]'s sixteen narrow stores
 /// took LBS from 230 to 246–250 and DQS from 248 to 267–269 M vertices/s; [`pack6`]'s six
-/// whole stores then LBS to 255–257 (DQS, Log and QLB within 2 %).
+/// whole stores then LBS to 255–257 (DQS, Log and QLB within 2 %). Streamed, [`pack6`]
+/// in place of the full transpose and its packing took DQS at 10⁶ vertices on one core from
+/// 151–161 to 203–212 (best of 40 runs, three rounds; on two threads within the noise).
 ///
 /// # Safety
 /// `i + 8 <= o.len()`, `o` of layout `S`; `stream` only for a packed `o` whose vertex `i` is
