@@ -7,7 +7,8 @@
 #
 # Usage: scripts/scaling.sh [CHASLES_BINARY] [OUT_DIR]
 #   CHASLES_BINARY  default target/release/chasles (build: cargo build --release -p chasles-cli;
-#                   strip a copy to carry it to another machine: about 14 MB)
+#                   strip a copy to carry it to another machine: about 14 MB; it needs
+#                   glibc 2.35 or newer, as built on this Debian 12)
 #   OUT_DIR         where scaling.md and host.txt go (default: the current folder)
 set -euo pipefail
 bin=${1:-target/release/chasles}
@@ -31,9 +32,30 @@ threads=$(curve "$n")
     uname -a
     lscpu || true
     free -g || true
-    command -v numactl >/dev/null && numactl --hardware || echo "numactl: not installed"
+    if command -v numactl >/dev/null; then
+        numactl --hardware || true
+    else
+        echo "numactl: not installed"
+    fi
 } >"$out/host.txt" 2>&1
-nodes=$(ls -d /sys/devices/system/node/node[0-9]* 2>/dev/null | wc -l)
+# NUMA nodes with CPUs (a kernel without NUMA shows none: one node).
+shopt -s nullglob
+nodes=0
+for d in /sys/devices/system/node/node[0-9]*; do
+    [ -s "$d/cpulist" ] && nodes=$((nodes + 1))
+done
+[ "$nodes" -ge 1 ] || nodes=1
+# How many CPUs node 0 has (its cpulist, e.g. 0-7,16-23).
+node0_cpus() {
+    local n=0 r a b
+    IFS=, read -ra ranges </sys/devices/system/node/node0/cpulist
+    for r in "${ranges[@]}"; do
+        a=${r%-*}
+        b=${r#*-}
+        n=$((n + b - a + 1))
+    done
+    echo "$n"
+}
 bench() {
     "$@" "$bin" skin --bench --bench-vertices 1000000,4000000 --bench-threads "$threads" \
         --bench-rounds 7
@@ -44,7 +66,7 @@ bench() {
     if [ "$nodes" -gt 1 ] && command -v numactl >/dev/null; then
         echo
         echo "# node 0's cores and memory only (numactl --cpunodebind=0 --membind=0)"
-        threads=$(curve "$(lscpu -p=NODE | grep -c '^0$')")
+        threads=$(curve "$(node0_cpus)")
         bench numactl --cpunodebind=0 --membind=0
         echo
         echo "# memory interleaved over every node (numactl --interleave=all)"

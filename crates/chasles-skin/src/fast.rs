@@ -296,7 +296,8 @@ type SimdKernel<const K: usize, J, T> = unsafe fn(&[Vertex<K>], &[J], &T, Dest<'
 /// Where a SIMD kernel starts in a chunk's output `o`, and whether it streams: with
 /// `stream` and a packed `o`, at the first vertex whose output is 32-byte aligned (24-byte
 /// vertices come back to an alignment every 4; an output that is not 8-byte aligned never
-/// reaches 32), the vertices before it left to the scalar kernel; else at 0, not streaming
+/// reaches 32), the vertices before it skinned by the overlapping block 0..8 ([`cover`]);
+/// else at 0, not streaming
 /// (interleaved and split outputs are never streamed: their vertices do not fill whole
 /// lines of one array).
 fn simd_start(o: &Dest<'_>, stream: bool) -> (usize, bool) {

@@ -2,8 +2,8 @@
 //! caller's layout ([`Dest`]) after transposes within register halves — into an
 //! interleaved vertex buffer or split arrays by each vertex's own stores, into the packed
 //! layout by six whole-register stores (streamed past the cache for big meshes); each
-//! kernel's loop compiled once per layout ([`Store`], [`by_layout!`]). Kavan et al. 2006, §6: the skinned vertices go to the buffer that draws
-//! them, with no copy between.
+//! kernel's loop compiled once per layout ([`Store`], [`by_layout!`]). Kavan et al. 2006,
+//! §6: the skinned vertices go to the buffer that draws them, with no copy between.
 
 use super::super::dest::{Dest, Layout};
 use super::transpose4_halves;
@@ -168,9 +168,10 @@ unsafe fn store_apart(p: *mut f32, n: *mut f32, stride: usize, split: bool, r: [
 }
 
 /// Eight vertices' results (six lane vectors: x, y, z, nx, ny, nz) as the 48 floats of
-/// the packed layout, in six registers in memory order: the halves' 4×4 transposes of
-/// [`store_apart`], then per half four in-lane shuffles and per register one join of two
-/// halves — 20 shuffles a block (a full 8×8 transpose and then packing its rows took 40).
+/// the packed layout, in six registers in memory order: the halves' 4×4 transposes and
+/// the ny nz unpacks of [`store_apart`] (10 shuffles), four in-lane shuffles, and per
+/// register one join of two halves (6) — 20 shuffles a block (a full 8×8 transpose and
+/// then packing its rows took 40).
 #[inline]
 #[target_feature(enable = "avx2,fma")]
 fn pack6(r: [__m256; 6]) -> [__m256; 6] {
