@@ -143,7 +143,13 @@ mod tests {
             // SAFETY: the processor has AVX2 and FMA (`simd`), the synthetic rig's joint
             // indices are below 54, the table is empty or made from `f`.
             let looked_up = both_ways(&f, |table, out| unsafe {
-                crate::fast::avx2::dqs(rig.vertices(), &f, table, out.into(), false)
+                crate::fast::avx2::dqs(
+                    rig.vertices(),
+                    &f,
+                    table,
+                    crate::fast::dest::Dest::packed(out),
+                    false,
+                )
             });
             // The two ways to the signs gave the same blends, bit for bit (`both_ways`), and
             // the SIMD kernel (fused multiply-adds) is the scalar one to rounding.

@@ -317,7 +317,7 @@ unsafe fn lbs_blocks<const K: usize, S: Store>(
 
 #[cfg(test)]
 mod tests {
-    use crate::fast::{lbs_vertex, matrices12, simd, Out};
+    use crate::fast::{dest::Dest, lbs_vertex, matrices12, simd, Out};
     use crate::synthetic;
 
     /// The SIMD LBS kernel against the scalar one, to rounding (fused multiply-adds): random
@@ -335,15 +335,8 @@ mod tests {
             let mut out: Vec<Out> = vec![[f32::NAN; 6]; 1003];
             // SAFETY: the processor has AVX2 and FMA (`simd`), the synthetic rig's joint
             // indices are below 54 and `out` is as long as the vertices.
-            let done = unsafe {
-                super::lbs(
-                    rig.vertices(),
-                    &m,
-                    &(),
-                    crate::fast::dest::Dest::packed(&mut out),
-                    false,
-                )
-            };
+            let done =
+                unsafe { super::lbs(rig.vertices(), &m, &(), Dest::packed(&mut out), false) };
             assert_eq!(done, 1000);
             for (v, o) in rig.vertices().iter().zip(&out[..done]) {
                 let want = lbs_vertex(v, &m);

@@ -138,12 +138,6 @@ impl<'a> Dest<'a> {
     }
 }
 
-impl<'a> From<&'a mut [Out]> for Dest<'a> {
-    fn from(o: &'a mut [Out]) -> Self {
-        Dest::packed(o)
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

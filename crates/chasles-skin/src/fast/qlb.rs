@@ -244,7 +244,13 @@ mod tests {
             // SAFETY: AVX2 and FMA are present (`simd`), the synthetic rig's joint indices
             // are below 54 = f.len(), the table is empty or made from `f`.
             let looked_up = super::super::antipodes::both_ways(&f, |table, out| unsafe {
-                super::super::avx2::qlb::qlb(rig.vertices(), &f, table, out.into(), false)
+                super::super::avx2::qlb::qlb(
+                    rig.vertices(),
+                    &f,
+                    table,
+                    crate::fast::dest::Dest::packed(out),
+                    false,
+                )
             });
             // The two ways to the signs gave the same numbers, bit for bit (`both_ways`),
             // and the SIMD kernel (fused multiply-adds) is the scalar one to rounding.

@@ -129,15 +129,7 @@ mod tests {
         // SAFETY: AVX2 and FMA are present (`simd`), the rig's joint indices are below
         // d.len() (checked by its constructor against the same count), `out` is as long as
         // the vertices.
-        let done = unsafe {
-            dib(
-                rig.vertices(),
-                d,
-                &(),
-                crate::fast::dest::Dest::packed(&mut out),
-                false,
-            )
-        };
+        let done = unsafe { dib(rig.vertices(), d, &(), Dest::packed(&mut out), false) };
         assert_eq!(done, n / 8 * 8);
         let each = |(v, o): (&Vertex<K>, &Out)| {
             let want = <crate::fast::dib::DibKernel as Kernel<K>>::vertex(v, d);
@@ -219,7 +211,7 @@ mod tests {
         let mut out = vec![[f32::NAN; 6]; v.len()];
         // SAFETY: AVX2 and FMA are present, the joint indices are below d.len() (both
         // checked above), `out` is as long as the vertices.
-        let done = unsafe { dib(v, d, &(), crate::fast::dest::Dest::packed(&mut out), false) };
+        let done = unsafe { dib(v, d, &(), Dest::packed(&mut out), false) };
         out.truncate(done);
         out
     }
@@ -372,15 +364,7 @@ mod tests {
             let mut out = vec![[f32::NAN; 6]; 800];
             // SAFETY: AVX2 and FMA are present, joint indices are below 55 = d.len(),
             // `out` is as long as the vertices.
-            unsafe {
-                dib(
-                    rig.vertices(),
-                    d,
-                    &(),
-                    crate::fast::dest::Dest::packed(&mut out),
-                    false,
-                )
-            };
+            unsafe { dib(rig.vertices(), d, &(), Dest::packed(&mut out), false) };
             out
         };
         let want = run(&d);

@@ -152,15 +152,7 @@ mod tests {
         let mut out = vec![[f32::NAN; 6]; 1000];
         // SAFETY: AVX2 and FMA are present (`simd`), the synthetic rig's joint indices are
         // below 54 = t.len(), `out` is as long as the vertices.
-        let done = unsafe {
-            log(
-                rig.vertices(),
-                &t,
-                &(),
-                crate::fast::dest::Dest::packed(&mut out),
-                false,
-            )
-        };
+        let done = unsafe { log(rig.vertices(), &t, &(), Dest::packed(&mut out), false) };
         assert_eq!(done, 1000);
         for (v, o) in rig.vertices().iter().zip(&out) {
             let want = <crate::fast::log::LogKernel as crate::fast::Kernel<4>>::vertex(v, &t);

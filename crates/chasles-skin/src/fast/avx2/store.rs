@@ -134,8 +134,8 @@ unsafe fn store_apart(p: *mut f32, n: *mut f32, stride: usize, split: bool, r: [
             let x = _mm_castps_pd(x);
             (at as *mut f64).write_unaligned(_mm_cvtsd_f64(_mm_unpackhi_pd(x, x)))
         };
+        let (a, yz) = halves(r);
         if split {
-            let a = transpose4_halves([r[0], r[1], r[2], r[3]]);
             let b = transpose4_halves([r[3], r[4], r[5], r[0]]);
             for (t, base) in [(&a, p), (&b, n)] {
                 for l in 0..7 {
@@ -147,15 +147,12 @@ unsafe fn store_apart(p: *mut f32, n: *mut f32, stride: usize, split: bool, r: [
             }
             return;
         }
-        let a = transpose4_halves([r[0], r[1], r[2], r[3]]);
-        // ny nz of vertices (0, 1), (2, 3) in the low halves, (4, 5), (6, 7) in the high.
-        let lo = _mm256_unpacklo_ps(r[4], r[5]);
-        let hi = _mm256_unpackhi_ps(r[4], r[5]);
+        // ny nz of vertices (0, 1), (2, 3), (4, 5), (6, 7).
         let yz = [
-            _mm256_castps256_ps128(lo),
-            _mm256_castps256_ps128(hi),
-            _mm256_extractf128_ps::<1>(lo),
-            _mm256_extractf128_ps::<1>(hi),
+            _mm256_castps256_ps128(yz[0]),
+            _mm256_castps256_ps128(yz[1]),
+            _mm256_extractf128_ps::<1>(yz[0]),
+            _mm256_extractf128_ps::<1>(yz[1]),
         ];
         for l in 0..8 {
             _mm_storeu_ps(p.add(l * stride), half(&a, l));
@@ -167,19 +164,29 @@ unsafe fn store_apart(p: *mut f32, n: *mut f32, stride: usize, split: bool, r: [
     }
 }
 
+/// Eight vertices' results (six lane vectors: x, y, z, nx, ny, nz) with four vertices in
+/// each register half (10 shuffles): `a[c]` holds vertex c's x y z nx in its low half and
+/// vertex c + 4's in its high half; `yz[0]` the ny nz of vertices 0, 1 (low) and 4, 5
+/// (high), `yz[1]` those of 2, 3 and 6, 7. The start of [`store_apart`] and [`pack6`].
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+fn halves(r: [__m256; 6]) -> ([__m256; 4], [__m256; 2]) {
+    let a = transpose4_halves([r[0], r[1], r[2], r[3]]);
+    let yz = [
+        _mm256_unpacklo_ps(r[4], r[5]),
+        _mm256_unpackhi_ps(r[4], r[5]),
+    ];
+    (a, yz)
+}
+
 /// Eight vertices' results (six lane vectors: x, y, z, nx, ny, nz) as the 48 floats of
-/// the packed layout, in six registers in memory order: the halves' 4×4 transposes and
-/// the ny nz unpacks of [`store_apart`] (10 shuffles), four in-lane shuffles, and per
-/// register one join of two halves (6) — 20 shuffles a block (a full 8×8 transpose and
-/// then packing its rows took 40).
+/// the packed layout, in six registers in memory order: [`halves`] (10 shuffles), four
+/// in-lane shuffles, and per register one join of two halves (6) — 20 shuffles a block (a
+/// full 8×8 transpose and then packing its rows took 40).
 #[inline]
 #[target_feature(enable = "avx2,fma")]
 fn pack6(r: [__m256; 6]) -> [__m256; 6] {
-    // a[c]: vertex c's x y z nx in the low half, vertex c + 4's in the high.
-    let a = transpose4_halves([r[0], r[1], r[2], r[3]]);
-    // ny nz of vertices (0, 1) and (2, 3) in the low halves, (4, 5) and (6, 7) in the high.
-    let b01 = _mm256_unpacklo_ps(r[4], r[5]);
-    let b23 = _mm256_unpackhi_ps(r[4], r[5]);
+    let (a, [b01, b23]) = halves(r);
     // Per half, vertices 0–3 (low) or 4–7 (high), each four floats of the layout:
     // x0 y0 z0 nx0 | ny0 nz0 x1 y1 | z1 nx1 ny1 nz1 | x2 y2 z2 nx2 | ny2 nz2 x3 y3 | z3 nx3 ny3 nz3
     let m = _mm256_shuffle_ps::<0x44>(b01, a[1]);
