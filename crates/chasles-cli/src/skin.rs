@@ -46,7 +46,8 @@ pub struct SkinArgs {
     #[arg(long)]
     pub artifacts: bool,
     /// Measure every method on synthetic meshes of 10^5 and 10^6 vertices beside the glam
-    /// and nalgebra baselines and a copy of the bytes moved (interleaved rounds); with
+    /// and nalgebra baselines, a copy of the bytes moved and the fast paths' loads and
+    /// stores alone (the two bounds; interleaved rounds); with
     /// --rig, on that rig in the pose asked for (--pose, --anim/--time; by default the
     /// first clip half-way through, or the rest pose where there is none).
     #[arg(long)]
@@ -200,11 +201,12 @@ const RIG_SAMPLE_VERTICES: usize = 100_000;
 /// on each of `threads`, every method's fast path (the pose's joint data made in each run)
 /// beside the careful glam and nalgebra baselines of [`chasles_skin::peers`] and a memory
 /// copy of the bytes each vertex moves (the bandwidth bound: 72 with four influences, 96
-/// with eight), timed in `rounds` interleaved rounds ([`chasles_skin::peers::measure`],
+/// with eight) and the fast paths' loads and stores alone ([`chasles_skin::fast::traffic`]:
+/// the bound of their own traffic, which reads twice what it writes), timed in `rounds` interleaved rounds ([`chasles_skin::peers::measure`],
 /// [`chasles_skin::peers::measure_rig`]; by default 21, 7 above 2·10⁵ vertices; the caller
 /// checks the range): the median rate of each with its spread, our
 /// speed over each baseline's (LBS over the LBS baselines, DQS over the DQS ones) and each
-/// kernel's share of the bound, both taken round by round. A run during which other
+/// kernel's share of each bound, all taken round by round. A run during which other
 /// processes (or the host of a virtual machine) kept more than a quarter of the CPUs busy is
 /// flagged.
 pub fn bench(mesh: &BenchMesh, threads: &[usize], rounds: Option<usize>) -> Result<()> {

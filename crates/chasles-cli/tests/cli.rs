@@ -1688,8 +1688,8 @@ fn skin_bench_measures_a_rig_of_ones_own_in_its_clip() {
         .filter(|l| l.starts_with("| 370 (RiggedFigure.glb) | 1 |"))
         .map(|l| l.split('|').map(str::trim).collect())
         .collect();
-    // Six methods, five baselines (four influences at most) and the copy.
-    assert_eq!(rows.len(), 12, "{out}");
+    // Six methods, five baselines (four influences at most), the copy and the traffic.
+    assert_eq!(rows.len(), 13, "{out}");
     let rate = |name: &str| -> f64 {
         let r = rows
             .iter()
@@ -1764,8 +1764,8 @@ fn skin_bench_prints_every_kernel_on_every_thread_count_with_round_by_round_rati
         .filter(|l| l.starts_with("| 64 |"))
         .map(|l| l.split('|').map(str::trim).collect())
         .collect();
-    // Six methods, five baselines and the copy, on 1 and on 2 threads.
-    assert_eq!(rows.len(), 2 * 12, "{out}");
+    // Six methods, five baselines, the copy and the traffic, on 1 and on 2 threads.
+    assert_eq!(rows.len(), 2 * 13, "{out}");
     for threads in ["1", "2"] {
         let of = |name: &str| {
             rows.iter()
@@ -1776,6 +1776,7 @@ fn skin_bench_prints_every_kernel_on_every_thread_count_with_round_by_round_rati
         let ratio = of("glam dqs (Vec4, careful)")[6];
         assert!(ratio.ends_with(')') && ratio.contains("× ("), "{ratio}");
         assert_eq!(of("memcpy, 72 B a vertex")[7], "1.00 (1.00–1.00)");
+        assert_eq!(of("traffic: loads and stores alone")[8], "1.00 (1.00–1.00)");
         assert_eq!(of("dqs")[6], "", "our kernels have no ratio to themselves");
     }
     assert!(out.contains("of the CPUs busy during the run"), "{out}");

@@ -2,16 +2,17 @@
 //! meshes of 10⁵ and 10⁶ vertices, 54 joints, 4 influences; in the same run the baselines
 //! of `peers` — glam LBS with `Mat3A` sums, normals by the blended matrix and by its
 //! cofactor, a careful glam DQS on `Vec4` pairs, nalgebra's DQS and LBS as its users call
-//! them, each checked against an f64 reference in `tests/peers.rs` — and a memory copy of
-//! 72 bytes per vertex for the bandwidth bound). Criterion times each kernel on its own, one
+//! them, each checked against an f64 reference in `tests/peers.rs` — a memory copy of
+//! 72 bytes per vertex for the bandwidth bound, and the fast paths' loads and stores
+//! alone, `fast::traffic`, for the bound of their own traffic). Criterion times each kernel on its own, one
 //! after another; the closing table (`ratios`) times them all again in interleaved rounds
 //! (`peers::measure`, the measurement behind `chasles skin --bench`) and prints our speed
-//! over each baseline and each kernel's share of the copy bound, round by round.
+//! over each baseline and each kernel's share of both bounds, round by round.
 //!
 //! `cargo bench -p chasles-skin --bench skin`
 
 use chasles_skin::fast::{
-    clusters, dib, dqs, dual_quats8, lbs, log, matrices12, qlb, sbs, skin_pose, twists,
+    clusters, dib, dqs, dual_quats8, lbs, log, matrices12, qlb, sbs, skin_pose, traffic, twists,
 };
 use chasles_skin::synthetic;
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
@@ -72,6 +73,9 @@ fn bench(c: &mut Criterion) {
                     peers::copy_bound(&src, &mut dst, 36, parallel);
                     black_box(dst[n])
                 })
+            });
+            g.bench_function(format!("traffic: loads and stores alone, {th}"), |b| {
+                b.iter(|| traffic(&rig, black_box(&mut out[..]), parallel).unwrap())
             });
         }
         g.finish();

@@ -68,6 +68,7 @@ mod log;
 pub(crate) mod palette;
 mod qlb;
 mod skinner;
+mod traffic;
 
 use antipodes::Antipodes;
 use dest::Dest;
@@ -78,6 +79,7 @@ pub use log::{log, twists};
 pub use palette::{Affine3x4, Joints, Palette, QlbJoint, RotationCentre, Twist, UnitDualQuat};
 pub use qlb::{clusters, qlb, sbs, Row};
 pub use skinner::{skin_pose, Skinner};
+pub use traffic::traffic;
 
 /// A rig laid out for the fast path. Its joint indices are checked on construction (the
 /// SIMD kernels rely on it), so the fields are private.

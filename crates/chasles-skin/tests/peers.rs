@@ -154,23 +154,28 @@ fn spread_rig(vertices: usize, influences: usize) -> (chasles_skin::Rig, JointTr
 }
 
 /// `measure_rig` on rigs of one's own: with four influences every method, the five
-/// baselines and the copy of 72 bytes a vertex; with five to eight (the 8-slot layout)
-/// every method and the copy of the 96 bytes such a vertex moves, no baseline (they are
-/// written for four); each sample repeated to `min_vertices`. A rig of more than eight
+/// baselines, the copy of 72 bytes a vertex and the traffic bound; with five to eight (the
+/// 8-slot layout) every method, the copy of the 96 bytes such a vertex moves and the
+/// traffic bound, no baseline (they are written for four); each sample repeated to `min_vertices`. A rig of more than eight
 /// influences, or of no vertex, is an error naming it.
 #[test]
 fn measure_rig_times_up_to_eight_influences_and_names_what_it_cannot() {
     use chasles_skin::SkinError;
     for (influences, rows, copy) in [
-        (4, 12, "memcpy, 72 B a vertex"),
-        (5, 7, "memcpy, 96 B a vertex"),
-        (8, 7, "memcpy, 96 B a vertex"),
+        (4, 13, "memcpy, 72 B a vertex"),
+        (5, 8, "memcpy, 96 B a vertex"),
+        (8, 8, "memcpy, 96 B a vertex"),
     ] {
         let (rig, jt) = spread_rig(37, influences);
         let t = peers::measure_rig(&rig, &jt, 1, 1, 1000).unwrap();
         assert_eq!((t.vertices, t.repeats, t.rows.len()), (37, 28, rows));
         assert_eq!(t.mesh, format!("spread{influences}"));
         assert!(t.rows.iter().any(|r| r.name == copy), "{:?}", t.rows);
+        assert!(
+            t.rows.iter().any(|r| r.name == peers::TRAFFIC),
+            "{:?}",
+            t.rows
+        );
         assert!(t.rows.iter().all(|r| r.rate.median > 0.0), "{:?}", t.rows);
     }
     assert_eq!(peers::repeats(370, 100_000), 271);

@@ -24,6 +24,7 @@ pub mod dib;
 pub mod log;
 pub mod qlb;
 mod store;
+pub mod traffic;
 
 /// How many vertices ahead the kernels prefetch their input (tried: 32, 64, 128; and, on
 /// two threads at 10⁶ vertices, 160 and the L2 hint instead of L1: neither better).

@@ -222,6 +222,8 @@ fn layouts<const K: usize>(n: usize) {
     run(&|o, s| unsafe { avx2::qlb::qlb(v, &rows, &qsigns, o, s) });
     run(&|o, s| unsafe { avx2::dib::dib(v, &d8, &(), o, s) });
     run(&|o, s| sbs(v, &rows, &qsigns, o, s));
+    let units = vec![(); 54];
+    run(&|o, s| unsafe { avx2::traffic::traffic(v, &units, &(), o, s) });
 }
 
 /// A mesh big enough to stream ([`STREAM_VERTICES`]): every method's job writes the same

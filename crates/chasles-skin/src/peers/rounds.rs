@@ -1,16 +1,23 @@
 //! Every fast path beside the baselines of [`super::BASELINES`] and the copy bound, timed in
 //! interleaved rounds: each round runs every kernel once, so a slow spell of a shared
 //! machine hits all of them alike, and every ratio is taken within a round (a baseline's time
-//! over our kernel's of the same method, the copy's time over a kernel's) before the median
-//! is taken over the rounds, on a synthetic mesh or a rig of one's own. The one measurement behind
+//! over our kernel's of the same method, the copy's time over a kernel's, the traffic
+//! kernel's time over a kernel's) before the median is taken over the rounds, on a
+//! synthetic mesh or a rig of one's own. Two bounds: the copy of the bytes a vertex moves
+//! (half read, half written) and the fast paths' own traffic without their arithmetic
+//! ([`crate::fast::traffic`]: each vertex read whole, its six floats written by the
+//! kernels' stores), the memory's real limit for a kernel that reads twice what it writes. The one measurement behind
 //! `chasles skin --bench` (with `--rig`: [`measure_rig`]) and the
 //! criterion bench's closing table (Kavan et al. 2006, §6: what skinning costs).
 
 use super::{copy_bound, run, Joints, BASELINES};
 use crate::error::Result;
-use crate::fast::{skin_pose, FastRig, Out, Vertex};
+use crate::fast::{skin_pose, traffic, FastRig, Out, Vertex};
 use crate::{synthetic, JointTransforms, Method, Rig};
 use std::time::Instant;
+
+/// The traffic bound's row name ([`crate::fast::traffic`]).
+pub const TRAFFIC: &str = "traffic: loads and stores alone";
 
 /// [`Table::mesh`] of [`measure`]'s synthetic meshes.
 pub const SYNTHETIC: &str = "synthetic";
@@ -48,12 +55,14 @@ pub enum Role {
     /// The copy of the bytes a vertex moves ([`copy_bound`]: 72 with four influences, 96
     /// with eight).
     Bound,
+    /// The fast paths' loads and stores alone ([`crate::fast::traffic`]).
+    Traffic,
 }
 
 /// One kernel's figures over the rounds.
 #[derive(Debug, Clone)]
 pub struct Row {
-    /// Its name (a method's, a baseline's, or the copy's).
+    /// Its name (a method's, a baseline's, the copy's or the traffic's).
     pub name: String,
     /// What it is.
     pub role: Role,
@@ -63,6 +72,9 @@ pub struct Row {
     pub ours_over: Option<Spread>,
     /// Its speed over the copy's (the share of the bandwidth bound), round by round.
     pub share: Spread,
+    /// Its speed over the traffic kernel's (the share of what the memory gives the fast
+    /// paths' loads and stores), round by round.
+    pub traffic_share: Spread,
 }
 
 /// The figures of one mesh on one or on all threads.
@@ -80,7 +92,7 @@ pub struct Table {
     pub rounds: usize,
     /// How many times each timed sample skins the mesh.
     pub repeats: usize,
-    /// Every kernel: our methods, the baselines, the copy.
+    /// Every kernel: our methods, the baselines, the copy, the traffic.
     pub rows: Vec<Row>,
 }
 
@@ -244,6 +256,8 @@ fn measure_on<const K: usize>(
         Ok(())
     });
     kernels.push((format!("memcpy, {moved} B a vertex"), Role::Bound, copy));
+    let alone: Run = Box::new(move |o| traffic(rig, o, parallel));
+    kernels.push((TRAFFIC.into(), Role::Traffic, alone));
     let mut secs = vec![Vec::with_capacity(rounds); kernels.len()];
     for round in 0..=rounds.max(1) {
         for (k, (_, _, f)) in kernels.iter_mut().enumerate() {
@@ -256,7 +270,8 @@ fn measure_on<const K: usize>(
             }
         }
     }
-    let bound = kernels.len() - 1;
+    // The last two: the copy, then the traffic.
+    let (bound, alone) = (kernels.len() - 2, kernels.len() - 1);
     let ours = |m: Method| kernels.iter().position(|k| k.1 == Role::Ours(m));
     // `a`'s time over `b`'s, round by round: `b`'s speed over `a`'s.
     let over =
@@ -274,6 +289,7 @@ fn measure_on<const K: usize>(
                 _ => None,
             },
             share: over(bound, k),
+            traffic_share: over(alone, k),
         })
         .collect();
     Ok(Table {
@@ -288,11 +304,12 @@ fn measure_on<const K: usize>(
 }
 
 /// The Markdown table of `tables`: per kernel the median rate with its spread, our speed
-/// over each baseline and every kernel's share of the copy bound (medians of the rounds'
-/// ratios, with their spreads). A rig's rows name it beside its vertex count.
+/// over each baseline and every kernel's share of the copy bound and of the traffic bound
+/// (medians of the rounds' ratios, with their spreads). A rig's rows name it beside its
+/// vertex count.
 pub fn markdown(tables: &[Table]) -> String {
     let mut s = String::from(
-        "| vertices | threads | kernel | M vertices/s (median) | spread | ours / it (median, spread) | share of the bound (median, spread) |\n|---|---|---|---|---|---|---|\n",
+        "| vertices | threads | kernel | M vertices/s (median) | spread | ours / it (median, spread) | share of the copy (median, spread) | share of the traffic (median, spread) |\n|---|---|---|---|---|---|---|---|\n",
     );
     let m = |x: f64| x / 1e6;
     for t in tables {
@@ -301,7 +318,7 @@ pub fn markdown(tables: &[Table]) -> String {
                 format!("{:.2}× ({:.2}–{:.2})", o.median, o.lo, o.hi)
             });
             s += &format!(
-                "| {} | {} | {} | {:.1} | {:.1}–{:.1} | {ours} | {:.2} ({:.2}–{:.2}) |\n",
+                "| {} | {} | {} | {:.1} | {:.1}–{:.1} | {ours} | {:.2} ({:.2}–{:.2}) | {:.2} ({:.2}–{:.2}) |\n",
                 if t.mesh == SYNTHETIC {
                     t.vertices.to_string()
                 } else {
@@ -314,7 +331,10 @@ pub fn markdown(tables: &[Table]) -> String {
                 m(r.rate.hi),
                 r.share.median,
                 r.share.lo,
-                r.share.hi
+                r.share.hi,
+                r.traffic_share.median,
+                r.traffic_share.lo,
+                r.traffic_share.hi
             );
         }
     }
