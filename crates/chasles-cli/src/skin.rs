@@ -202,7 +202,8 @@ const RIG_SAMPLE_VERTICES: usize = 100_000;
 /// beside the careful glam and nalgebra baselines of [`chasles_skin::peers`] and a memory
 /// copy of the bytes each vertex moves (the bandwidth bound: 72 with four influences, 96
 /// with eight) and the fast paths' loads and stores alone ([`chasles_skin::fast::traffic`]:
-/// the bound of their own traffic, which reads twice what it writes), timed in `rounds` interleaved rounds ([`chasles_skin::peers::measure`],
+/// the bound of their own traffic, 48 bytes read a vertex, 72 with eight influences, and 24
+/// written), timed in `rounds` interleaved rounds ([`chasles_skin::peers::measure`],
 /// [`chasles_skin::peers::measure_rig`]; by default 21, 7 above 2·10⁵ vertices; the caller
 /// checks the range): the median rate of each with its spread, our
 /// speed over each baseline's (LBS over the LBS baselines, DQS over the DQS ones) and each

@@ -1764,8 +1764,14 @@ fn skin_bench_prints_every_kernel_on_every_thread_count_with_round_by_round_rati
         .filter(|l| l.starts_with("| 64 |"))
         .map(|l| l.split('|').map(str::trim).collect())
         .collect();
-    // Six methods, five baselines, the copy and the traffic, on 1 and on 2 threads.
+    // Six methods, five baselines, the copy and the traffic, on 1 and on 2 threads; every
+    // row as many cells as the header.
     assert_eq!(rows.len(), 2 * 13, "{out}");
+    let header = out.lines().find(|l| l.starts_with("| vertices |")).unwrap();
+    assert!(
+        rows.iter().all(|r| r.len() == header.split('|').count()),
+        "{out}"
+    );
     for threads in ["1", "2"] {
         let of = |name: &str| {
             rows.iter()

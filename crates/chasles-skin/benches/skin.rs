@@ -4,10 +4,11 @@
 //! cofactor, a careful glam DQS on `Vec4` pairs, nalgebra's DQS and LBS as its users call
 //! them, each checked against an f64 reference in `tests/peers.rs` — a memory copy of
 //! 72 bytes per vertex for the bandwidth bound, and the fast paths' loads and stores
-//! alone, `fast::traffic`, for the bound of their own traffic). Criterion times each kernel on its own, one
-//! after another; the closing table (`ratios`) times them all again in interleaved rounds
-//! (`peers::measure`, the measurement behind `chasles skin --bench`) and prints our speed
-//! over each baseline and each kernel's share of both bounds, round by round.
+//! alone, `fast::traffic`, for the bound of their own traffic). Criterion times each
+//! kernel on its own, one after another; the closing table (`ratios`) times them all again
+//! in interleaved rounds (`peers::measure`, the measurement behind `chasles skin --bench`)
+//! and prints our speed over each baseline and each kernel's share of both bounds, round
+//! by round.
 //!
 //! `cargo bench -p chasles-skin --bench skin`
 
@@ -56,8 +57,8 @@ fn bench(c: &mut Criterion) {
                 b.iter(|| dib(&rig, &jt.dual_quats, black_box(&mut out), parallel).unwrap())
             });
         }
-        // The baselines of `peers` and the bandwidth bound (a copy of the 72 bytes each
-        // vertex moves), on one and on all threads.
+        // The baselines of `peers` and the two bounds (a copy of the 72 bytes each vertex
+        // moves; the fast paths' loads and stores alone), on one and on all threads.
         let v = rig.vertices();
         let src = vec![1u8; n * 36];
         let mut dst = vec![0u8; n * 36];
@@ -184,8 +185,8 @@ fn job(c: &mut Criterion) {
     g.finish();
 }
 
-/// The peer ratios and the shares of the bound in one table: every kernel, baseline and the
-/// copy in interleaved rounds (`peers::measure`), so that each ratio is taken within a round.
+/// The peer ratios and the shares of both bounds in one table: every kernel, baseline, the
+/// copy and the traffic in interleaved rounds (`peers::measure`), so that each ratio is taken within a round.
 fn ratios(_: &mut Criterion) {
     let load = peers::Load::start();
     let mut tables = Vec::new();

@@ -156,8 +156,9 @@ fn spread_rig(vertices: usize, influences: usize) -> (chasles_skin::Rig, JointTr
 /// `measure_rig` on rigs of one's own: with four influences every method, the five
 /// baselines, the copy of 72 bytes a vertex and the traffic bound; with five to eight (the
 /// 8-slot layout) every method, the copy of the 96 bytes such a vertex moves and the
-/// traffic bound, no baseline (they are written for four); each sample repeated to `min_vertices`. A rig of more than eight
-/// influences, or of no vertex, is an error naming it.
+/// traffic bound, no baseline (they are written for four); each sample repeated to
+/// `min_vertices`. A rig of more than eight influences, or of no vertex, is an error naming
+/// it.
 #[test]
 fn measure_rig_times_up_to_eight_influences_and_names_what_it_cannot() {
     use chasles_skin::SkinError;

@@ -2,20 +2,21 @@
 //! skinning costs): every vertex read whole and its position and normal written as they are,
 //! by the SIMD kernels' own loads, prefetches and stores (`avx2::traffic`: the same chunks,
 //! overlapping end blocks, layouts and non-temporal stores for big meshes). No method's
-//! fast path moves less, so a kernel's speed over this one is the share of what the memory
-//! gives its traffic — a truer bound than a copy of the same bytes (`peers::copy_bound`),
-//! which reads and writes equal halves where a kernel reads 48 bytes a vertex (72 with
-//! eight influences) and writes 24.
+//! fast path moves less, so a kernel's speed over this one is the share it reaches of what
+//! its loads and stores alone run at. A copy of the same bytes (`peers::copy_bound`) reads
+//! and writes equal halves, where a kernel reads 48 bytes a vertex (72 with eight
+//! influences) and writes 24; on one thread out of the cache this bound is the tighter one.
 //!
 //! On the 2-core AMD EPYC (Zen 4) of the README's figures (two runs of `chasles skin
 //! --bench --bench-vertices 100000,1000000,4000000 --bench-threads 1,2`, 2026-12-03), out of
 //! the cache this traffic ran at 1.07–1.44 times the copy's vertex rate on one thread and at
-//! 0.89–1.11 on two. One-thread DQS ran there at 0.58–0.69 of it, and at 0.6–0.8 of its own
-//! speed in the cache (best of runs in one round: 10⁵ vertices 265–276 M vertices/s, 10⁶
-//! 163–218, 4·10⁶ 163–219, this traffic 300–350): neither its arithmetic nor the memory
-//! alone sets that figure, but how little of the memory's waiting the arithmetic hides.
-//! Prefetching 32 vertices ahead instead of 64, into L2 instead of L1, or not at all changed
-//! nothing beyond the machine's noise.
+//! 0.89–1.11 on two (medians of the rounds' ratios). One-thread DQS ran there at 0.58–0.69
+//! of it; and, in a scratch loop of best-of-20 runs (8 at 4·10⁶), each size in turn over
+//! four rounds, at 0.6–0.8 of its own speed in the cache (10⁵ vertices 265–276 M
+//! vertices/s, 10⁶ 163–218, 4·10⁶ 163–219, this traffic 300–355 out of the cache): neither
+//! its arithmetic nor the memory alone sets that figure, but how little of the memory's
+//! waiting the arithmetic hides. Prefetching 32 vertices ahead instead of 64, or into L2
+//! instead of L1, made no difference beyond the machine's noise in two such rounds.
 
 use super::{run, FastRig, Kernel, Out, Output, Vertex};
 use crate::error::Result;
@@ -37,8 +38,8 @@ impl<const K: usize> Kernel<K> for TrafficKernel {
 
 /// Writes every vertex's bind position and normal into `out` (any [`Output`] layout), on
 /// all threads when `parallel`, with the fast paths' own loads and stores and nothing
-/// between: the memory bound of every method's fast path ([`super::lbs`], [`super::dqs`],
-/// …) on this rig and this machine. An error where `out` does not hold one output per
+/// between: the bound of every method's fast path's loads and stores ([`super::lbs`],
+/// [`super::dqs`], …) on this rig and this machine. An error where `out` does not hold one output per
 /// vertex.
 pub fn traffic<'a, const K: usize>(
     rig: &FastRig<K>,
@@ -52,6 +53,7 @@ pub fn traffic<'a, const K: usize>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::fast::dest::Dest;
     use crate::synthetic;
 
     /// Each vertex's bind position and normal, as the traffic kernel must write them.
@@ -74,6 +76,13 @@ mod tests {
             let want = bind(&rig);
             for parallel in [false, true] {
                 let mut packed = vec![[f32::NAN; 6]; n];
+                // The big mesh's packed output is streamed (a heap buffer reaches 32-byte
+                // alignment within its first four vertices).
+                let stream = n >= super::super::STREAM_VERTICES;
+                if stream && super::super::simd(K) {
+                    let start = super::super::simd_start(&Dest::packed(&mut packed), true);
+                    assert!(start.1, "K = {K}: not streamed");
+                }
                 traffic(&rig, &mut packed[..], parallel).unwrap();
                 assert_eq!(packed, want, "K = {K}, n = {n}, packed");
                 let mut inter = vec![-7.0f32; n * 7];
@@ -89,7 +98,7 @@ mod tests {
                 for (k, (v, w)) in inter.chunks_exact(7).zip(&want).enumerate() {
                     assert_eq!((&v[..6], v[6]), (&w[..], -7.0), "K = {K}, vertex {k}");
                 }
-                let (mut p, mut nr) = (vec![[0f32; 3]; n], vec![[0f32; 3]; n]);
+                let (mut p, mut nr) = (vec![[f32::NAN; 3]; n], vec![[f32::NAN; 3]; n]);
                 traffic(
                     &rig,
                     Output::Split {

@@ -1,14 +1,14 @@
-//! Every fast path beside the baselines of [`super::BASELINES`] and the copy bound, timed in
+//! Every fast path beside the baselines of [`super::BASELINES`] and two bounds, timed in
 //! interleaved rounds: each round runs every kernel once, so a slow spell of a shared
-//! machine hits all of them alike, and every ratio is taken within a round (a baseline's time
-//! over our kernel's of the same method, the copy's time over a kernel's, the traffic
-//! kernel's time over a kernel's) before the median is taken over the rounds, on a
-//! synthetic mesh or a rig of one's own. Two bounds: the copy of the bytes a vertex moves
-//! (half read, half written) and the fast paths' own traffic without their arithmetic
+//! machine hits all of them alike, and every ratio is taken within a round (a baseline's
+//! time over our kernel's of the same method, a bound's time over a kernel's) before the
+//! median is taken over the rounds, on a synthetic mesh or a rig of one's own. The two
+//! bounds: the copy of the bytes a vertex moves, half read and half written
+//! ([`copy_bound`]), and the fast paths' own loads and stores without their arithmetic
 //! ([`crate::fast::traffic`]: each vertex read whole, its six floats written by the
-//! kernels' stores), the memory's real limit for a kernel that reads twice what it writes. The one measurement behind
-//! `chasles skin --bench` (with `--rig`: [`measure_rig`]) and the
-//! criterion bench's closing table (Kavan et al. 2006, §6: what skinning costs).
+//! kernels' stores), which read 48 bytes a vertex (72 with eight influences) and write 24.
+//! The one measurement behind `chasles skin --bench` (with `--rig`: [`measure_rig`]) and
+//! the criterion bench's closing table (Kavan et al. 2006, §6: what skinning costs).
 
 use super::{copy_bound, run, Joints, BASELINES};
 use crate::error::Result;
@@ -107,7 +107,7 @@ impl Table {
 }
 
 /// Times every method's fast path (the pose's joint data made in each run, as
-/// [`skin_pose`] does), every baseline and the copy bound on a synthetic mesh of `n` vertices
+/// [`skin_pose`] does), every baseline and both bounds on a synthetic mesh of `n` vertices
 /// (54 joints, 4 random influences, [`synthetic::rig`]) in `rounds` interleaved rounds after
 /// one untimed one, on `threads` threads (1: the caller's; more: a rayon pool of that many,
 /// the fast paths' chunks spread over it). The random joints make nearly every vertex its
@@ -255,8 +255,10 @@ fn measure_on<const K: usize>(
         copy_bound(src, dst, half, parallel);
         Ok(())
     });
+    let bound = kernels.len();
     kernels.push((format!("memcpy, {moved} B a vertex"), Role::Bound, copy));
     let alone: Run = Box::new(move |o| traffic(rig, o, parallel));
+    let traffic_at = kernels.len();
     kernels.push((TRAFFIC.into(), Role::Traffic, alone));
     let mut secs = vec![Vec::with_capacity(rounds); kernels.len()];
     for round in 0..=rounds.max(1) {
@@ -270,8 +272,6 @@ fn measure_on<const K: usize>(
             }
         }
     }
-    // The last two: the copy, then the traffic.
-    let (bound, alone) = (kernels.len() - 2, kernels.len() - 1);
     let ours = |m: Method| kernels.iter().position(|k| k.1 == Role::Ours(m));
     // `a`'s time over `b`'s, round by round: `b`'s speed over `a`'s.
     let over =
@@ -289,7 +289,7 @@ fn measure_on<const K: usize>(
                 _ => None,
             },
             share: over(bound, k),
-            traffic_share: over(alone, k),
+            traffic_share: over(traffic_at, k),
         })
         .collect();
     Ok(Table {
