@@ -7,16 +7,16 @@
 //! and writes equal halves, where a kernel reads 48 bytes a vertex (72 with eight
 //! influences) and writes 24; on one thread out of the cache this bound is the tighter one.
 //!
-//! On the 2-core AMD EPYC (Zen 4) of the README's figures (two runs of `chasles skin
+//! On the 2-core AMD EPYC (Zen 4) of the README's figures (three runs of `chasles skin
 //! --bench --bench-vertices 100000,1000000,4000000 --bench-threads 1,2`, 2026-12-03), out of
 //! the cache this traffic ran at 1.07–1.44 times the copy's vertex rate on one thread and at
-//! 0.89–1.11 on two (medians of the rounds' ratios). One-thread DQS ran there at 0.58–0.69
-//! of it; and, in a scratch loop of best-of-20 runs (8 at 4·10⁶), each size in turn over
-//! four rounds, at 0.6–0.8 of its own speed in the cache (10⁵ vertices 265–276 M
-//! vertices/s, 10⁶ 163–218, 4·10⁶ 163–219, this traffic 300–355 out of the cache): neither
-//! its arithmetic nor the memory alone sets that figure, but how little of the memory's
-//! waiting the arithmetic hides. Prefetching 32 vertices ahead instead of 64, or into L2
-//! instead of L1, made no difference beyond the machine's noise in two such rounds.
+//! 0.89–1.18 on two (medians of the rounds' ratios). One-thread DQS ran there at 0.56–0.69
+//! of it; in a scratch loop of best-of-20 runs (8 at 4·10⁶), each size in turn, at
+//! 0.86–0.94 of its own in-cache speed while the shared machine's memory was quick (this
+//! traffic at 365–616 M vertices/s) and at 0.6–0.8 while it was slow (300–355): one core of
+//! DQS is bound mostly by its arithmetic, and loses more when the memory is slow, its
+//! arithmetic hiding little of the waiting. Prefetching 32 vertices ahead instead of 64, or
+//! into L2 instead of L1, and transparent huge pages made no difference beyond the noise.
 
 use super::{run, FastRig, Kernel, Out, Output, Vertex};
 use crate::error::Result;
