@@ -186,7 +186,8 @@ fn job(c: &mut Criterion) {
 }
 
 /// The peer ratios and the shares of both bounds in one table: every kernel, baseline, the
-/// copy and the traffic in interleaved rounds (`peers::measure`), so that each ratio is taken within a round.
+/// copy and the traffic in interleaved rounds (`peers::measure`), so that each ratio is
+/// taken within a round.
 fn ratios(_: &mut Criterion) {
     let load = peers::Load::start();
     let mut tables = Vec::new();

@@ -172,11 +172,13 @@ fn measure_rig_times_up_to_eight_influences_and_names_what_it_cannot() {
         assert_eq!((t.vertices, t.repeats, t.rows.len()), (37, 28, rows));
         assert_eq!(t.mesh, format!("spread{influences}"));
         assert!(t.rows.iter().any(|r| r.name == copy), "{:?}", t.rows);
-        assert!(
-            t.rows.iter().any(|r| r.name == peers::TRAFFIC),
-            "{:?}",
-            t.rows
-        );
+        // Each bound's share of itself is 1, and (one round) the traffic's share of the copy
+        // is the inverse of the copy's share of the traffic: each column over its own bound.
+        let row = |name: &str| t.rows.iter().find(|r| r.name == name).unwrap();
+        let (c, tr) = (row(copy), row(peers::TRAFFIC));
+        assert_eq!((c.share.median, tr.traffic_share.median), (1.0, 1.0));
+        let product = tr.share.median * c.traffic_share.median;
+        assert!((product - 1.0).abs() < 1e-12, "{product}: {:?}", t.rows);
         assert!(t.rows.iter().all(|r| r.rate.median > 0.0), "{:?}", t.rows);
     }
     assert_eq!(peers::repeats(370, 100_000), 271);

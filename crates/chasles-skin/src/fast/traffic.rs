@@ -39,8 +39,8 @@ impl<const K: usize> Kernel<K> for TrafficKernel {
 /// Writes every vertex's bind position and normal into `out` (any [`Output`] layout), on
 /// all threads when `parallel`, with the fast paths' own loads and stores and nothing
 /// between: the bound of every method's fast path's loads and stores ([`super::lbs`],
-/// [`super::dqs`], …) on this rig and this machine. An error where `out` does not hold one output per
-/// vertex.
+/// [`super::dqs`], …) on this rig and this machine. An error where `out` does not hold one
+/// output per vertex.
 pub fn traffic<'a, const K: usize>(
     rig: &FastRig<K>,
     out: impl Into<Output<'a>>,
@@ -54,6 +54,7 @@ pub fn traffic<'a, const K: usize>(
 mod tests {
     use super::*;
     use crate::fast::dest::Dest;
+    use crate::fast::{simd, simd_start, STREAM_VERTICES};
     use crate::synthetic;
 
     /// Each vertex's bind position and normal, as the traffic kernel must write them.
@@ -78,10 +79,9 @@ mod tests {
                 let mut packed = vec![[f32::NAN; 6]; n];
                 // The big mesh's packed output is streamed (a heap buffer reaches 32-byte
                 // alignment within its first four vertices).
-                let stream = n >= super::super::STREAM_VERTICES;
-                if stream && super::super::simd(K) {
-                    let start = super::super::simd_start(&Dest::packed(&mut packed), true);
-                    assert!(start.1, "K = {K}: not streamed");
+                if n >= STREAM_VERTICES && simd(K) {
+                    let (_, streams) = simd_start(&Dest::packed(&mut packed), true);
+                    assert!(streams, "K = {K}: not streamed");
                 }
                 traffic(&rig, &mut packed[..], parallel).unwrap();
                 assert_eq!(packed, want, "K = {K}, n = {n}, packed");
@@ -113,7 +113,7 @@ mod tests {
                 }
             }
         }
-        for n in [5, 1003, super::super::STREAM_VERTICES + 13] {
+        for n in [5, 1003, STREAM_VERTICES + 13] {
             check::<4>(n);
             check::<8>(n);
         }
