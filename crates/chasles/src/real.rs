@@ -191,6 +191,29 @@ macro_rules! impl_real {
 impl_real!(f32);
 impl_real!(f64);
 
+/// The shorter arc's numbers from `x0 = p·q`, `dm = ‖p − q‖²` and `dp = ‖p + q‖²` (for
+/// Slerp of quaternions and ScLERP of the real parts): where `x0 < 0` those of −q,
+/// `[−x0, dp, dm, −1]`, else `[x0, dm, dp, 1]` — `[x, d2, e2, s]`, with the sign `s` for
+/// q's weights (exact, so a blend that takes it there gives the bits of the blend with s q).
+///
+/// By a mask in two lanes, with no branch and off the chain of dependent operations: the
+/// compiler makes `if x0 < 0 { … }` a branch, which on random pairs is guessed wrong half
+/// the time; and taking the sign first, then ‖p ∓ s q‖², put it on that chain. ScLERP
+/// over 10⁶ stored random pairs, best of 20 loops: 36.3–36.6 ns a blend with the branch,
+/// 37.2–37.7 with the sign first (the comparison's bit as the sign bit of 1), 33.5 so.
+#[inline(always)]
+pub(crate) fn shorter_arc(x0: f64, dm: f64, dp: f64) -> [f64; 4] {
+    use wide::f64x2;
+    let neg = f64x2::splat(x0).simd_lt(f64x2::ZERO);
+    let [d2, e2] = neg
+        .bitselect(f64x2::new([dp, dm]), f64x2::new([dm, dp]))
+        .to_array();
+    let [x, s] = neg
+        .bitselect(f64x2::new([-x0, -1.0]), f64x2::new([x0, 1.0]))
+        .to_array();
+    [x, d2, e2, s]
+}
+
 /// `sin(x)/x`, exact at and near 0 (Taylor series below a threshold instead of 0/0).
 #[inline]
 pub fn sinc<T: Real>(x: T) -> T {
@@ -250,7 +273,29 @@ pub(crate) fn robust_norm<T: Real>(x: &[T]) -> T {
 
 #[cfg(test)]
 mod tests {
-    use super::robust_norm;
+    use super::{robust_norm, shorter_arc};
+
+    #[test]
+    fn the_shorter_arc_flips_below_zero_only() {
+        let (dm, dp) = (0.25, 3.75);
+        for x0 in [
+            -0.5,
+            -1e-300,
+            -f64::MIN_POSITIVE / 4.0,
+            -0.0,
+            0.0,
+            1e-300,
+            0.5,
+        ] {
+            let want = if x0 < 0.0 {
+                [-x0, dp, dm, -1.0]
+            } else {
+                [x0, dm, dp, 1.0]
+            };
+            let got = shorter_arc(x0, dm, dp);
+            assert_eq!(got.map(f64::to_bits), want.map(f64::to_bits), "{x0}");
+        }
+    }
 
     #[test]
     fn the_norm_neither_overflows_nor_underflows() {

@@ -15,7 +15,7 @@ use chasles::blend::{blend_dual_quats, blend_matrices, Method, Options};
 use chasles::{DualQuat, Error, Mat4, Quat, Vec3};
 use proptest::prelude::*;
 use rand::rngs::StdRng;
-use rand::SeedableRng;
+use rand::{Rng, SeedableRng};
 
 fn rigid(axis: [f64; 3], angle: f64, t: [f64; 3]) -> DualQuat<f64> {
     DualQuat::from_rotation_translation(
@@ -355,5 +355,20 @@ proptest! {
         let q = if scale == 1.0 { rel } else { p * small };
         sclerp_closed_form_matches_definition(p, q, 1e-12);
         sclerp_closed_form_matches_definition(p.cast::<f32>(), q.cast::<f32>(), 2e-5);
+    }
+
+    /// q̂ and −q̂ are one rigid motion, and ScLERP takes the shorter screw from either:
+    /// the same numbers bit for bit (the sign is folded into q̂'s weights with no branch),
+    /// for every t — inside [0, 1], at its ends, and extrapolating — in f64 and f32.
+    #[test]
+    fn sclerp_of_q_and_minus_q_agree_bit_for_bit(seed in 0u64..10_000, t in prop::sample::select(vec![0.0, 0.25, 0.5, 0.999, 1.0, -0.5, 1.5])) {
+        let mut r = rng(seed);
+        let (p, q) = (common::random_rigid(&mut r), common::random_rigid(&mut r));
+        let t = if t == 0.25 { r.random_range(0.0..1.0) } else { t };
+        let bits = |d: DualQuat<f64>| d.to_array().map(f64::to_bits);
+        prop_assert_eq!(bits(sclerp(p, q, t).unwrap()), bits(sclerp(p, -q, t).unwrap()));
+        let (p, q) = (p.cast::<f32>(), q.cast::<f32>());
+        let bits = |d: DualQuat<f32>| d.to_array().map(f32::to_bits);
+        prop_assert_eq!(bits(sclerp(p, q, t as f32).unwrap()), bits(sclerp(p, -q, t as f32).unwrap()));
     }
 }

@@ -589,6 +589,23 @@ fn f32_weights_match_trigonometry_to_f32_rounding() {
     }
 }
 
+proptest! {
+    /// `slerp_shortest` takes the shorter arc's sign with no branch and puts it on q's
+    /// weight: the bits of `slerp` towards the flipped q, and the same from q and −q, in f64
+    /// and f32, for h in [0, 1] (where the kernels run; extrapolation keeps the branch).
+    #[test]
+    fn shortest_slerp_is_slerp_to_the_flipped_end_bit_for_bit(a in unit_quat(), b in unit_quat(), h in 0.0f64..=1.0) {
+        let (p, q) = (quat_of::<f64>(a), quat_of::<f64>(b));
+        let sq = if p.dot(q) < 0.0 { -q } else { q };
+        let bits = |q: Quat<f64>| q.to_array().map(f64::to_bits);
+        prop_assert_eq!(bits(slerp_shortest(p, q, h)), bits(slerp(p, sq, h)));
+        prop_assert_eq!(bits(slerp_shortest(p, q, h)), bits(slerp_shortest(p, -q, h)));
+        let (p, q, sq, h) = (p.cast::<f32>(), q.cast::<f32>(), sq.cast::<f32>(), h as f32);
+        let bits = |q: Quat<f32>| q.to_array().map(f32::to_bits);
+        prop_assert_eq!(bits(slerp_shortest(p, q, h)), bits(slerp(p, sq, h)));
+    }
+}
+
 #[test]
 fn shortest_slerp_batch_is_the_per_pair_slerp_and_extrapolates_by_trigonometry() {
     use chasles::interp::slerp::{slerp_shortest, slerp_shortest_batch, slerp_trig};

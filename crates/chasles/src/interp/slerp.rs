@@ -111,8 +111,13 @@ pub fn slerp_trig<T: Real>(p: Quat<T>, q: Quat<T>, h: T) -> Quat<T> {
 /// h = 0 and h = 1.
 #[inline(always)]
 pub fn slerp_weights_reduced(p: Quat<f64>, q: Quat<f64>, h: f64) -> (f64, f64) {
+    weights_reduced((p - q).norm_squared() * 0.5, h)
+}
+
+/// [`slerp_weights_reduced`] from `y = ‖p − q‖²/2`.
+#[inline(always)]
+fn weights_reduced(y: f64, h: f64) -> (f64, f64) {
     use crate::trig::{acos_over_chord, sinc_cos_reduced};
-    let y = (p - q).norm_squared() * 0.5;
     let a = acos_over_chord(y);
     let z0 = y * a * a * 0.5;
     let g = 1.0 - h;
@@ -211,8 +216,10 @@ const fn series_coefficients() -> ([f64; SERIES_TERMS], [f64; SERIES_TERMS]) {
 ///
 /// In f32 it has no branch and no call for any h, extrapolation included (see
 /// `shortest_f32`), so a loop of it is vectorized: over 10⁶ stored pairs about 1.3× glam's
-/// `slerp` per call (`examples/stored_pairs`). In f64 h outside [0, 1] goes to
-/// [`slerp_trig`].
+/// `slerp` per call (`examples/stored_pairs`). In f64 the flip has no branch either (the
+/// mask of `real::shorter_arc`, its sign on q's weight: the same bits as [`slerp`] to the
+/// flipped q; 1.5× nalgebra's `slerp` per call where the branch gave 1.35×), and h outside
+/// [0, 1] goes to [`slerp_trig`].
 #[inline(always)]
 pub fn slerp_shortest<T: Real>(p: Quat<T>, q: Quat<T>, h: T) -> Quat<T> {
     if T::EPSILON > T::from_f64(1e-10) {
@@ -221,13 +228,18 @@ pub fn slerp_shortest<T: Real>(p: Quat<T>, q: Quat<T>, h: T) -> Quat<T> {
     }
     // After the flip p·q ≥ 0: the trigonometric form only to extrapolate (h outside
     // [0, 1]).
-    let x = p.dot(q);
-    let s = if x < T::ZERO { -T::ONE } else { T::ONE };
     if !(T::ZERO..=T::ONE).contains(&h) {
         // Extrapolation: past the kernels' fitted range (h Ω/2 ≤ π/4).
+        let s = if p.dot(q) < T::ZERO { -T::ONE } else { T::ONE };
         return slerp_trig(p, q * s, h);
     }
-    within_quarter_turn(p, q * s, h)
+    // The reduced kernels in f64, the flip with no branch (`shorter_arc`) and its sign on
+    // q's weight: the bits of `within_quarter_turn(p, s q, h)`.
+    let (pd, qd) = (p.cast::<f64>(), q.cast::<f64>());
+    let (dm, dp) = ((pd - qd).norm_squared(), (pd + qd).norm_squared());
+    let [_, d2, _, s] = crate::real::shorter_arc(pd.dot(qd), dm, dp);
+    let (a, b) = weights_reduced(d2 * 0.5, h.to_f64());
+    p * T::from_f64(a) + q * T::from_f64(b * s)
 }
 
 /// Slerp along the shorter arc in f32 for every `h`, with no branch and no call, so that a
