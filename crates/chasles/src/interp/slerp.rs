@@ -216,10 +216,12 @@ const fn series_coefficients() -> ([f64; SERIES_TERMS], [f64; SERIES_TERMS]) {
 ///
 /// In f32 it has no branch and no call for any h, extrapolation included (see
 /// `shortest_f32`), so a loop of it is vectorized: over 10⁶ stored pairs about 1.3× glam's
-/// `slerp` per call (`examples/stored_pairs`). In f64 the flip has no branch either (the
-/// mask of `real::shorter_arc`, its sign on q's weight: the same bits as [`slerp`] to the
-/// flipped q; 1.5× nalgebra's `slerp` per call where the branch gave 1.35×), and h outside
-/// [0, 1] goes to [`slerp_trig`].
+/// `slerp` per call (`examples/stored_pairs`). In f64 the chord `‖p ∓ q‖²` is computed
+/// before the flip's sign is known and chosen by it (`real::shorter_arc`; the sign goes on
+/// q's weight: the same bits as [`slerp`] to the flipped q). Before, the sign (a select,
+/// not a branch) came first and the chord after it, on the chain of dependent operations:
+/// 1.5× nalgebra's `slerp` per call now, 1.35× so. h outside [0, 1] goes to
+/// [`slerp_trig`].
 #[inline(always)]
 pub fn slerp_shortest<T: Real>(p: Quat<T>, q: Quat<T>, h: T) -> Quat<T> {
     if T::EPSILON > T::from_f64(1e-10) {
@@ -233,8 +235,8 @@ pub fn slerp_shortest<T: Real>(p: Quat<T>, q: Quat<T>, h: T) -> Quat<T> {
         let s = if p.dot(q) < T::ZERO { -T::ONE } else { T::ONE };
         return slerp_trig(p, q * s, h);
     }
-    // The reduced kernels in f64, the flip with no branch (`shorter_arc`) and its sign on
-    // q's weight: the bits of `within_quarter_turn(p, s q, h)`.
+    // The reduced kernels in f64, the chord chosen by the flip's sign (`shorter_arc`) and
+    // the sign on q's weight: the bits of `within_quarter_turn(p, s q, h)`.
     let (pd, qd) = (p.cast::<f64>(), q.cast::<f64>());
     let (dm, dp) = ((pd - qd).norm_squared(), (pd + qd).norm_squared());
     let [_, d2, _, s] = crate::real::shorter_arc(pd.dot(qd), dm, dp);
