@@ -271,6 +271,7 @@ pub fn bench(mesh: &BenchMesh, threads: &[usize], rounds: Option<usize>) -> Resu
         );
     }
     println!("{}", peers::markdown(&tables));
+    println!("{}", kernels_used());
     for t in &tables {
         let r = |name: &str| t.rate(name).unwrap_or(f64::NAN);
         let dqs = r("dqs");
@@ -302,6 +303,17 @@ pub fn bench(mesh: &BenchMesh, threads: &[usize], rounds: Option<usize>) -> Resu
         }
     }
     Ok(())
+}
+
+/// Which kernels the fast paths ran here, for the bench's reader: the eight-vertex AVX2+FMA
+/// ones, DIB's sixteen-vertex AVX-512F one where it runs, or the portable scalar ones.
+fn kernels_used() -> &'static str {
+    use chasles_skin::fast::{uses_avx512, uses_simd};
+    match (uses_simd(4), uses_avx512(4)) {
+        (true, true) => "the fast paths ran their AVX2+FMA kernels, eight vertices at a time, and DIB its AVX-512F kernel, sixteen at a time",
+        (true, false) => "the fast paths ran their AVX2+FMA kernels, eight vertices at a time (no AVX-512F here for DIB's sixteen-vertex kernel)",
+        _ => "the fast paths ran their portable scalar kernels (no AVX2+FMA here)",
+    }
 }
 
 /// `chasles skin --bench`'s mesh and pose from the arguments, then [`bench`].

@@ -1786,6 +1786,16 @@ fn skin_bench_prints_every_kernel_on_every_thread_count_with_round_by_round_rati
         assert_eq!(of("dqs")[6], "", "our kernels have no ratio to themselves");
     }
     assert!(out.contains("of the CPUs busy during the run"), "{out}");
+    // The kernels that ran, as this processor has them.
+    let kernels = match (
+        chasles_skin::fast::uses_simd(4),
+        chasles_skin::fast::uses_avx512(4),
+    ) {
+        (true, true) => "and DIB its AVX-512F kernel, sixteen at a time",
+        (true, false) => "eight vertices at a time (no AVX-512F here",
+        _ => "their portable scalar kernels",
+    };
+    assert!(out.contains(kernels), "{kernels}: {out}");
     let bad = chasles(&["skin", "--bench", "--bench-threads", "0"]);
     assert_eq!(bad.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&bad.stderr)

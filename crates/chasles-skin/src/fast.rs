@@ -1,6 +1,7 @@
 //! The fast path for every method: a compact vertex layout, fixed influence counts (4 or
 //! 8), eight-vertex AVX2+FMA kernels chosen at run time (every method, for 4 and 8 influences;
-//! elsewhere, and for the last few vertices, the scalar kernels), joint
+//! DIB sixteen vertices at a time where the processor has AVX-512F, module `avx512`, to the
+//! same bits; elsewhere, and for the last few vertices, the scalar kernels), joint
 //! transforms as flat arrays made once per pose (12 floats per matrix, 8 per dual
 //! quaternion — the register saving Kavan et al. 2006 note in §6; a 24-float row for QLB and
 //! SBS, module `qlb`; twists for Log, module `log`), one pass per vertex with no allocation
@@ -28,7 +29,7 @@
 //! by an unnormalized quaternion, DQS's transformation, products, Horner's rule, Log's
 //! exponential, and DIB whole (`lane::dib`: normalization, the branch-free logarithm and
 //! exponential by series, the stopping rule, the iteration) — is written once in `lane`,
-//! generic over the lane type (`f32`, `__m256`). What stays kernel-specific is the data
+//! generic over the lane type (`f32`, `__m256`, and `__m512` for DIB). What stays kernel-specific is the data
 //! movement (loads, blends, transposes, stores); Log's AVX2 kernel writes the exponential's
 //! steps out in its own order with the algebra's parts (the generic one inlined there
 //! measured 6 % slower). The scalar DIB kernel runs the library's `dib_convex` instead of
@@ -60,6 +61,8 @@ pub struct Vertex<const K: usize> {
 mod antipodes;
 #[cfg(target_arch = "x86_64")]
 mod avx2;
+#[cfg(target_arch = "x86_64")]
+mod avx512;
 mod dest;
 mod dib;
 mod job;
@@ -356,6 +359,33 @@ static SIMD_ALLOWED: AtomicBool = AtomicBool::new(true);
 /// Takes effect at the next job.
 pub fn set_simd(allowed: bool) {
     SIMD_ALLOWED.store(allowed, Ordering::Relaxed);
+}
+
+/// Whether DIB's SIMD path may take sixteen vertices at a time; see [`set_avx512`].
+static AVX512_ALLOWED: AtomicBool = AtomicBool::new(true);
+
+/// Allows (the default) or forbids DIB's sixteen-vertex AVX-512F kernel for this process:
+/// with `false` DIB's SIMD path runs the eight-vertex AVX2 kernel alone, as on a processor
+/// without AVX-512 — to compare the two, or to test that path, on any machine. Each vertex
+/// gets the same numbers either way. Takes effect at the next job.
+pub fn set_avx512(allowed: bool) {
+    AVX512_ALLOWED.store(allowed, Ordering::Relaxed);
+}
+
+/// Whether DIB jobs on a rig of `k` influences take sixteen vertices at a time here: the
+/// SIMD kernels run ([`uses_simd`]), the processor has AVX-512F, and [`set_avx512`] has not
+/// forbidden it.
+pub fn uses_avx512(k: usize) -> bool {
+    simd(k) && avx512()
+}
+
+/// Whether the sixteen-vertex kernel is allowed and the processor has AVX-512F.
+fn avx512() -> bool {
+    #[cfg(target_arch = "x86_64")]
+    if AVX512_ALLOWED.load(Ordering::Relaxed) && std::is_x86_feature_detected!("avx512f") {
+        return true;
+    }
+    false
 }
 
 /// Whether jobs on a rig of `k` influences run the SIMD kernels here: x86-64 with AVX2 and

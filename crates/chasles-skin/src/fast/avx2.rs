@@ -18,7 +18,8 @@ use super::dest::Dest;
 use super::lane::{rotate, transform, two_over_norm2};
 use super::{Antipodes, Vertex};
 use std::arch::x86_64::*;
-use store::{by_layout, store_rows, Store};
+use store::by_layout;
+pub(super) use store::{store_rows, Store};
 
 pub mod dib;
 pub mod log;
@@ -37,7 +38,7 @@ const PREFETCH: usize = 64;
 /// streamed from memory skin about 1.4 times faster for it (measured at 10⁶ vertices).
 #[inline]
 #[target_feature(enable = "avx2,fma")]
-unsafe fn load_head<const K: usize>(v: &[Vertex<K>], i: usize) -> [__m256; 8] {
+pub(super) unsafe fn load_head<const K: usize>(v: &[Vertex<K>], i: usize) -> [__m256; 8] {
     unsafe {
         let stride = size_of::<Vertex<K>>() / 4;
         // A prefetch past the end of the mesh is harmless; the pointer is never read.
@@ -83,7 +84,7 @@ unsafe fn blend_one<const K: usize>(vx: &Vertex<K>, db: *const f32) -> __m256 {
 /// `[f(0), …, f(7)]`, written out: through `array::from_fn` the kernels' per-vertex blends
 /// stayed calls, one per vertex.
 #[inline(always)]
-fn eight<R>(f: impl Fn(usize) -> R) -> [R; 8] {
+pub(super) fn eight<R>(f: impl Fn(usize) -> R) -> [R; 8] {
     [f(0), f(1), f(2), f(3), f(4), f(5), f(6), f(7)]
 }
 
@@ -96,7 +97,7 @@ fn sum64(c: &[f32], s: f64) -> f64 {
 /// Transposes 8 registers of 8 floats: row k of the result is element k of every input.
 #[inline]
 #[target_feature(enable = "avx2,fma")]
-fn transpose8(r: [__m256; 8]) -> [__m256; 8] {
+pub(super) fn transpose8(r: [__m256; 8]) -> [__m256; 8] {
     let [s0, s1, s2, s3] = transpose4_halves([r[0], r[1], r[2], r[3]]);
     let [s4, s5, s6, s7] = transpose4_halves([r[4], r[5], r[6], r[7]]);
     [
@@ -115,7 +116,7 @@ fn transpose8(r: [__m256; 8]) -> [__m256; 8] {
 /// is element c of input k, within the low half and within the high half.
 #[inline]
 #[target_feature(enable = "avx2,fma")]
-fn transpose4_halves(r: [__m256; 4]) -> [__m256; 4] {
+pub(super) fn transpose4_halves(r: [__m256; 4]) -> [__m256; 4] {
     let t0 = _mm256_unpacklo_ps(r[0], r[1]);
     let t1 = _mm256_unpackhi_ps(r[0], r[1]);
     let t2 = _mm256_unpacklo_ps(r[2], r[3]);

@@ -1,6 +1,7 @@
 //! The fast path's quaternion and dual-quaternion algebra, written once over a lane type:
-//! `f32` for the scalar kernels (one vertex) and `__m256` for the AVX2+FMA kernels (eight
-//! vertices, one a lane). The rotation `x + s v × (v × x + w x)` by `(w, v)/‖(w, v)‖` with
+//! `f32` for the scalar kernels (one vertex), `__m256` for the AVX2+FMA kernels (eight
+//! vertices, one a lane) and `__m512` for DIB's AVX-512F kernel (sixteen; `avx512`, whose
+//! every operation is the eight lanes' on twice the lanes, so a lane gives the same bits). The rotation `x + s v × (v × x + w x)` by `(w, v)/‖(w, v)‖` with
 //! `s = 2/‖(w, v)‖²` (no square root), dual quaternion skinning's transformation of a point
 //! and a normal by an unnormalized blend (Kavan et al. 2006, §3 and §6), the dot product
 //! and Horner's rule: each function below is both kernels' formula, in one order of
@@ -14,6 +15,8 @@
 #[cfg(target_arch = "x86_64")]
 use std::arch::x86_64::*;
 
+#[cfg(target_arch = "x86_64")]
+mod avx512;
 pub(super) mod dib;
 mod wide;
 
@@ -22,7 +25,7 @@ mod wide;
 /// logarithm and stopping rule).
 pub(super) trait Lane: Copy {
     /// The outcome of a comparison in each lane: `bool` for `f32`, all-ones or all-zeros
-    /// lanes for `__m256`.
+    /// lanes for `__m256`, a bit a lane (a mask register) for `__m512`.
     type Mask: Copy;
     /// `x` in every lane.
     fn splat(x: f32) -> Self;

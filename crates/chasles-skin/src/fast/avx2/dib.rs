@@ -3,7 +3,9 @@
 //! of weight 0 in all eight vertices left out at the end, unused ones replaced by the
 //! identity), and the lane algebra's branch-free DIB (`lane::dib`, where the series and the
 //! stopping rule and the second-order step are) runs on `__m256`, one vertex per lane. The
-//! last step is DQS's transform.
+//! last step is DQS's transform. Where the processor has AVX-512F the whole blocks of
+//! sixteen go through the sixteen-vertex kernel (`fast::avx512`, the same lane algebra on
+//! `__m512`, the same bits) and only a last block of eight through this one.
 //!
 //! The blocks take the vertices side by side. Taking each window's vertices ordered by
 //! influence count was tried (a block costs what its costliest lane needs; fully sorted
@@ -37,10 +39,27 @@ pub unsafe fn dib<const K: usize>(
     o: Dest<'_>,
     stream: bool,
 ) -> usize {
-    unsafe { by_layout!(o, S => dib_blocks::<K, S>(v, d, o, stream)) }
+    // SAFETY: as the caller's; `avx512` is true only where the processor has AVX-512F.
+    unsafe { dib_with(v, d, o, stream, super::super::avx512()) }
 }
 
-/// [`dib`]'s loop for the layout `S`, a function of its own (each layout's frame its own):
+/// [`dib`], the whole blocks of sixteen by the AVX-512F kernel (`avx512::dib_blocks`)
+/// where `sixteen`, the rest by eight here: each vertex's numbers are the same either way.
+///
+/// # Safety
+/// As for [`dib`]; with `sixteen`, the processor must have AVX-512F.
+#[target_feature(enable = "avx2,fma")]
+pub(in crate::fast) unsafe fn dib_with<const K: usize>(
+    v: &[Vertex<K>],
+    d: &[[f32; 8]],
+    o: Dest<'_>,
+    stream: bool,
+    sixteen: bool,
+) -> usize {
+    unsafe { by_layout!(o, S => dib_blocks::<K, S>(v, d, o, stream, sixteen)) }
+}
+
+/// [`dib_with`]'s loop for the layout `S`, a function of its own (each layout's frame its own):
 /// the three layouts' loops inlined into [`dib`] ran 2 % slower (best of runs, 10⁵
 /// vertices of 4 influences, one core, `examples/dib_influences`: 20.5–20.6 before the
 /// layouts, 20.1–20.2 inlined, 20.8 not).
@@ -51,14 +70,23 @@ unsafe fn dib_blocks<const K: usize, S: Store>(
     d: &[[f32; 8]],
     mut o: Dest<'_>,
     stream: bool,
+    sixteen: bool,
 ) -> usize {
     chasles::frame::align_frame();
     unsafe {
+        // Sixteen at a time where asked (the same bits), the last eight here.
+        // SAFETY: `sixteen` only where the processor has AVX-512F (the caller's contract);
+        // the rest is this function's own.
+        let first = if sixteen {
+            super::super::avx512::dib_blocks::<K, S>(v, d, &mut o, stream) / 8
+        } else {
+            0
+        };
         let db = d.as_ptr() as *const f32;
         let zero = _mm256_setzero_ps();
         let identity = eight(|c| if c == 0 { _mm256_set1_ps(1.0) } else { zero });
         let blocks = v.len() / 8;
-        for blk in 0..blocks {
+        for blk in first..blocks {
             let i = blk * 8;
             let [px, py, pz, nx, ny, nz, _, _] = load_head(v, i);
             let vs = eight(|l| v.get_unchecked(i + l));

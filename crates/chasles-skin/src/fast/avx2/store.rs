@@ -14,7 +14,7 @@ use std::arch::x86_64::*;
 /// other layouts' stores. One loop with the layout chosen per block held the packed output
 /// of LBS and DQS 8 % slower (10⁵ vertices, one core, best of 200 runs: LBS 230 → 209, DQS
 /// 247 → 227 M vertices/s), though the branch always went the same way.
-pub(super) trait Store {
+pub(in crate::fast) trait Store {
     /// The layout.
     const LAYOUT: Layout;
 }
@@ -79,7 +79,7 @@ pub(super) use by_layout;
 /// 32-byte aligned.
 #[inline]
 #[target_feature(enable = "avx2,fma")]
-pub(super) unsafe fn store_rows<S: Store>(
+pub(in crate::fast) unsafe fn store_rows<S: Store>(
     o: &mut Dest<'_>,
     i: usize,
     r: [__m256; 6],

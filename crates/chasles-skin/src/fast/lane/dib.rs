@@ -311,7 +311,12 @@ fn update<L: Lane, const K: usize>(
     });
     let mut x = [L::splat(0.0); 8];
     let mut spread = Spread::default();
-    for g in (0..slots).step_by(2) {
+    // Up to K, known when compiled, rather than `slots`: 3–4 % faster on sixteen lanes, the
+    // same on eight (best of runs, binaries in turn).
+    for g in (0..K).step_by(2) {
+        if g >= slots {
+            break;
+        }
         let at = |i: usize| (g + i).min(K - 1);
         let q2 = eight(|c| Wide([q[at(0)][c], q[at(1)][c]]));
         let l2 = log(&dqmul(&conj, &q2));

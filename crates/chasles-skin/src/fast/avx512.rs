@@ -1,0 +1,187 @@
+//! DIB (Kavan et al. 2006, §4, the box "DIB") sixteen vertices at a time with AVX-512F,
+//! where the processor has it (chosen at run time; `set_avx512` forbids it): the lane
+//! algebra's branch-free DIB (`lane::dib`) on `__m512`, one vertex a lane, with the AVX2
+//! kernel's loads, transposes and stores on each half of eight. Every operation is the
+//! eight-lane one's on twice the lanes (`lane::avx512`), so each vertex gets the AVX2
+//! kernel's very bits, and a mesh's last block of eight goes through that kernel.
+//!
+//! Why sixteen lanes help DIB (and only DIB): its update keeps more values alive than
+//! AVX2's sixteen registers hold — the eight-lane kernel's loop body spills about a third
+//! of its operands to the stack — while AVX-512's thirty-two hold them, its comparisons
+//! land in mask registers, and one instruction does sixteen lanes' work. The other methods
+//! are a few dozen instructions a vertex with nothing spilled, bound by their loads and
+//! the memory (see `avx2`).
+
+use super::avx2::{eight, load_head, store_rows, transpose4_halves, transpose8, Store};
+use super::dest::Dest;
+use super::lane::dib::{convex, dib as blend};
+use super::lane::transform;
+use super::Vertex;
+use std::arch::x86_64::*;
+
+/// `lo` in lanes 0–7 and `hi` in lanes 8–15.
+#[inline]
+#[target_feature(enable = "avx512f")]
+fn join(lo: __m256, hi: __m256) -> __m512 {
+    let lo = _mm512_castpd256_pd512(_mm256_castps_pd(lo));
+    _mm512_castpd_ps(_mm512_insertf64x4::<1>(lo, _mm256_castps_pd(hi)))
+}
+
+/// Lanes 0–7 and lanes 8–15 of `x`.
+#[inline]
+#[target_feature(enable = "avx512f")]
+fn split(x: __m512) -> (__m256, __m256) {
+    let hi = _mm512_extractf64x4_pd::<1>(_mm512_castps_pd(x));
+    (_mm512_castps512_ps256(x), _mm256_castpd_ps(hi))
+}
+
+/// DIB for the first `v.len() / 16 * 16` vertices into `o` (layout `S`), as the AVX2
+/// kernel's loop does for blocks of eight; returns how many were done.
+///
+/// # Safety
+/// The processor must have AVX-512F (and so AVX2 and FMA); otherwise as for the AVX2
+/// kernel (`avx2::dib::dib`): K is 4 or 8, every joint index in `v` is below `d.len()`,
+/// `o.len() >= v.len()`, and with `stream` `o` is packed and 32-byte aligned.
+#[inline(never)]
+#[target_feature(enable = "avx512f,avx2,fma")]
+pub(super) unsafe fn dib_blocks<const K: usize, S: Store>(
+    v: &[Vertex<K>],
+    d: &[[f32; 8]],
+    o: &mut Dest<'_>,
+    stream: bool,
+) -> usize {
+    chasles::frame::align_frame();
+    unsafe {
+        let db = d.as_ptr() as *const f32;
+        let zero = _mm512_setzero_ps();
+        let identity: [__m512; 8] = eight(|c| if c == 0 { _mm512_set1_ps(1.0) } else { zero });
+        let blocks = v.len() / 16;
+        for blk in 0..blocks {
+            let i = blk * 16;
+            let (h0, h1) = (load_head(v, i), load_head(v, i + 8));
+            let head: [__m512; 6] = core::array::from_fn(|c| join(h0[c], h1[c]));
+            // Weights in lanes (vertex l in lane l), four slots of eight vertices at a time,
+            // as in the AVX2 kernel.
+            let mut raw = [zero; K];
+            for g in 0..K / 4 {
+                let four = |at: usize| {
+                    let w = |l: usize| _mm_loadu_ps(v.get_unchecked(at + l).w.as_ptr().add(4 * g));
+                    transpose4_halves([0, 1, 2, 3].map(|l| _mm256_set_m128(w(l + 4), w(l))))
+                };
+                let (lo, hi) = (four(i), four(i + 8));
+                for c in 0..4 {
+                    raw[4 * g + c] = join(lo[c], hi[c]);
+                }
+            }
+            let (w, used, slots) = convex(raw);
+            // Joints in lanes; unused ones replaced by the identity.
+            let mut q = [identity; K];
+            for k in 0..slots {
+                let rows = |at: usize| {
+                    transpose8(eight(|l| {
+                        let j = usize::from(v.get_unchecked(at + l).j[k]);
+                        _mm256_loadu_ps(db.add(j * 8))
+                    }))
+                };
+                let (lo, hi) = (rows(i), rows(i + 8));
+                q[k] = eight(|c| _mm512_mask_blend_ps(used[k], identity[c], join(lo[c], hi[c])));
+            }
+            let b = blend(&q, &w, slots);
+            let r = transform(b, [head[0], head[1], head[2]], [head[3], head[4], head[5]]);
+            let (lo, hi): ([__m256; 6], [__m256; 6]) = (
+                core::array::from_fn(|c| split(r[c]).0),
+                core::array::from_fn(|c| split(r[c]).1),
+            );
+            store_rows::<S>(o, i, lo, stream);
+            store_rows::<S>(o, i + 8, hi, stream);
+        }
+        blocks * 16
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::fast::avx2::dib::dib_with;
+    use crate::fast::dest::Dest;
+    use crate::fast::{dual_quats8, FastRig, Out, Vertex};
+    use crate::synthetic;
+
+    /// The DIB kernel on `v` by eight alone or with the sixteen-vertex kernel, into a
+    /// packed output marked with NaNs: the outputs, and how many vertices were done.
+    fn run<const K: usize>(v: &[Vertex<K>], d: &[[f32; 8]], sixteen: bool) -> (Vec<Out>, usize) {
+        let mut out = vec![[f32::NAN; 6]; v.len()];
+        // SAFETY: the callers check AVX2, FMA and AVX-512F; the joint indices are below
+        // d.len() (the rigs' joint counts are the poses'), `out` is as long as `v`.
+        let done = unsafe { dib_with(v, d, Dest::packed(&mut out), false, sixteen) };
+        (out, done)
+    }
+
+    /// `rig` with `count(i)` influences on vertex i.
+    fn counts<const K: usize>(rig: &FastRig<K>, count: impl Fn(usize) -> usize) -> FastRig<K> {
+        synthetic::with_influences(rig, |i, k| k < count(i))
+    }
+
+    /// Each vertex gets the eight-vertex kernel's bits from the sixteen-vertex one: 4 and 8
+    /// influences, counts 1 to K mixed within blocks and in runs of blocks (a run of
+    /// sixteen of at most two takes one update, a mixed one the iteration), at 60° poses
+    /// and at every angle, meshes of 16k, 16k + 8 (a last block by eight) and odd lengths,
+    /// every vertex a lane of every position (the mesh shifted by 1–15), and a used NaN
+    /// joint (NaN out for its vertices, the same as by eight).
+    #[test]
+    fn sixteen_lanes_give_each_vertex_the_bits_of_eight() {
+        if !(crate::fast::simd(4) && std::is_x86_feature_detected!("avx512f")) {
+            eprintln!("no AVX-512F here: nothing to compare");
+            return;
+        }
+        fn check<const K: usize>() {
+            let base = synthetic::rig_with::<K>(1203, 54, 9);
+            let mixed = counts(&base, |i| 1 + (i * 7919) % K);
+            let runs = counts(&base, |i| {
+                if (i / 48) % 2 == 0 {
+                    1 + i % 2
+                } else {
+                    1 + (i * 31) % K
+                }
+            });
+            let every = crate::fast::dual_quats8(&synthetic::joints(54, 3));
+            let mut wild: Vec<[f32; 8]> = (0..54)
+                .map(|j| {
+                    let f = j as f32 / 54.0;
+                    let axis = chasles::Vec3::new(1.0, 3.0 * f - 1.0, (7.0 * f).sin());
+                    let q = chasles::Quat::from_axis_angle(axis, 6.2 * f).unwrap();
+                    let t = chasles::Vec3::new(2.0 * f, 1.0 - f, (3.0 * f).cos());
+                    chasles::DualQuat::from_rotation_translation(q, t).to_array()
+                })
+                .collect();
+            for rig in [&base, &mixed, &runs] {
+                for d in [&every, &wild] {
+                    for (from, to) in [(0, 1203), (0, 1200), (0, 1192), (3, 1203), (15, 1100)] {
+                        let v = &rig.vertices()[from..to];
+                        let (eight, done) = run(v, d, false);
+                        let (sixteen, done16) = run(v, d, true);
+                        assert_eq!((done, done16), (v.len() / 8 * 8, v.len() / 8 * 8));
+                        for (k, (a, b)) in eight.iter().zip(&sixteen).enumerate() {
+                            assert_eq!(
+                                a.map(f32::to_bits),
+                                b.map(f32::to_bits),
+                                "K = {K}, vertices {from}..{to}, vertex {k}: {a:?} against {b:?}"
+                            );
+                        }
+                    }
+                }
+            }
+            // A used joint that is NaN: NaN out for the vertices it moves, as by eight.
+            let j = usize::from(mixed.vertices()[5].j[0]);
+            wild[j][0] = f32::NAN;
+            let (eight, _) = run(mixed.vertices(), &wild, false);
+            let (sixteen, _) = run(mixed.vertices(), &wild, true);
+            assert!(sixteen[5].iter().all(|x| x.is_nan()));
+            for (a, b) in eight.iter().zip(&sixteen) {
+                assert_eq!(a.map(f32::to_bits), b.map(f32::to_bits));
+            }
+        }
+        let _ = dual_quats8;
+        check::<4>();
+        check::<8>();
+    }
+}
