@@ -11,6 +11,28 @@
 //! land in mask registers, and one instruction does sixteen lanes' work. The other methods
 //! are a few dozen instructions a vertex with nothing spilled, bound by their loads and
 //! the memory (see `avx2`).
+//!
+//! Tried on sixteen lanes and not kept (best of runs at 10⁵ vertices, one core, the
+//! variants in turn, 2026-12-04):
+//! - A block pays for the iteration where any of its lanes has three influences or more,
+//!   and sixteen lanes make mixed blocks likelier (CesiumMan: 145 of its 205 blocks of
+//!   sixteen iterate; 72 would, its vertices grouped by count). Taking each window of 256
+//!   vertices in an order made at run time — those of two influences or fewer first, by
+//!   a gather of slot 2's weights and two compressing stores, then loads by index and each
+//!   vertex's own stores — made blocks of two 23 % slower and of four 16 % slower (63 → 49,
+//!   29.9 → 25.2 M vertices/s), so that the alternating 2/4 mix gained nothing (29.8 both)
+//!   and CesiumMan and the Fox lost 3–4 %: the indexed loads and stores, and the vertex
+//!   pointers spilled with them, cost more than the iterating blocks saved.
+//! - Where one half of a block needs the iteration and the other not, the halves by the
+//!   eight-vertex kernel: no faster (a block of sixteen iterates 1.4× as fast a vertex as
+//!   one of eight, so one iterating half and one of pairs cost as much as sixteen).
+//! - Each influence's logarithm alone, not two interleaved: one influence 1.3× faster,
+//!   four 4 % slower; four interleaved: calls left in the loop, 4.5× slower.
+//! - A block whose lanes all have one influence returning before the update it does not
+//!   take: such blocks 2× faster, blocks of two 12 % slower, the characters unchanged.
+//! - Leaving the moments out of the pass that shows convergence (taking the logarithms
+//!   again with them where a lane goes on): four influences 3 % faster, one and two 5–8 %
+//!   slower, the characters unchanged.
 
 use super::avx2::{eight, load_head, store_rows, transpose4_halves, transpose8, Store};
 use super::dest::Dest;
