@@ -34,7 +34,8 @@
 //!   again with them where a lane goes on): four influences 3 % faster, one and two 5–8 %
 //!   slower, the characters unchanged.
 
-use super::avx2::{eight, load_head, store_rows, transpose4_halves, transpose8, Store};
+use super::avx2::dib::{joints, weights};
+use super::avx2::{eight, load_head, store_rows, Store};
 use super::dest::Dest;
 use super::lane::dib::{convex, dib as blend};
 use super::lane::transform;
@@ -82,30 +83,15 @@ pub(super) unsafe fn dib_blocks<const K: usize, S: Store>(
             let i = blk * 16;
             let (h0, h1) = (load_head(v, i), load_head(v, i + 8));
             let head: [__m512; 6] = core::array::from_fn(|c| join(h0[c], h1[c]));
-            // Weights in lanes (vertex l in lane l), four slots of eight vertices at a time,
-            // as in the AVX2 kernel.
-            let mut raw = [zero; K];
-            for g in 0..K / 4 {
-                let four = |at: usize| {
-                    let w = |l: usize| _mm_loadu_ps(v.get_unchecked(at + l).w.as_ptr().add(4 * g));
-                    transpose4_halves([0, 1, 2, 3].map(|l| _mm256_set_m128(w(l + 4), w(l))))
-                };
-                let (lo, hi) = (four(i), four(i + 8));
-                for c in 0..4 {
-                    raw[4 * g + c] = join(lo[c], hi[c]);
-                }
-            }
-            let (w, used, slots) = convex(raw);
-            // Joints in lanes; unused ones replaced by the identity.
+            // Weights and joints in lanes (vertex l in lane l), as the AVX2 kernel takes
+            // them, for each eight.
+            let (lo, hi) = (weights(v, i), weights(v, i + 8));
+            let (w, used, slots) =
+                convex::<__m512, K>(core::array::from_fn(|k| join(lo[k], hi[k])));
+            // Unused joints replaced by the identity.
             let mut q = [identity; K];
             for k in 0..slots {
-                let rows = |at: usize| {
-                    transpose8(eight(|l| {
-                        let j = usize::from(v.get_unchecked(at + l).j[k]);
-                        _mm256_loadu_ps(db.add(j * 8))
-                    }))
-                };
-                let (lo, hi) = (rows(i), rows(i + 8));
+                let (lo, hi) = (joints(v, db, i, k), joints(v, db, i + 8, k));
                 q[k] = eight(|c| _mm512_mask_blend_ps(used[k], identity[c], join(lo[c], hi[c])));
             }
             let b = blend(&q, &w, slots);

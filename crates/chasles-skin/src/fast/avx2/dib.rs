@@ -89,28 +89,60 @@ unsafe fn dib_blocks<const K: usize, S: Store>(
         for blk in first..blocks {
             let i = blk * 8;
             let [px, py, pz, nx, ny, nz, _, _] = load_head(v, i);
-            let vs = eight(|l| v.get_unchecked(i + l));
-            // Weights in lanes (vertex l in lane l), four slots at a time; the positive ones
-            // scaled to sum to 1, in the scalar kernel's order.
-            let mut raw = [zero; K];
-            for g in 0..K / 4 {
-                let w = |l: usize| _mm_loadu_ps(vs[l].w.as_ptr().add(4 * g));
-                let t = transpose4_halves([0, 1, 2, 3].map(|l| _mm256_set_m128(w(l + 4), w(l))));
-                raw[4 * g..4 * g + 4].copy_from_slice(&t);
-            }
-            let (w, used, slots) = convex(raw);
+            // The positive weights scaled to sum to 1, in the scalar kernel's order.
+            let (w, used, slots) = convex(weights(v, i));
             // Joints in lanes; unused ones replaced by the identity.
             let mut q = [identity; K];
             for k in 0..slots {
-                let t = transpose8(eight(|l| {
-                    _mm256_loadu_ps(db.add(usize::from(vs[l].j[k]) * 8))
-                }));
+                let t = joints(v, db, i, k);
                 q[k] = eight(|c| _mm256_blendv_ps(identity[c], t[c], used[k]));
             }
             let b = blend(&q, &w, slots);
             store_rows::<S>(&mut o, i, transform(b, [px, py, pz], [nx, ny, nz]), stream);
         }
         blocks * 8
+    }
+}
+
+/// The weights of vertices `i … i + 7` in lanes (vertex l in lane l), slot by slot, four
+/// slots at a time by 4×4 transposes within halves.
+///
+/// # Safety
+/// `i + 8 <= v.len()`; the processor must have AVX2.
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+pub(in crate::fast) unsafe fn weights<const K: usize>(v: &[Vertex<K>], i: usize) -> [__m256; K] {
+    unsafe {
+        let mut raw = [_mm256_setzero_ps(); K];
+        for g in 0..K / 4 {
+            let w = |l: usize| _mm_loadu_ps(v.get_unchecked(i + l).w.as_ptr().add(4 * g));
+            let t = transpose4_halves([0, 1, 2, 3].map(|l| _mm256_set_m128(w(l + 4), w(l))));
+            raw[4 * g..4 * g + 4].copy_from_slice(&t);
+        }
+        raw
+    }
+}
+
+/// The dual quaternions of slot `k`'s joints of vertices `i … i + 7` in lanes (component
+/// c in register c, vertex l in lane l): eight whole-register loads from the joints `db`
+/// and a transpose.
+///
+/// # Safety
+/// `i + 8 <= v.len()`, `k < K`, every joint index of those vertices is one of `db`'s
+/// dual quaternions (8 floats each); the processor must have AVX2.
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+pub(in crate::fast) unsafe fn joints<const K: usize>(
+    v: &[Vertex<K>],
+    db: *const f32,
+    i: usize,
+    k: usize,
+) -> [__m256; 8] {
+    unsafe {
+        transpose8(eight(|l| {
+            let j = usize::from(v.get_unchecked(i + l).j[k]);
+            _mm256_loadu_ps(db.add(j * 8))
+        }))
     }
 }
 
