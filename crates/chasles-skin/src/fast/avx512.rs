@@ -111,14 +111,15 @@ pub(super) unsafe fn dib_blocks<const K: usize, S: Store>(
 mod tests {
     use crate::fast::avx2::dib::dib_with;
     use crate::fast::dest::Dest;
-    use crate::fast::{dual_quats8, FastRig, Out, Vertex};
+    use crate::fast::{FastRig, Out, Vertex};
     use crate::synthetic;
 
     /// The DIB kernel on `v` by eight alone or with the sixteen-vertex kernel, into a
     /// packed output marked with NaNs: the outputs, and how many vertices were done.
     fn run<const K: usize>(v: &[Vertex<K>], d: &[[f32; 8]], sixteen: bool) -> (Vec<Out>, usize) {
+        assert!(crate::fast::simd(K) && (!sixteen || std::is_x86_feature_detected!("avx512f")));
         let mut out = vec![[f32::NAN; 6]; v.len()];
-        // SAFETY: the callers check AVX2, FMA and AVX-512F; the joint indices are below
+        // SAFETY: AVX2, FMA and, with `sixteen`, AVX-512F checked above; the joint indices are below
         // d.len() (the rigs' joint counts are the poses'), `out` is as long as `v`.
         let done = unsafe { dib_with(v, d, Dest::packed(&mut out), false, sixteen) };
         (out, done)
@@ -133,8 +134,11 @@ mod tests {
     /// influences, counts 1 to K mixed within blocks and in runs of blocks (a run of
     /// sixteen of at most two takes one update, a mixed one the iteration), at 60° poses
     /// and at every angle, meshes of 16k, 16k + 8 (a last block by eight) and odd lengths,
-    /// every vertex a lane of every position (the mesh shifted by 1–15), and a used NaN
-    /// joint (NaN out for its vertices, the same as by eight).
+    /// every vertex a lane of every position (the mesh shifted by 0–15, so that blocks of
+    /// sixteen whose halves need different passes come up), and a used NaN joint (NaN out
+    /// for its vertices, the same as by eight). On a processor with AVX-512F the other DIB
+    /// kernel tests (`avx2::dib`) run mostly the sixteen-vertex kernel through `dib`; without
+    /// it this test and `tests/avx512.rs` skip, and those run the eight-vertex one.
     #[test]
     fn sixteen_lanes_give_each_vertex_the_bits_of_eight() {
         if !(crate::fast::simd(4) && std::is_x86_feature_detected!("avx512f")) {
@@ -163,7 +167,10 @@ mod tests {
                 .collect();
             for rig in [&base, &mixed, &runs] {
                 for d in [&every, &wild] {
-                    for (from, to) in [(0, 1203), (0, 1200), (0, 1192), (3, 1203), (15, 1100)] {
+                    let shifts = (0..16)
+                        .map(|from| (from, 1203))
+                        .chain([(0, 1200), (0, 1192)]);
+                    for (from, to) in shifts {
                         let v = &rig.vertices()[from..to];
                         let (eight, done) = run(v, d, false);
                         let (sixteen, done16) = run(v, d, true);
@@ -188,8 +195,142 @@ mod tests {
                 assert_eq!(a.map(f32::to_bits), b.map(f32::to_bits));
             }
         }
-        let _ = dual_quats8;
         check::<4>();
         check::<8>();
+    }
+
+    /// Every lane operation on `__m512` is the `__m256` one's, bit for bit, on edge inputs:
+    /// ties, ±0, ±∞, NaN, subnormals, the largest and smallest normals (comparisons, choices,
+    /// sign flips, the mask operations, the arithmetic and Horner's rule).
+    #[test]
+    fn each_lane_operation_is_the_eight_lanes_one() {
+        use crate::fast::lane::Lane;
+        use std::arch::x86_64::*;
+        if !(crate::fast::simd(4) && std::is_x86_feature_detected!("avx512f")) {
+            eprintln!("no AVX-512F here: nothing to compare");
+            return;
+        }
+        let edge = [
+            0.0f32,
+            -0.0,
+            1.0,
+            -1.0,
+            1.5,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::NAN,
+            -f32::NAN,
+            1e-45,
+            -1e-40,
+            f32::MAX,
+            f32::MIN_POSITIVE,
+            3.0,
+            0.25,
+            -7.5,
+        ];
+        // Every pair (and a third operand) over the sixteen edges: 16 rotations.
+        for r in 0..16 {
+            for t in 0..4 {
+                let a: [f32; 16] = core::array::from_fn(|l| edge[l]);
+                let b: [f32; 16] = core::array::from_fn(|l| edge[(l + r) % 16]);
+                let c: [f32; 16] = core::array::from_fn(|l| edge[(l + r + t + 1) % 16]);
+                // SAFETY: AVX2, FMA and AVX-512F checked above; every load and store is of
+                // sixteen (or twice eight) floats of these arrays.
+                unsafe { compare(a, b, c) };
+            }
+        }
+
+        #[target_feature(enable = "avx512f,avx2,fma")]
+        unsafe fn compare(a: [f32; 16], b: [f32; 16], c: [f32; 16]) {
+            unsafe {
+                let wide = |x: &[f32; 16]| _mm512_loadu_ps(x.as_ptr());
+                let half = |x: &[f32; 16], h: usize| _mm256_loadu_ps(x.as_ptr().add(8 * h));
+                let (a16, b16, c16) = (wide(&a), wide(&b), wide(&c));
+                let bits16 = |x: __m512| {
+                    let mut o = [0f32; 16];
+                    _mm512_storeu_ps(o.as_mut_ptr(), x);
+                    o.map(f32::to_bits)
+                };
+                let bits8 = |lo: __m256, hi: __m256| {
+                    let mut o = [0f32; 16];
+                    _mm256_storeu_ps(o.as_mut_ptr(), lo);
+                    _mm256_storeu_ps(o.as_mut_ptr().add(8), hi);
+                    o.map(f32::to_bits)
+                };
+                // A __m256 mask as sixteen bits (lane l's sign bit).
+                let mask8 = |lo: __m256, hi: __m256| {
+                    (_mm256_movemask_ps(lo) as u16) | ((_mm256_movemask_ps(hi) as u16) << 8)
+                };
+                let each = |f16: &dyn Fn(__m512, __m512, __m512) -> __m512,
+                            f8: &dyn Fn(__m256, __m256, __m256) -> __m256,
+                            what: &str| {
+                    let lo = f8(half(&a, 0), half(&b, 0), half(&c, 0));
+                    let hi = f8(half(&a, 1), half(&b, 1), half(&c, 1));
+                    assert_eq!(
+                        bits16(f16(a16, b16, c16)),
+                        bits8(lo, hi),
+                        "{what}: {a:?} {b:?} {c:?}"
+                    );
+                };
+                each(&|x, y, _| x.add(y), &|x, y, _| x.add(y), "add");
+                each(&|x, y, _| x.sub(y), &|x, y, _| x.sub(y), "sub");
+                each(&|x, y, _| x.mul(y), &|x, y, _| x.mul(y), "mul");
+                each(&|x, y, _| x.div(y), &|x, y, _| x.div(y), "div");
+                each(&|x, _, _| x.sqrt(), &|x, _, _| x.sqrt(), "sqrt");
+                each(&|x, y, z| x.madd(y, z), &|x, y, z| x.madd(y, z), "madd");
+                each(&|x, y, z| x.msub(y, z), &|x, y, z| x.msub(y, z), "msub");
+                each(&|x, y, z| x.nmadd(y, z), &|x, y, z| x.nmadd(y, z), "nmadd");
+                each(
+                    &|x, y, _| x.flip_by_sign_of(y),
+                    &|x, y, _| x.flip_by_sign_of(y),
+                    "flip",
+                );
+                let coef = [1.0f32, -0.5, 0.25, -0.125];
+                each(
+                    &|x, _, _| __m512::horner(&coef, x),
+                    &|x, _, _| __m256::horner(&coef, x),
+                    "horner",
+                );
+                each(
+                    &|x, y, z| __m512::select(x.lt(y), y, z),
+                    &|x, y, z| __m256::select(x.lt(y), y, z),
+                    "select lt",
+                );
+                each(
+                    &|x, y, z| __m512::select(x.le(y), y, z),
+                    &|x, y, z| __m256::select(x.le(y), y, z),
+                    "select le",
+                );
+                each(
+                    &|x, y, z| x.neg_where(y.le(z)),
+                    &|x, y, z| x.neg_where(y.le(z)),
+                    "neg_where",
+                );
+                // The mask operations and `any`, as sixteen bits.
+                let (a0, a1, b0, b1, c0, c1) = (
+                    half(&a, 0),
+                    half(&a, 1),
+                    half(&b, 0),
+                    half(&b, 1),
+                    half(&c, 0),
+                    half(&c, 1),
+                );
+                let (p16, q16) = (a16.lt(b16), b16.le(c16));
+                let (p0, p1, q0, q1) = (a0.lt(b0), a1.lt(b1), b0.le(c0), b1.le(c1));
+                assert_eq!(p16, mask8(p0, p1), "lt");
+                assert_eq!(q16, mask8(q0, q1), "le");
+                assert_eq!(
+                    __m512::and(p16, q16),
+                    mask8(__m256::and(p0, q0), __m256::and(p1, q1)),
+                    "and"
+                );
+                assert_eq!(
+                    __m512::and_not(p16, q16),
+                    mask8(__m256::and_not(p0, q0), __m256::and_not(p1, q1)),
+                    "and_not"
+                );
+                assert_eq!(__m512::any(p16), __m256::any(p0) || __m256::any(p1), "any");
+            }
+        }
     }
 }

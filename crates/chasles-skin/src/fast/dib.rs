@@ -2,7 +2,8 @@
 //! the DLB start, then `b̂ ← b̂ exp(Σ wᵢ log(b̂* q̂ᵢ))` until the update is below
 //! [`DIB_PRECISION`] or [`DIB_UPDATES`] were made, with rayon over chunks of vertices. With
 //! AVX2+FMA (4 or 8 influences), eight vertices at a time (`avx2::dib` runs the lane
-//! algebra's `lane::dib` on `__m256`: the algorithm branch-free in lanes, the logarithm and
+//! algebra's `lane::dib` on `__m256`; with AVX-512F sixteen, `avx512` on `__m512`, to the
+//! same bits: the algorithm branch-free in lanes, the logarithm and
 //! exponential by series, and a second-order step to the same fixed point under the same
 //! stopping rule, which needs one update where the paper's step needs two; the two kernels
 //! both end within the stopping rule's reach of the exact blend, the SIMD one nearer

@@ -1,16 +1,17 @@
 //! The fast path's quaternion and dual-quaternion algebra, written once over a lane type:
 //! `f32` for the scalar kernels (one vertex), `__m256` for the AVX2+FMA kernels (eight
-//! vertices, one a lane) and `__m512` for DIB's AVX-512F kernel (sixteen; `avx512`, whose
-//! every operation is the eight lanes' on twice the lanes, so a lane gives the same bits). The rotation `x + s v × (v × x + w x)` by `(w, v)/‖(w, v)‖` with
-//! `s = 2/‖(w, v)‖²` (no square root), dual quaternion skinning's transformation of a point
-//! and a normal by an unnormalized blend (Kavan et al. 2006, §3 and §6), the dot product
-//! and Horner's rule: each function below is both kernels' formula, in one order of
-//! operations. The lane type decides only how `a·b ± c` rounds — twice on `f32` (no slow
-//! software fusing where the build has no FMA), once on `__m256` — so a scalar kernel gives
-//! the very numbers it gave before, and the SIMD kernels theirs.
+//! vertices, one a lane) and `__m512` for DIB's AVX-512F kernel (sixteen; `avx512`). The
+//! rotation `x + s v × (v × x + w x)` by `(w, v)/‖(w, v)‖` with `s = 2/‖(w, v)‖²` (no square
+//! root), dual quaternion skinning's transformation of a point and a normal by an
+//! unnormalized blend (Kavan et al. 2006, §3 and §6), the dot product and Horner's rule:
+//! each function below is every kernel's formula, in one order of operations. The lane type
+//! decides only how `a·b ± c` rounds — twice on `f32` (no slow software fusing where the
+//! build has no FMA), once on `__m256` and `__m512` — so a scalar kernel gives the very
+//! numbers it gave before, and the SIMD kernels theirs; every `__m512` operation is the
+//! `__m256` one on twice the lanes, so a lane of sixteen gives a lane of eight's bits.
 //!
-//! Every function is `inline(always)`, so that in the AVX2 kernels (`target_feature`
-//! functions) the `__m256` operations inline as single instructions.
+//! Every function is `inline(always)`, so that in the SIMD kernels (`target_feature`
+//! functions) the `__m256` and `__m512` operations inline as single instructions.
 
 #[cfg(target_arch = "x86_64")]
 use std::arch::x86_64::*;

@@ -5,7 +5,7 @@
 //! (the update's norm ‖x̂‖ below [`DIB_PRECISION`], or no longer shrinking within
 //! [`STALL_FACTOR`] × of it, or not finite: a lane that stops keeps its blend), at most
 //! [`DIB_UPDATES`] times. The AVX2 kernel (`avx2::dib`) runs it on `__m256`, eight
-//! vertices at once; on `f32` it is the same algorithm one vertex at a time, which the tests
+//! vertices at once, the AVX-512F kernel (`avx512`) on `__m512`, sixteen; on `f32` it is the same algorithm one vertex at a time, which the tests
 //! hold against the library's `dib` (the scalar fast path itself runs the library's
 //! `dib_convex`, the reference's very calls, so that it equals the reference bit for bit).
 //!
