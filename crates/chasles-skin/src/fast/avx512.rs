@@ -96,12 +96,9 @@ pub(super) unsafe fn dib_blocks<const K: usize, S: Store>(
             }
             let b = blend(&q, &w, slots);
             let r = transform(b, [head[0], head[1], head[2]], [head[3], head[4], head[5]]);
-            let (lo, hi): ([__m256; 6], [__m256; 6]) = (
-                core::array::from_fn(|c| split(r[c]).0),
-                core::array::from_fn(|c| split(r[c]).1),
-            );
-            store_rows::<S>(o, i, lo, stream);
-            store_rows::<S>(o, i + 8, hi, stream);
+            let halves: [(__m256, __m256); 6] = core::array::from_fn(|c| split(r[c]));
+            store_rows::<S>(o, i, halves.map(|h| h.0), stream);
+            store_rows::<S>(o, i + 8, halves.map(|h| h.1), stream);
         }
         blocks * 16
     }
@@ -110,8 +107,9 @@ pub(super) unsafe fn dib_blocks<const K: usize, S: Store>(
 #[cfg(test)]
 mod tests {
     use crate::fast::avx2::dib::dib_with;
+    use crate::fast::avx2::dib::tests::{joints, with_counts};
     use crate::fast::dest::Dest;
-    use crate::fast::{FastRig, Out, Vertex};
+    use crate::fast::{Out, Vertex};
     use crate::synthetic;
 
     /// The DIB kernel on `v` by eight alone or with the sixteen-vertex kernel, into a
@@ -123,11 +121,6 @@ mod tests {
         // d.len() (the rigs' joint counts are the poses'), `out` is as long as `v`.
         let done = unsafe { dib_with(v, d, Dest::packed(&mut out), false, sixteen) };
         (out, done)
-    }
-
-    /// `rig` with `count(i)` influences on vertex i.
-    fn counts<const K: usize>(rig: &FastRig<K>, count: impl Fn(usize) -> usize) -> FastRig<K> {
-        synthetic::with_influences(rig, |i, k| k < count(i))
     }
 
     /// Each vertex gets the eight-vertex kernel's bits from the sixteen-vertex one: 4 and 8
@@ -147,8 +140,8 @@ mod tests {
         }
         fn check<const K: usize>() {
             let base = synthetic::rig_with::<K>(1203, 54, 9);
-            let mixed = counts(&base, |i| 1 + (i * 7919) % K);
-            let runs = counts(&base, |i| {
+            let mixed = with_counts(&base, |i| 1 + (i * 7919) % K);
+            let runs = with_counts(&base, |i| {
                 if (i / 48) % 2 == 0 {
                     1 + i % 2
                 } else {
@@ -156,15 +149,7 @@ mod tests {
                 }
             });
             let every = crate::fast::dual_quats8(&synthetic::joints(54, 3));
-            let mut wild: Vec<[f32; 8]> = (0..54)
-                .map(|j| {
-                    let f = j as f32 / 54.0;
-                    let axis = chasles::Vec3::new(1.0, 3.0 * f - 1.0, (7.0 * f).sin());
-                    let q = chasles::Quat::from_axis_angle(axis, 6.2 * f).unwrap();
-                    let t = chasles::Vec3::new(2.0 * f, 1.0 - f, (3.0 * f).cos());
-                    chasles::DualQuat::from_rotation_translation(q, t).to_array()
-                })
-                .collect();
+            let mut wild = joints(54);
             for rig in [&base, &mixed, &runs] {
                 for d in [&every, &wild] {
                     let shifts = (0..16)

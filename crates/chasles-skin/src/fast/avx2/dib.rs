@@ -147,7 +147,7 @@ pub(in crate::fast) unsafe fn joints<const K: usize>(
 }
 
 #[cfg(test)]
-mod tests {
+pub(in crate::fast) mod tests {
     use super::*;
     use crate::fast::{simd, Kernel, Out};
     use crate::skinning::DIB_PRECISION;
@@ -155,8 +155,9 @@ mod tests {
     use chasles::{DualQuat, Quat, Vec3};
 
     /// Joints of every angle (w < 0 included: the DLB's antipodality and the logarithm's
-    /// hemisphere both matter), translations up to 2.
-    fn joints(n: usize) -> Vec<[f32; 8]> {
+    /// hemisphere both matter), translations up to 2 (the sixteen-vertex kernel's tests
+    /// take them too).
+    pub(in crate::fast) fn joints(n: usize) -> Vec<[f32; 8]> {
         (0..n)
             .map(|j| {
                 let f = j as f32 / n as f32;
@@ -278,10 +279,10 @@ mod tests {
 
     /// `rig` with `count(i)` influences on vertex i (its first slots, the weights scaled
     /// to sum to 1).
-    fn with_counts(
-        rig: &crate::fast::FastRig<4>,
+    pub(in crate::fast) fn with_counts<const K: usize>(
+        rig: &crate::fast::FastRig<K>,
         count: impl Fn(usize) -> usize,
-    ) -> crate::fast::FastRig<4> {
+    ) -> crate::fast::FastRig<K> {
         synthetic::with_influences(rig, |i, k| k < count(i))
     }
 

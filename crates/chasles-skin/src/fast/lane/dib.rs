@@ -355,34 +355,38 @@ mod tests {
     #[test]
     fn the_series_are_the_closed_forms() {
         let ulp = f64::from(f32::EPSILON);
-        for i in 0..=1000 {
-            let f = f64::from(i) / 1000.0;
-            // Q and G up to tan²(π/8); G near 0 by its series (its closed form cancels).
-            let z = f * (2f64.sqrt() - 1.0).powi(2);
-            let r = z.sqrt();
-            let q = if z == 0.0 { 1.0 } else { r.atan() / r };
-            let g = if z < 0.01 {
+        // The closed forms at z; G near 0 by its series (its closed form cancels there).
+        let q_of = |z: f64| {
+            if z == 0.0 {
+                1.0
+            } else {
+                z.sqrt().atan() / z.sqrt()
+            }
+        };
+        let g_of = |z: f64| {
+            if z < 0.01 {
                 (0..30).rev().fold(0.0, |a, k| {
                     let k = f64::from(k);
-                    let c = 2.0 * (k + 1.0) / (2.0 * k + 3.0);
-                    a * -z + c
+                    a * -z + 2.0 * (k + 1.0) / (2.0 * k + 3.0)
                 })
             } else {
+                let r = z.sqrt();
                 (r.atan() - r / (1.0 + z)) / (z * r)
-            };
-            let rel = |got: f64, want: f64| (got - want).abs() / want / ulp;
-            assert!(rel(sum64(&Q, z), q) <= 0.02, "Q({z})");
-            assert!(rel(sum64(&G, z), g) <= 0.4, "G({z})");
+            }
+        };
+        let rel = |got: f64, want: f64| (got - want).abs() / want / ulp;
+        for i in 0..=1000 {
+            let f = f64::from(i) / 1000.0;
+            // Q and G up to tan²(π/8): exactly (their f32 coefficients), and in f32 at the
+            // f32 nearest z.
+            let z = f * (2f64.sqrt() - 1.0).powi(2);
+            assert!(rel(sum64(&Q, z), q_of(z)) <= 0.02, "Q({z})");
+            assert!(rel(sum64(&G, z), g_of(z)) <= 0.4, "G({z})");
             let z32 = z as f32;
             let (q32, g32) = (horner(&Q, z32), horner(&G, z32));
             let z = f64::from(z32);
-            let r = z.sqrt();
-            let q = if z == 0.0 { 1.0 } else { r.atan() / r };
-            assert!(rel(f64::from(q32), q) <= 0.5, "Q({z}) in f32: {q32}");
-            if z >= 0.01 {
-                let g = (r.atan() - r / (1.0 + z)) / (z * r);
-                assert!(rel(f64::from(g32), g) <= 1.0, "G({z}) in f32: {g32}");
-            }
+            assert!(rel(f64::from(q32), q_of(z)) <= 0.5, "Q({z}) in f32: {q32}");
+            assert!(rel(f64::from(g32), g_of(z)) <= 1.0, "G({z}) in f32: {g32}");
             // cos √s, sinc √s and its derivative up to s = (π/2)².
             let x = f * std::f64::consts::FRAC_PI_2;
             let s = x * x;
