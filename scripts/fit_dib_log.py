@@ -31,13 +31,12 @@ Usage (needs mpmath: pip install mpmath):
                                           error (Q 0.02 ulp exactly and 0.5 in f32, G 0.4
                                           and 1)
 """
-import argparse
 import pathlib
 import re
 import sys
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
-from fit_trig import f32, fit, horner, horner32, mp  # noqa: E402  (mpmath, checked there)
+from fit_trig import arguments, f32, fit, horner, horner32, mp  # noqa: E402  (mpmath, checked there)
 
 DIB_RS = (
     pathlib.Path(__file__).resolve().parent.parent
@@ -104,11 +103,7 @@ def current_tables():
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--check", action="store_true", help="compare with dib.rs's tables")
-    ap.add_argument("--nodes", type=int, default=64, help="Chebyshev nodes per fit (default 64)")
-    ap.add_argument("--grid", type=int, default=2000, help="error grid points (default 2000)")
-    args = ap.parse_args()
+    args = arguments(__doc__, "dib.rs", 2000)
     refit = {
         n: [f32(a) for a in fit(terms, Z_MAX, true, max(args.nodes, terms))]
         for n, (terms, true, _, _) in TABLES.items()

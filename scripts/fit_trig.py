@@ -209,12 +209,18 @@ def agreement(c, d):
     return f"{same}/{len(d)} bit-identical to the refit, the others to {digits:.1f}+ digits"
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--check", action="store_true", help="compare with trig.rs's tables")
+def arguments(doc, source, grid):
+    """The fitting scripts' command line: --check against `source`'s tables, --nodes, --grid
+    (default `grid`)."""
+    ap = argparse.ArgumentParser(description=doc.split("\n")[0])
+    ap.add_argument("--check", action="store_true", help=f"compare with {source}'s tables")
     ap.add_argument("--nodes", type=int, default=64, help="Chebyshev nodes per fit (default 64)")
-    ap.add_argument("--grid", type=int, default=4000, help="error grid points (default 4000)")
-    args = ap.parse_args()
+    ap.add_argument("--grid", type=int, default=grid, help=f"error grid points (default {grid})")
+    return ap.parse_args()
+
+
+def main():
+    args = arguments(__doc__, "trig.rs", 4000)
     refit = {n: fit(*KERNELS[n][:3], max(args.nodes, KERNELS[n][0])) for n in KERNELS}
     if not args.check:
         for name, c in refit.items():
