@@ -1,7 +1,7 @@
 //! The fast path for every method: a compact vertex layout, fixed influence counts (4 or
 //! 8), eight-vertex AVX2+FMA kernels chosen at run time (every method, for 4 and 8 influences;
 //! DIB sixteen vertices at a time where the processor has AVX-512F, module `avx512`, to the
-//! same bits; elsewhere, and for the last few vertices, the scalar kernels), joint
+//! same bits; elsewhere, and for meshes of under eight vertices, the scalar kernels), joint
 //! transforms as flat arrays made once per pose (12 floats per matrix, 8 per dual
 //! quaternion — the register saving Kavan et al. 2006 note in §6; a 24-float row for QLB and
 //! SBS, module `qlb`; twists for Log, module `log`), one pass per vertex with no allocation
@@ -13,9 +13,10 @@
 //! writes 24 (position, normal): 72 bytes, the figure the bandwidth bound is computed
 //! from. Meshes of `STREAM_VERTICES` (2¹⁸) or more write their packed output by non-temporal
 //! stores (an ordinary store that misses the cache first reads the line it writes: 96
-//! bytes a vertex). Every vertex of a chunk of eight or more goes through the SIMD kernel
-//! (blocks at the chunk's ends overlap their neighbours), so a vertex's numbers do not
-//! depend on the output's layout, alignment or chunking. Influences are sorted by weight, heaviest first, so the DQS pivot (the heaviest
+//! bytes a vertex). Every vertex of a mesh of eight or more goes through the SIMD kernel
+//! (every chunk has eight or more, `job`'s grid; blocks at a chunk's ends overlap their
+//! neighbours), so a vertex's numbers do not depend on the output's layout, alignment or
+//! chunking. Influences are sorted by weight, heaviest first, so the DQS pivot (the heaviest
 //! influence, as in the reference path) is simply the first.
 //!
 //! DQS normalizes the blended dual quaternion by ‖q0‖ only: removing qε's component along
@@ -283,7 +284,8 @@ fn out_of(p: Vec3<f32>, n: Vec3<f32>) -> Out {
     [px, py, pz, nx, ny, nz]
 }
 
-/// Vertices per parallel task.
+/// Vertices per chunk, the job's unit of work (`job`'s grid: the first chunk may be up to 3
+/// longer, so that the others' streamed output is aligned, and the last up to 7 longer).
 const CHUNK: usize = 4096;
 
 /// Meshes of at least this many vertices (18.9 MB moved a pose, more than a core's share of
@@ -306,12 +308,18 @@ type SimdKernel<const K: usize, J, T> = unsafe fn(&[Vertex<K>], &[J], &T, Dest<'
 /// (interleaved and split outputs are never streamed: their vertices do not fill whole
 /// lines of one array).
 fn simd_start(o: &Dest<'_>, stream: bool) -> (usize, bool) {
-    let addr = o.addr();
     let stream = stream && o.layout() == dest::Layout::Packed;
-    match (0..4).find(|l| (addr + 24 * l).is_multiple_of(32)) {
+    match aligned_from(o.addr()) {
         Some(lead) if stream && lead + 8 <= o.len() => (lead, true),
         _ => (0, false),
     }
+}
+
+/// The first of the vertices 0–3 of a packed output at `addr` whose six floats start on a
+/// 32-byte boundary (24-byte vertices come back to an alignment every 4), if any (none
+/// where `addr` is not 8-byte aligned).
+fn aligned_from(addr: usize) -> Option<usize> {
+    (0..4).find(|l| (addr + 24 * l).is_multiple_of(32))
 }
 
 /// Orders a SIMD kernel's non-temporal stores before whatever follows (the job's end, which
@@ -422,7 +430,8 @@ trait Kernel<const K: usize> {
     const AVX2: Option<SimdKernel<K, Self::Joint, Self::Table>>;
     /// A chunk of vertices (joint indices already checked against `joints`): the SIMD kernel
     /// where `simd` says so (streaming its output where `stream` asks and the output's
-    /// alignment allows), the scalar kernel for the rest.
+    /// alignment allows), the scalar kernel for a chunk of under eight (only in a mesh of
+    /// under eight vertices, `job`'s grid).
     fn chunk(
         mut o: Dest<'_>,
         v: &[Vertex<K>],

@@ -4,12 +4,29 @@
 //! straight into a packed output (position then normal, 6 floats a vertex: their own
 //! layout), and into an interleaved vertex buffer or split arrays by their own stores, each
 //! vertex's six floats and no other ([`super::dest`]). Kavan et al. 2006, §6.
+//!
+//! The mesh is cut into chunks of about [`CHUNK`] vertices ([`Grid`]), which rayon hands
+//! to its threads as they ask for work (`rayon::iter::split`, halving at chunk boundaries).
+//! What the chunking costs, measured on a 2-core Intel Xeon (2026-12-04, scratch loop of
+//! interleaved rounds, medians, DQS and LBS beside the fast paths' loads and stores alone):
+//! - The grid starts where a streamed output is 32-byte aligned. When every chunk started
+//!   at a multiple of [`CHUNK`], each one's output began misaligned by the same amount as
+//!   the mesh's (a heap buffer of this size is 16 bytes past a page) and started with a
+//!   block of ordinary stores over lines then streamed: at 10⁶ vertices one thread ran
+//!   DQS at 250 and 263 M vertices/s where the shifted grid ran 258 and 268.5, the loads
+//!   and stores alone 381–383 against 387–389 (two runs of 16 rounds).
+//! - Chunks of 1024 vertices ran 5–10 % slower out of the cache than 4096; 16 384, 32 768,
+//!   65 536 or one chunk a thread ran as fast as 4096 once the grid was shifted.
+//! - A parallel job costs about 11 µs more than its share of the work (rayon waking the
+//!   other thread): 8200 vertices ran DQS at 280 M vertices/s on one thread and 305–322
+//!   on two, 32 768 at 290 and 479–490, 10⁵ at 270 and 416–426.
 
 use super::dest::Dest;
 use super::palette::{Joints, Palette};
 use super::qlb::{sbs_into, QlbKernel};
 use super::{
-    dib::DibKernel, log::LogKernel, run_with, DqsKernel, FastRig, LbsKernel, Vertex, CHUNK,
+    aligned_from, dib::DibKernel, log::LogKernel, run_with, DqsKernel, FastRig, LbsKernel, Vertex,
+    CHUNK, STREAM_VERTICES,
 };
 use crate::error::{same_count, Result, SkinError};
 use bytemuck::cast_slice;
@@ -69,9 +86,141 @@ impl Output<'_> {
     }
 }
 
-/// `chunk(first, out, vertices)` over chunks of [`CHUNK`] vertices into `out` (`first`: the
+impl<'a> Output<'a> {
+    /// The output split at vertex `mid` (at most its vertex count).
+    fn split_at(self, mid: usize) -> (Output<'a>, Output<'a>) {
+        match self {
+            Output::Packed(o) => {
+                let (a, b) = o.split_at_mut(mid);
+                (Output::Packed(a), Output::Packed(b))
+            }
+            Output::Interleaved { data, stride } => {
+                let (a, b) = data.split_at_mut(mid * stride);
+                (
+                    Output::Interleaved { data: a, stride },
+                    Output::Interleaved { data: b, stride },
+                )
+            }
+            Output::Split { positions, normals } => {
+                let ((p, q), (n, m)) = (positions.split_at_mut(mid), normals.split_at_mut(mid));
+                (
+                    Output::Split {
+                        positions: p,
+                        normals: n,
+                    },
+                    Output::Split {
+                        positions: q,
+                        normals: m,
+                    },
+                )
+            }
+        }
+    }
+
+    /// The kernels' view of it.
+    fn dest(self) -> Dest<'a> {
+        match self {
+            Output::Packed(o) => Dest::packed(o),
+            Output::Interleaved { data, stride } => Dest::interleaved(data, stride),
+            Output::Split { positions, normals } => Dest::split(positions, normals),
+        }
+    }
+
+    /// Where the grid of chunks starts ([`grid`]) for a mesh of `n` vertices: for a packed
+    /// output that will be streamed ([`STREAM_VERTICES`] or more; an interleaved one of
+    /// stride 6 is packed), the first vertex whose output is 32-byte aligned, so that only
+    /// the first chunk starts with an overlapping block of ordinary stores ([`super::simd_start`]);
+    /// else 0.
+    fn shift(&self, n: usize) -> usize {
+        let addr = match self {
+            Output::Packed(o) => o.as_ptr() as usize,
+            Output::Interleaved { data, stride: 6 } => data.as_ptr() as usize,
+            _ => return 0,
+        };
+        if n >= STREAM_VERTICES {
+            aligned_from(addr).unwrap_or(0)
+        } else {
+            0
+        }
+    }
+}
+
+/// The chunks of a mesh of `n` vertices (`n > 0`) whose grid starts at `shift` (< 8): chunk
+/// `c` is `start(c)..start(c + 1)` for `c < count`. The first ends at `shift + CHUNK` and
+/// the others are [`CHUNK`] long, so that every chunk but the first starts `shift`
+/// vertices past a multiple of [`CHUNK`]: where `shift` is the first vertex of a streamed
+/// output to be 32-byte aligned, every later chunk's output is aligned too and streams from
+/// its first vertex (one overlapping block of ordinary stores per mesh instead of one per
+/// chunk: at 10⁶ vertices one thread skinned 4 % faster for it). A last chunk of 1–7
+/// vertices joins the one before: every chunk of a mesh of eight or more has eight or more,
+/// so each vertex goes through the SIMD kernel, whose numbers do not depend on the chunking.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Grid {
+    n: usize,
+    /// The first chunk's end.
+    head: usize,
+    /// How many chunks.
+    count: usize,
+}
+
+impl Grid {
+    fn new(n: usize, shift: usize) -> Grid {
+        let head = (shift + CHUNK).min(n);
+        let (whole, left) = ((n - head) / CHUNK, (n - head) % CHUNK);
+        // A last chunk of 1–7 vertices joins the one before.
+        let count = 1 + whole + usize::from(left >= 8);
+        let head = if whole == 0 && left < 8 { n } else { head };
+        Grid { n, head, count }
+    }
+
+    /// Where chunk `c` (at most `count`) starts; `start(count)` is `n`.
+    fn start(&self, c: usize) -> usize {
+        match c {
+            0 => 0,
+            c if c >= self.count => self.n,
+            c => self.head + (c - 1) * CHUNK,
+        }
+    }
+}
+
+/// Chunks `from..to` of a [`Grid`]: their part of the output and of the vertices.
+struct Piece<'a, const K: usize> {
+    from: usize,
+    to: usize,
+    out: Output<'a>,
+    vertices: &'a [Vertex<K>],
+}
+
+impl<const K: usize> Piece<'_, K> {
+    /// The piece in two at the middle chunk, or itself where it has one chunk.
+    fn halve(self, grid: &Grid) -> (Self, Option<Self>) {
+        if self.to - self.from < 2 {
+            return (self, None);
+        }
+        let mid = (self.from + self.to) / 2;
+        let at = grid.start(mid) - grid.start(self.from);
+        let (a, b) = self.out.split_at(at);
+        let (v, w) = self.vertices.split_at(at);
+        let first = Piece {
+            from: self.from,
+            to: mid,
+            out: a,
+            vertices: v,
+        };
+        let second = Piece {
+            from: mid,
+            to: self.to,
+            out: b,
+            vertices: w,
+        };
+        (first, Some(second))
+    }
+}
+
+/// `chunk(first, out, vertices)` over the chunks of a [`Grid`] into `out` (`first`: the
 /// index of the chunk's first vertex; `out`: the chunk's part of the caller's buffers, in
-/// their layout, which the kernels write straight into), on all threads when `parallel`.
+/// their layout, which the kernels write straight into), in order on the caller's thread,
+/// or on all threads when `parallel` (rayon halves the chunks as its threads ask for work).
 /// `out` holds as many vertices as `vertices` (checked by the caller).
 pub(super) fn for_chunks<const K: usize>(
     out: Output<'_>,
@@ -79,56 +228,31 @@ pub(super) fn for_chunks<const K: usize>(
     parallel: bool,
     chunk: impl Fn(usize, Dest<'_>, &[Vertex<K>]) + Sync,
 ) {
-    if vertices.is_empty() {
-        return; // and no chunk size to compute from a stride
+    let n = vertices.len();
+    if n == 0 {
+        return;
     }
-    match out {
-        Output::Packed(o) => {
-            let each = |(c, (o, v))| chunk(c * CHUNK, Dest::packed(o), v);
-            if parallel {
-                o.par_chunks_mut(CHUNK)
-                    .zip(vertices.par_chunks(CHUNK))
-                    .enumerate()
-                    .for_each(each);
-            } else {
-                o.chunks_mut(CHUNK)
-                    .zip(vertices.chunks(CHUNK))
-                    .enumerate()
-                    .for_each(each);
-            }
+    let grid = Grid::new(n, out.shift(n));
+    let each = |p: Piece<'_, K>| {
+        let (mut out, mut vertices) = (p.out, p.vertices);
+        for c in p.from..p.to {
+            let len = grid.start(c + 1) - grid.start(c);
+            let (o, rest) = out.split_at(len);
+            let (v, more) = vertices.split_at(len);
+            chunk(grid.start(c), o.dest(), v);
+            (out, vertices) = (rest, more);
         }
-        Output::Interleaved { data, stride } => {
-            let each = |(c, (d, v))| chunk(c * CHUNK, Dest::interleaved(d, stride), v);
-            if parallel {
-                data.par_chunks_mut(CHUNK * stride)
-                    .zip(vertices.par_chunks(CHUNK))
-                    .enumerate()
-                    .for_each(each);
-            } else {
-                data.chunks_mut(CHUNK * stride)
-                    .zip(vertices.chunks(CHUNK))
-                    .enumerate()
-                    .for_each(each);
-            }
-        }
-        Output::Split { positions, normals } => {
-            let each = |(c, ((p, n), v))| chunk(c * CHUNK, Dest::split(p, n), v);
-            if parallel {
-                positions
-                    .par_chunks_mut(CHUNK)
-                    .zip(normals.par_chunks_mut(CHUNK))
-                    .zip(vertices.par_chunks(CHUNK))
-                    .enumerate()
-                    .for_each(each);
-            } else {
-                positions
-                    .chunks_mut(CHUNK)
-                    .zip(normals.chunks_mut(CHUNK))
-                    .zip(vertices.chunks(CHUNK))
-                    .enumerate()
-                    .for_each(each);
-            }
-        }
+    };
+    let all = Piece {
+        from: 0,
+        to: grid.count,
+        out,
+        vertices,
+    };
+    if parallel {
+        rayon::iter::split(all, |p| p.halve(&grid)).for_each(each);
+    } else {
+        each(all);
     }
 }
 
@@ -204,5 +328,82 @@ impl<const K: usize> SkinningJob<'_, K> {
                 parallel,
             ),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every grid covers its mesh in order with no gap; every chunk of a mesh of eight or
+    /// more has eight or more; the chunks after the first are `CHUNK` long (the last up to
+    /// `CHUNK + 7`, or shorter where the mesh ends) and start `shift` past a multiple of
+    /// `CHUNK`.
+    #[test]
+    fn the_grid_covers_the_mesh_in_chunks_of_eight_or_more() {
+        let edges = |k: usize| [k * CHUNK, k * CHUNK + 1, k * CHUNK + 7, k * CHUNK + 8];
+        let mut sizes: Vec<usize> = (1..20).collect();
+        for k in 1..4 {
+            sizes.extend(edges(k).into_iter().flat_map(|n| [n - 3, n, n + 3]));
+        }
+        sizes.push(STREAM_VERTICES + 13);
+        for n in sizes {
+            for shift in 0..4 {
+                let g = Grid::new(n, shift);
+                let starts: Vec<usize> = (0..=g.count).map(|c| g.start(c)).collect();
+                assert_eq!((starts[0], starts[g.count]), (0, n), "n {n} shift {shift}");
+                for c in 0..g.count {
+                    let len = starts[c + 1] - starts[c];
+                    assert!(len >= 8.min(n), "n {n} shift {shift}: chunk {c} of {len}");
+                    if c > 0 {
+                        assert_eq!(starts[c] % CHUNK, shift, "n {n} shift {shift} chunk {c}");
+                    }
+                    if c > 0 && c + 1 < g.count {
+                        assert_eq!(len, CHUNK, "n {n} shift {shift} chunk {c}");
+                    }
+                    assert!(len <= CHUNK + shift + 7, "n {n} shift {shift} chunk {c}");
+                }
+            }
+        }
+        // The grids the kernels used before a shift: chunks of CHUNK from 0.
+        assert_eq!(Grid::new(3 * CHUNK + 100, 0).count, 4);
+        assert_eq!(Grid::new(3 * CHUNK + 7, 0).count, 3);
+        assert_eq!(
+            Grid::new(CHUNK + 7, 0),
+            Grid {
+                n: CHUNK + 7,
+                head: CHUNK + 7,
+                count: 1
+            }
+        );
+    }
+
+    /// A streamed packed output at any of its four alignments gets a grid whose chunks after
+    /// the first are 32-byte aligned (they stream from their first vertex); outputs that are
+    /// not streamed keep the grid from 0.
+    #[test]
+    fn a_streamed_output_starts_every_later_chunk_aligned() {
+        let n = STREAM_VERTICES + 13;
+        let mut buffer = vec![[0f32; 6]; n + 3];
+        for offset in 0..4 {
+            let o = &mut buffer[offset..offset + n];
+            let addr = o.as_ptr() as usize;
+            let out = Output::Packed(o);
+            let g = Grid::new(n, out.shift(n));
+            for c in 1..g.count {
+                assert_eq!(aligned_from(addr + 24 * g.start(c)), Some(0), "chunk {c}");
+            }
+            assert_eq!(
+                out.shift(STREAM_VERTICES - 1),
+                0,
+                "a small mesh is not streamed"
+            );
+        }
+        let mut inter = vec![0f32; n * 7];
+        let out = Output::Interleaved {
+            data: &mut inter,
+            stride: 7,
+        };
+        assert_eq!(out.shift(n), 0, "an interleaved output is not streamed");
     }
 }

@@ -229,19 +229,22 @@ fn layouts<const K: usize>(n: usize) {
 /// A mesh big enough to stream ([`STREAM_VERTICES`]): every method's job writes the same
 /// numbers into a packed output (streamed; its first vertices and last few by overlapping
 /// blocks of ordinary stores) as into an interleaved one (written in place, not
-/// streamed), bit for bit.
+/// streamed), bit for bit, with the packed output at each of its four alignments (each
+/// shifts the grid of chunks, job.rs's `Grid`) and a last chunk of 1–7 vertices in the grid
+/// from 0 (joined to the one before).
 #[test]
 fn big_meshes_stream_the_same_numbers() {
     use crate::Method;
-    let n = STREAM_VERTICES + 13;
+    let n = STREAM_VERTICES + 4;
     let rig = synthetic::rig(n, 54, 3);
     let jt = synthetic::joints(54, 3);
-    let mut packed = vec![[0f32; 6]; n];
+    let mut buffer = vec![[0f32; 6]; n + 3];
     let mut inter = vec![0f32; n * 7];
-    for m in Method::ALL {
+    for (m, offset) in Method::ALL.into_iter().zip((0..4).cycle()) {
+        let packed = &mut buffer[offset..offset + n];
         let palette = Palette::from_joint_transforms(m, &rig, &jt, true).unwrap();
         for output in [
-            Output::Packed(&mut packed),
+            Output::Packed(packed),
             Output::Interleaved {
                 data: &mut inter,
                 stride: 7,
@@ -255,8 +258,48 @@ fn big_meshes_stream_the_same_numbers() {
             };
             job.run().unwrap();
         }
+        let packed = &buffer[offset..offset + n];
         for (k, (p, i)) in packed.iter().zip(inter.chunks_exact(7)).enumerate() {
-            assert_eq!(p[..], i[..6], "{} vertex {k}", m.name());
+            assert_eq!(p[..], i[..6], "{} offset {offset} vertex {k}", m.name());
+        }
+    }
+}
+
+/// A mesh whose last chunk would hold 1–7 vertices skins them through the SIMD kernel, as
+/// it does every other vertex: each method's job gives every vertex of a mesh of
+/// `2 CHUNK + 3` the same bits as the same vertices with eight more after them (whose last
+/// chunk is 11 long), on one thread and on all. With the last 3 on their own, they went
+/// through the scalar kernel, whose bits differ.
+#[test]
+fn the_last_few_vertices_get_the_simd_kernels_numbers() {
+    use crate::Method;
+    if !simd(4) {
+        eprintln!("skipped: no AVX2 and FMA here");
+        return;
+    }
+    let n = 2 * CHUNK + 3;
+    let longer = synthetic::rig(n + 8, 54, 5);
+    let rig =
+        FastRig::<4>::from_vertices(longer.vertices()[..n].to_vec(), longer.centres().to_vec())
+            .unwrap();
+    let jt = synthetic::joints(54, 5);
+    for m in Method::ALL {
+        for parallel in [false, true] {
+            let skin = |rig: &FastRig<4>| {
+                let palette = Palette::from_joint_transforms(m, rig, &jt, true).unwrap();
+                let mut out = vec![[f32::NAN; 6]; rig.vertices().len()];
+                SkinningJob {
+                    rig,
+                    palette: &palette,
+                    output: Output::Packed(&mut out),
+                    parallel,
+                }
+                .run()
+                .unwrap();
+                out
+            };
+            let (short, long) = (skin(&rig), skin(&longer));
+            assert_eq!(short[..], long[..n], "{}, parallel {parallel}", m.name());
         }
     }
 }
