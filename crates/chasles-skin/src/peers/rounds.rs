@@ -9,6 +9,14 @@
 //! kernels' stores), which read 48 bytes a vertex (72 with eight influences) and write 24.
 //! The one measurement behind `chasles skin --bench` (with `--rig`: [`measure_rig`]) and
 //! the criterion bench's closing table (Kavan et al. 2006, §6: what skinning costs).
+//!
+//! Each round runs the kernels in an order of its own ([`order`]). Every kernel but the copy
+//! reads the same mesh, so on a machine whose last-level cache holds much of it, the kernel
+//! that follows the copy starts colder than the rest. In a fixed order that was always the
+//! traffic bound: on a 2-core Intel Xeon reporting 480 MiB of L3 (2026-12-04) it ran at
+//! 233 M vertices/s at 10⁶ vertices on one thread, below the DQS (255) whose loads and
+//! stores it is, where a loop that ran it after LBS gave 380–395. Shuffled, a kernel
+//! follows the copy in about one round of thirteen, which the medians leave out.
 
 use super::{copy_bound, run, Joints, BASELINES};
 use crate::error::Result;
@@ -207,6 +215,24 @@ impl<'a> Mesh<'a, 4> {
     }
 }
 
+/// The order of `count` kernels in round `round`: a Fisher–Yates shuffle driven by
+/// SplitMix64 from the round's number, the same in every run (no random source needed).
+fn order(count: usize, round: usize) -> Vec<usize> {
+    let mut state = (round as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15);
+    let mut next = || {
+        state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = state;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    };
+    let mut o: Vec<usize> = (0..count).collect();
+    for i in (1..count).rev() {
+        o.swap(i, (next() % (i as u64 + 1)) as usize);
+    }
+    o
+}
+
 /// [`measure`] and [`measure_rig`] on the current rayon pool (`parallel`) or the caller's
 /// thread.
 fn measure_on<const K: usize>(
@@ -262,7 +288,10 @@ fn measure_on<const K: usize>(
     kernels.push((TRAFFIC.into(), Role::Traffic, alone));
     let mut secs = vec![Vec::with_capacity(rounds); kernels.len()];
     for round in 0..=rounds.max(1) {
-        for (k, (_, _, f)) in kernels.iter_mut().enumerate() {
+        // A new order each round (see the module docs: which kernel follows the copy, the
+        // one that touches other memory, changes from round to round).
+        for k in order(kernels.len(), round) {
+            let f = &mut kernels[k].2;
             let start = Instant::now();
             for _ in 0..reps {
                 f(&mut out)?;
@@ -391,4 +420,39 @@ fn cpu_jiffies() -> Option<(u64, u64, usize)> {
     let rest: Vec<&str> = own.rsplit_once(')')?.1.split_whitespace().collect();
     let mine = rest.get(11)?.parse::<u64>().ok()? + rest.get(12)?.parse::<u64>().ok()?;
     Some((busy, mine, cpus.max(1)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::order;
+
+    /// Every round's order holds each kernel once, and the kernel after any one of them
+    /// (the copy's follower, in the bench) changes from round to round.
+    #[test]
+    fn each_round_runs_every_kernel_once_in_an_order_of_its_own() {
+        for count in [1, 2, 14, 15] {
+            for round in 0..22 {
+                let mut o = order(count, round);
+                o.sort_unstable();
+                assert_eq!(o, (0..count).collect::<Vec<_>>(), "{count} kernels");
+            }
+        }
+        let orders: Vec<Vec<usize>> = (0..8).map(|r| order(14, r)).collect();
+        for k in 0..14 {
+            // What runs after kernel k: the next in its round, or the next round's first.
+            let followers: std::collections::BTreeSet<usize> = (0..8)
+                .map(|r| {
+                    let at = orders[r].iter().position(|&x| x == k).unwrap();
+                    orders[r]
+                        .get(at + 1)
+                        .copied()
+                        .unwrap_or_else(|| order(14, r + 1)[0])
+                })
+                .collect();
+            assert!(
+                followers.len() >= 4,
+                "kernel {k} is followed by {followers:?}"
+            );
+        }
+    }
 }
