@@ -21,7 +21,8 @@ use glam::{Mat3A, Vec3A, Vec4};
 
 mod rounds;
 pub use rounds::{
-    markdown, measure, measure_rig, repeats, Load, Role, Row, Spread, Table, SYNTHETIC, TRAFFIC,
+    last_level_cache, markdown, measure, measure_rig, repeats, Load, Role, Row, Spread, Table,
+    SYNTHETIC, TRAFFIC,
 };
 
 /// Every baseline's joints for one pose.

@@ -100,11 +100,20 @@ pub struct Table {
     pub rounds: usize,
     /// How many times each timed sample skins the mesh.
     pub repeats: usize,
+    /// The bytes a skinned vertex moves (its vertex read, its position and normal written:
+    /// 72 with four influences, 96 with eight), the copy's.
+    pub moved: usize,
     /// Every kernel: our methods, the baselines, the copy, the traffic.
     pub rows: Vec<Row>,
 }
 
 impl Table {
+    /// Whether the mesh's bytes (its vertices read, its output written: [`Table::moved`] a
+    /// vertex) fit in a cache of `cache` bytes: then its rows time that cache, not memory.
+    pub fn fits_in(&self, cache: u64) -> bool {
+        self.vertices as u64 * self.moved as u64 <= cache
+    }
+
     /// The median rate of the kernel named `name`.
     pub fn rate(&self, name: &str) -> Option<f64> {
         self.rows
@@ -328,6 +337,7 @@ fn measure_on<const K: usize>(
         centres: rig.clusters().len(),
         rounds: rounds.max(1),
         repeats: reps,
+        moved,
         rows,
     })
 }
@@ -397,6 +407,33 @@ impl Load {
     }
 }
 
+/// The size of this machine's last-level cache in bytes (the largest of cpu0's caches in
+/// `/sys`), where Linux tells it. A mesh whose bytes it holds is timed in the cache, not in
+/// memory, whatever its size.
+pub fn last_level_cache() -> Option<u64> {
+    let dir = std::fs::read_dir("/sys/devices/system/cpu/cpu0/cache").ok()?;
+    dir.filter_map(|e| std::fs::read_to_string(e.ok()?.path().join("size")).ok())
+        .filter_map(|s| cache_size(&s))
+        .max()
+}
+
+/// A cache size as `/sys` writes it (`48K`, `2048K`, `480M`, a count of bytes).
+fn cache_size(s: &str) -> Option<u64> {
+    let s = s.trim();
+    let (digits, unit) = match s.char_indices().find(|(_, c)| !c.is_ascii_digit()) {
+        Some((at, _)) => s.split_at(at),
+        None => (s, ""),
+    };
+    let scale: u64 = match unit {
+        "" => 1,
+        "K" => 1 << 10,
+        "M" => 1 << 20,
+        "G" => 1 << 30,
+        _ => return None,
+    };
+    digits.parse::<u64>().ok()?.checked_mul(scale)
+}
+
 /// CPU time since boot: (all CPUs' busy jiffies, this process's jiffies, the CPUs), from
 /// `/proc/stat` and `/proc/self/stat`.
 fn cpu_jiffies() -> Option<(u64, u64, usize)> {
@@ -424,7 +461,38 @@ fn cpu_jiffies() -> Option<(u64, u64, usize)> {
 
 #[cfg(test)]
 mod tests {
-    use super::order;
+    use super::{cache_size, order, Table};
+
+    /// A mesh fits in a cache that holds its vertices and output, and not in one a byte
+    /// smaller.
+    #[test]
+    fn a_mesh_fits_in_a_cache_that_holds_its_bytes() {
+        let t = Table {
+            mesh: "m".into(),
+            vertices: 1_000_000,
+            threads: 1,
+            centres: 0,
+            rounds: 1,
+            repeats: 1,
+            moved: 72,
+            rows: vec![],
+        };
+        assert!(t.fits_in(72_000_000) && t.fits_in(480 << 20));
+        assert!(!t.fits_in(71_999_999) && !t.fits_in(32 << 20));
+    }
+
+    /// Cache sizes as Linux writes them; anything else is no size.
+    #[test]
+    fn cache_sizes_read_as_sys_writes_them() {
+        assert_eq!(cache_size("48K\n"), Some(48 << 10));
+        assert_eq!(cache_size("491520K"), Some(480 << 20));
+        assert_eq!(cache_size("32M"), Some(32 << 20));
+        assert_eq!(cache_size("1G"), Some(1 << 30));
+        assert_eq!(cache_size("4096"), Some(4096));
+        for bad in ["", "K", "12Q", "-3K", "99999999999999999999G", "1.5M"] {
+            assert_eq!(cache_size(bad), None, "{bad:?}");
+        }
+    }
 
     /// Every round's order holds each kernel once, and the kernel after any one of them
     /// (the copy's follower, in the bench) changes from round to round.
