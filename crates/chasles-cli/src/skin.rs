@@ -293,14 +293,8 @@ pub fn bench(mesh: &BenchMesh, threads: &[usize], rounds: Option<usize>) -> Resu
             dqs / r("dib"),
         );
     }
-    if let Some(cache) = peers::last_level_cache() {
-        for n in in_cache(&tables, cache) {
-            println!(
-                "note: at {n} vertices the mesh and its output ({:.0} MB) fit in this machine's last-level cache ({:.0} MiB): those rows time the cache, not the memory",
-                (n * tables[0].moved) as f64 / 1e6,
-                cache as f64 / (1 << 20) as f64
-            );
-        }
+    for note in peers::cache_notes(&tables, peers::last_level_cache()) {
+        println!("{note}");
     }
     if let Some(others) = load.others() {
         println!(
@@ -312,19 +306,6 @@ pub fn bench(mesh: &BenchMesh, threads: &[usize], rounds: Option<usize>) -> Resu
         }
     }
     Ok(())
-}
-
-/// The mesh sizes among `tables` of at least 2·10⁵ vertices (the bench's big meshes, which
-/// are meant to stream from memory) whose bytes fit in a last-level cache of `cache` bytes
-/// ([`chasles_skin::peers::Table::fits_in`]), each once, in order.
-fn in_cache(tables: &[chasles_skin::peers::Table], cache: u64) -> Vec<usize> {
-    let mut sizes: Vec<usize> = tables
-        .iter()
-        .filter(|t| t.vertices >= 200_000 && t.fits_in(cache))
-        .map(|t| t.vertices)
-        .collect();
-    sizes.dedup();
-    sizes
 }
 
 /// Which kernels the fast paths ran here, for the bench's reader: the eight-vertex AVX2+FMA

@@ -197,6 +197,9 @@ fn ratios(_: &mut Criterion) {
         }
     }
     println!("\n{}", peers::markdown(&tables));
+    for note in peers::cache_notes(&tables, peers::last_level_cache()) {
+        println!("{note}");
+    }
     if let Some(others) = load.others() {
         println!(
             "other processes kept {:.0}% of the CPUs busy",

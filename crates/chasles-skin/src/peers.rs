@@ -21,8 +21,8 @@ use glam::{Mat3A, Vec3A, Vec4};
 
 mod rounds;
 pub use rounds::{
-    last_level_cache, markdown, measure, measure_rig, repeats, Load, Role, Row, Spread, Table,
-    SYNTHETIC, TRAFFIC,
+    cache_notes, last_level_cache, markdown, measure, measure_rig, repeats, Load, Role, Row,
+    Spread, Table, SYNTHETIC, TRAFFIC,
 };
 
 /// Every baseline's joints for one pose.

@@ -417,6 +417,31 @@ pub fn last_level_cache() -> Option<u64> {
         .max()
 }
 
+/// A note for each mesh size among `tables` of at least 2·10⁵ vertices (the benches' big
+/// meshes, meant to stream from memory) whose bytes fit in a last-level cache of `cache`
+/// bytes ([`Table::fits_in`]; none where the size is not known), each size once.
+pub fn cache_notes(tables: &[Table], cache: Option<u64>) -> Vec<String> {
+    let Some(cache) = cache else {
+        return Vec::new();
+    };
+    let mut sizes: Vec<(usize, usize)> = tables
+        .iter()
+        .filter(|t| t.vertices >= 200_000 && t.fits_in(cache))
+        .map(|t| (t.vertices, t.moved))
+        .collect();
+    sizes.dedup();
+    sizes
+        .iter()
+        .map(|&(n, moved)| {
+            format!(
+                "note: at {n} vertices the mesh and its output ({:.0} MB) fit in this machine's last-level cache ({:.0} MiB): those rows time the cache, not the memory",
+                (n * moved) as f64 / 1e6,
+                cache as f64 / (1u64 << 20) as f64
+            )
+        })
+        .collect()
+}
+
 /// A cache size as `/sys` writes it (`48K`, `2048K`, `480M`, a count of bytes).
 fn cache_size(s: &str) -> Option<u64> {
     let s = s.trim();
@@ -461,7 +486,7 @@ fn cpu_jiffies() -> Option<(u64, u64, usize)> {
 
 #[cfg(test)]
 mod tests {
-    use super::{cache_size, order, Table};
+    use super::{cache_notes, cache_size, order, Table};
 
     /// A mesh fits in a cache that holds its vertices and output, and not in one a byte
     /// smaller.
@@ -479,6 +504,17 @@ mod tests {
         };
         assert!(t.fits_in(72_000_000) && t.fits_in(480 << 20));
         assert!(!t.fits_in(71_999_999) && !t.fits_in(32 << 20));
+        let small = Table {
+            vertices: 100_000,
+            ..t.clone()
+        };
+        let tables = [small, t.clone(), t.clone()];
+        let notes = cache_notes(&tables, Some(480 << 20));
+        assert_eq!(notes.len(), 1, "{notes:?}");
+        assert!(notes[0].starts_with("note: at 1000000 vertices") && notes[0].contains("(72 MB)"));
+        assert!(notes[0].contains("(480 MiB)"), "{}", notes[0]);
+        assert!(cache_notes(&tables, Some(32 << 20)).is_empty());
+        assert!(cache_notes(&tables, None).is_empty());
     }
 
     /// Cache sizes as Linux writes them; anything else is no size.
