@@ -284,8 +284,9 @@ fn out_of(p: Vec3<f32>, n: Vec3<f32>) -> Out {
     [px, py, pz, nx, ny, nz]
 }
 
-/// Vertices per chunk, the job's unit of work (`job`'s grid: the first chunk may be up to 3
-/// longer, so that the others' streamed output is aligned, and the last up to 7 longer).
+/// Vertices per chunk, the job's unit of work (`job`'s grid: the first chunk may be up to 7
+/// longer, so that the others' streamed output starts a 64-byte line, and the last up to 7
+/// longer).
 const CHUNK: usize = 4096;
 
 /// Meshes of at least this many vertices (18.9 MB moved a pose, more than a core's share of

@@ -70,7 +70,8 @@ pub const BASELINES: [Baseline; 5] = [
 /// The bandwidth bound: `src` copied into `dst`, `half` bytes a vertex read and as many
 /// written — half the bytes each skinned vertex moves: with four influences 36 + 36 for
 /// its 48 read and 24 written, with eight 48 + 48 for 72 and 24 — on one thread or on
-/// all in the fast paths' chunks of 4096 vertices.
+/// all in chunks of 4096 vertices (as the fast paths' are, about: theirs start where a
+/// streamed output is aligned).
 pub fn copy_bound(src: &[u8], dst: &mut [u8], half: usize, parallel: bool) {
     use rayon::prelude::*;
     let src = std::hint::black_box(src);
@@ -84,8 +85,8 @@ pub fn copy_bound(src: &[u8], dst: &mut [u8], half: usize, parallel: bool) {
     }
 }
 
-/// `f` over the mesh `v` and its output on one thread, or on all in the fast paths' chunks
-/// of 4096 vertices.
+/// `f` over the mesh `v` and its output on one thread, or on all in chunks of 4096 vertices
+/// (as the fast paths' are, about).
 pub fn run(
     v: &[Vertex<4>],
     out: &mut [Out],

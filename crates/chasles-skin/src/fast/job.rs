@@ -9,7 +9,7 @@
 //! to its threads as they ask for work (`rayon::iter::split`, halving at chunk boundaries).
 //! What the chunking costs, measured on a 2-core Intel Xeon (2026-12-04, scratch loop of
 //! interleaved rounds, medians, DQS and LBS beside the fast paths' loads and stores alone):
-//! - The grid starts where a streamed output is 32-byte aligned. When every chunk started
+//! - The grid starts where a streamed output starts a 64-byte line. When every chunk started
 //!   at a multiple of [`CHUNK`], each one's output began misaligned by the same amount as
 //!   the mesh's (a heap buffer of this size is 16 bytes past a page) and started with a
 //!   block of ordinary stores over lines then streamed: at 10⁶ vertices one thread ran
@@ -126,32 +126,36 @@ impl<'a> Output<'a> {
         }
     }
 
-    /// Where the grid of chunks starts ([`grid`]) for a mesh of `n` vertices: for a packed
+    /// Where the grid of chunks starts ([`Grid`]) for a mesh of `n` vertices: for a packed
     /// output that will be streamed ([`STREAM_VERTICES`] or more; an interleaved one of
-    /// stride 6 is packed), the first vertex whose output is 32-byte aligned, so that only
-    /// the first chunk starts with an overlapping block of ordinary stores ([`super::simd_start`]);
-    /// else 0.
+    /// stride 6 is packed), the first vertex whose output starts a 64-byte line (one of the
+    /// first eight, where the output is 8-byte aligned), so that only the first chunk starts
+    /// with an overlapping block of ordinary stores ([`super::simd_start`]) and no line is
+    /// streamed by two chunks; else the first 32-byte aligned one; else 0.
     fn shift(&self, n: usize) -> usize {
         let addr = match self {
             Output::Packed(o) => o.as_ptr() as usize,
             Output::Interleaved { data, stride: 6 } => data.as_ptr() as usize,
             _ => return 0,
         };
-        if n >= STREAM_VERTICES {
-            aligned_from(addr).unwrap_or(0)
-        } else {
-            0
+        if n < STREAM_VERTICES {
+            return 0;
         }
+        (0..8)
+            .find(|l| (addr + 24 * l).is_multiple_of(64))
+            .or_else(|| aligned_from(addr))
+            .unwrap_or(0)
     }
 }
 
 /// The chunks of a mesh of `n` vertices (`n > 0`) whose grid starts at `shift` (< 8): chunk
 /// `c` is `start(c)..start(c + 1)` for `c < count`. The first ends at `shift + CHUNK` and
 /// the others are [`CHUNK`] long, so that every chunk but the first starts `shift`
-/// vertices past a multiple of [`CHUNK`]: where `shift` is the first vertex of a streamed
-/// output to be 32-byte aligned, every later chunk's output is aligned too and streams from
-/// its first vertex (one overlapping block of ordinary stores per mesh instead of one per
-/// chunk: at 10⁶ vertices one thread skinned 4 % faster for it). A last chunk of 1–7
+/// vertices past a multiple of [`CHUNK`] (`24 CHUNK` bytes are whole 64-byte lines): where
+/// `shift` is the first vertex of a streamed output to start a line ([`Output::shift`]),
+/// every later chunk's output does too and streams from its first vertex (one overlapping
+/// block of ordinary stores per mesh instead of one per chunk: at 10⁶ vertices one thread
+/// skinned 2–3 % faster for it, the module docs' figures). A last chunk of 1–7
 /// vertices joins the one before: every chunk of a mesh of eight or more has eight or more,
 /// so each vertex goes through the SIMD kernel, whose numbers do not depend on the chunking.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -341,14 +345,9 @@ mod tests {
     /// `CHUNK`.
     #[test]
     fn the_grid_covers_the_mesh_in_chunks_of_eight_or_more() {
-        let edges = |k: usize| [k * CHUNK, k * CHUNK + 1, k * CHUNK + 7, k * CHUNK + 8];
-        let mut sizes: Vec<usize> = (1..20).collect();
-        for k in 1..4 {
-            sizes.extend(edges(k).into_iter().flat_map(|n| [n - 3, n, n + 3]));
-        }
-        sizes.push(STREAM_VERTICES + 13);
+        let sizes = (1..=3 * CHUNK + 16).chain([STREAM_VERTICES + 13]);
         for n in sizes {
-            for shift in 0..4 {
+            for shift in 0..8 {
                 let g = Grid::new(n, shift);
                 let starts: Vec<usize> = (0..=g.count).map(|c| g.start(c)).collect();
                 assert_eq!((starts[0], starts[g.count]), (0, n), "n {n} shift {shift}");
@@ -378,26 +377,38 @@ mod tests {
         );
     }
 
-    /// A streamed packed output at any of its four alignments gets a grid whose chunks after
-    /// the first are 32-byte aligned (they stream from their first vertex); outputs that are
-    /// not streamed keep the grid from 0.
+    /// A streamed packed output at any of its eight offsets from a line gets a grid whose
+    /// chunks after the first start a 64-byte line (so they stream from their first vertex,
+    /// and no line is streamed by two chunks), and an interleaved output of stride 6 the
+    /// same grid; outputs that are not streamed keep the grid from 0.
     #[test]
-    fn a_streamed_output_starts_every_later_chunk_aligned() {
+    fn a_streamed_output_starts_every_later_chunk_on_a_line() {
         let n = STREAM_VERTICES + 13;
-        let mut buffer = vec![[0f32; 6]; n + 3];
-        for offset in 0..4 {
+        let mut buffer = vec![[0f32; 6]; n + 8];
+        for offset in 0..8 {
             let o = &mut buffer[offset..offset + n];
             let addr = o.as_ptr() as usize;
             let out = Output::Packed(o);
             let g = Grid::new(n, out.shift(n));
             for c in 1..g.count {
-                assert_eq!(aligned_from(addr + 24 * g.start(c)), Some(0), "chunk {c}");
+                assert_eq!(
+                    (addr + 24 * g.start(c)) % 64,
+                    0,
+                    "offset {offset}, chunk {c}"
+                );
             }
             assert_eq!(
                 out.shift(STREAM_VERTICES - 1),
                 0,
                 "a small mesh is not streamed"
             );
+            let shift = out.shift(n);
+            let o = &mut buffer[offset..offset + n];
+            let six = Output::Interleaved {
+                data: bytemuck::cast_slice_mut(o),
+                stride: 6,
+            };
+            assert_eq!(six.shift(n), shift, "stride 6 is packed");
         }
         let mut inter = vec![0f32; n * 7];
         let out = Output::Interleaved {

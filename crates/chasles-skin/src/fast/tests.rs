@@ -227,40 +227,60 @@ fn layouts<const K: usize>(n: usize) {
 }
 
 /// A mesh big enough to stream ([`STREAM_VERTICES`]): every method's job writes the same
-/// numbers into a packed output (streamed; its first vertices and last few by overlapping
-/// blocks of ordinary stores) as into an interleaved one (written in place, not
-/// streamed), bit for bit, with the packed output at each of its four alignments (each
-/// shifts the grid of chunks, job.rs's `Grid`) and a last chunk of 1–7 vertices in the grid
-/// from 0 (joined to the one before).
+/// numbers, bit for bit and to every vertex, into a packed output (streamed; its first
+/// vertices and last few by overlapping blocks of ordinary stores) at each of its eight
+/// offsets from a 64-byte line (each shifts the grid of chunks, job.rs's `Grid`) and into
+/// an interleaved one of stride 6 (packed too) as into one of stride 7 (written in place,
+/// not streamed), on all threads; with the grid from 0 its last chunk would hold 4
+/// vertices (joined to the one before).
 #[test]
 fn big_meshes_stream_the_same_numbers() {
     use crate::Method;
     let n = STREAM_VERTICES + 4;
     let rig = synthetic::rig(n, 54, 3);
     let jt = synthetic::joints(54, 3);
-    let mut buffer = vec![[0f32; 6]; n + 3];
+    let mut buffer = vec![[0f32; 6]; n + 8];
     let mut inter = vec![0f32; n * 7];
-    for (m, offset) in Method::ALL.into_iter().zip((0..4).cycle()) {
-        let packed = &mut buffer[offset..offset + n];
+    let bits = |v: &[f32]| v.iter().map(|x| x.to_bits()).collect::<Vec<u32>>();
+    for m in Method::ALL {
         let palette = Palette::from_joint_transforms(m, &rig, &jt, true).unwrap();
-        for output in [
-            Output::Packed(packed),
-            Output::Interleaved {
-                data: &mut inter,
-                stride: 7,
-            },
-        ] {
-            let job = SkinningJob {
+        let job = |output: Output<'_>| {
+            SkinningJob {
                 rig: &rig,
                 palette: &palette,
                 output,
                 parallel: true,
-            };
-            job.run().unwrap();
-        }
-        let packed = &buffer[offset..offset + n];
-        for (k, (p, i)) in packed.iter().zip(inter.chunks_exact(7)).enumerate() {
-            assert_eq!(p[..], i[..6], "{} offset {offset} vertex {k}", m.name());
+            }
+            .run()
+            .unwrap()
+        };
+        inter.fill(f32::NAN);
+        job(Output::Interleaved {
+            data: &mut inter,
+            stride: 7,
+        });
+        let want: Vec<u32> = inter.chunks_exact(7).flat_map(|v| bits(&v[..6])).collect();
+        for offset in 0..=8 {
+            buffer.fill([f32::NAN; 6]);
+            // Offsets 0-7 packed; the last, stride 6 at offset 3.
+            let at = offset % 8 + 3 * usize::from(offset == 8);
+            let out = &mut buffer[at..at + n];
+            job(if offset < 8 {
+                Output::Packed(out)
+            } else {
+                Output::Interleaved {
+                    data: bytemuck::cast_slice_mut(out),
+                    stride: 6,
+                }
+            });
+            let got = bits(bytemuck::cast_slice(&buffer[at..at + n]));
+            let bad = got.iter().zip(&want).position(|(a, b)| a != b);
+            assert_eq!(
+                bad,
+                None,
+                "{}, offset {offset}: first float apart",
+                m.name()
+            );
         }
     }
 }

@@ -16,7 +16,8 @@
 //! traffic bound: on a 2-core Intel Xeon reporting 480 MiB of L3 (2026-12-04) it ran at
 //! 233 M vertices/s at 10⁶ vertices on one thread, below the DQS (255) whose loads and
 //! stores it is, where a loop that ran it after LBS gave 380–395. Shuffled, a kernel
-//! follows the copy in about one round of thirteen, which the medians leave out.
+//! follows the copy in about one round in as many as there are other kernels (13 in the
+//! synthetic table, 7 on a rig of more than four influences), which the medians leave out.
 
 use super::{copy_bound, run, Joints, BASELINES};
 use crate::error::Result;
@@ -227,19 +228,25 @@ impl<'a> Mesh<'a, 4> {
 /// The order of `count` kernels in round `round`: a Fisher–Yates shuffle driven by
 /// SplitMix64 from the round's number, the same in every run (no random source needed).
 fn order(count: usize, round: usize) -> Vec<usize> {
-    let mut state = (round as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15);
+    // The round's number, mixed, starts the sequence: with a plain multiple of the
+    // increment, round r + 1's draws would be round r's shifted by one.
+    let mut state = mix((round as u64) << 32 | 0x5EED);
     let mut next = || {
         state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = state;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
+        mix(state)
     };
     let mut o: Vec<usize> = (0..count).collect();
     for i in (1..count).rev() {
         o.swap(i, (next() % (i as u64 + 1)) as usize);
     }
     o
+}
+
+/// SplitMix64's finalizer: a bijection of 64-bit words that scatters neighbouring inputs.
+fn mix(mut z: u64) -> u64 {
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^ (z >> 31)
 }
 
 /// [`measure`] and [`measure_rig`] on the current rayon pool (`parallel`) or the caller's
@@ -417,9 +424,10 @@ pub fn last_level_cache() -> Option<u64> {
         .max()
 }
 
-/// A note for each mesh size among `tables` of at least 2·10⁵ vertices (the benches' big
-/// meshes, meant to stream from memory) whose bytes fit in a last-level cache of `cache`
-/// bytes ([`Table::fits_in`]; none where the size is not known), each size once.
+/// A note for each mesh size among `tables` of at least 2·10⁵ vertices (the sizes the
+/// benches take to time memory rather than the cache, as 10⁶ and 4·10⁶ do on most machines)
+/// whose bytes fit in a last-level cache of `cache` bytes ([`Table::fits_in`]; none where
+/// the size is not known), each size once, smallest first.
 pub fn cache_notes(tables: &[Table], cache: Option<u64>) -> Vec<String> {
     let Some(cache) = cache else {
         return Vec::new();
@@ -429,13 +437,14 @@ pub fn cache_notes(tables: &[Table], cache: Option<u64>) -> Vec<String> {
         .filter(|t| t.vertices >= 200_000 && t.fits_in(cache))
         .map(|t| (t.vertices, t.moved))
         .collect();
+    sizes.sort_unstable();
     sizes.dedup();
     sizes
         .iter()
         .map(|&(n, moved)| {
             format!(
                 "note: at {n} vertices the mesh and its output ({:.0} MB) fit in this machine's last-level cache ({:.0} MiB): those rows time the cache, not the memory",
-                (n * moved) as f64 / 1e6,
+                n as f64 * moved as f64 / 1e6,
                 cache as f64 / (1u64 << 20) as f64
             )
         })
@@ -508,7 +517,7 @@ mod tests {
             vertices: 100_000,
             ..t.clone()
         };
-        let tables = [small, t.clone(), t.clone()];
+        let tables = [t.clone(), small, t.clone()];
         let notes = cache_notes(&tables, Some(480 << 20));
         assert_eq!(notes.len(), 1, "{notes:?}");
         assert!(notes[0].starts_with("note: at 1000000 vertices") && notes[0].contains("(72 MB)"));
