@@ -17,9 +17,12 @@
 //!   and stores alone 381–383 against 387–389 (two runs of 16 rounds).
 //! - Chunks of 1024 vertices ran 5–10 % slower out of the cache than 4096; 16 384, 32 768,
 //!   65 536 or one chunk a thread ran as fast as 4096 once the grid was shifted.
-//! - A parallel job costs about 11 µs more than its share of the work (rayon waking the
-//!   other thread): 8200 vertices ran DQS at 280 M vertices/s on one thread and 305–322
-//!   on two, 32 768 at 290 and 479–490, 10⁵ at 270 and 416–426.
+//! - What rayon costs a parallel job depends on the calling thread (DQS, medians of 15
+//!   rounds of 2000 poses, two runs). From a thread of rayon's pool (inside
+//!   `ThreadPool::install`), a pose took 23 µs at 8200 vertices (one thread 29.4, an ideal
+//!   half 14.7), 68 at 32 768 (115) and 190 at 10⁵ (353): 8–11 µs beyond its share. From
+//!   any other thread, which hands the job to the pool and sleeps until it ends: 31, 76–82
+//!   and 232–237 µs, 16–55 beyond; at 8200 vertices no faster than one thread.
 
 use super::dest::Dest;
 use super::palette::{Joints, Palette};
@@ -263,7 +266,10 @@ pub(super) fn for_chunks<const K: usize>(
 /// One pose skinned into the caller's buffers: `rig` (laid out once), `palette` (made for
 /// this pose, any method, for this rig: a palette is checked against the rig's joint and
 /// cluster counts, not against which rig made it), `output`; on all threads when `parallel`.
-/// On one thread it allocates nothing; on all, only what rayon's scheduler does.
+/// On one thread it allocates nothing; on all, only what rayon's scheduler does. A parallel
+/// job called from a thread outside rayon's pool (a program's main thread) waits while the
+/// pool takes it up, which on a 2-core machine cost 16–55 µs a pose more than from inside
+/// (`rayon::ThreadPool::install` around a frame's work; the module docs' figures).
 ///
 /// A clip frame after frame into an interleaved vertex buffer of 8 floats a vertex
 /// (position, normal, uv):
