@@ -310,17 +310,17 @@ type SimdKernel<const K: usize, J, T> = unsafe fn(&[Vertex<K>], &[J], &T, Dest<'
 /// lines of one array).
 fn simd_start(o: &Dest<'_>, stream: bool) -> (usize, bool) {
     let stream = stream && o.layout() == dest::Layout::Packed;
-    match aligned_from(o.addr()) {
+    match aligned_from(o.addr(), 32) {
         Some(lead) if stream && lead + 8 <= o.len() => (lead, true),
         _ => (0, false),
     }
 }
 
-/// The first of the vertices 0–3 of a packed output at `addr` whose six floats start on a
-/// 32-byte boundary (24-byte vertices come back to an alignment every 4), if any (none
-/// where `addr` is not 8-byte aligned).
-fn aligned_from(addr: usize) -> Option<usize> {
-    (0..4).find(|l| (addr + 24 * l).is_multiple_of(32))
+/// The first vertex of a packed output at `addr` whose six floats start on a `bytes`-byte
+/// boundary (32 or 64: 24-byte vertices come back to such a boundary every `bytes / 8`), if
+/// any (none where `addr` is not 8-byte aligned).
+fn aligned_from(addr: usize, bytes: usize) -> Option<usize> {
+    (0..bytes / 8).find(|l| (addr + 24 * l).is_multiple_of(bytes))
 }
 
 /// Orders a SIMD kernel's non-temporal stores before whatever follows (the job's end, which

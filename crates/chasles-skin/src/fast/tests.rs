@@ -260,25 +260,24 @@ fn big_meshes_stream_the_same_numbers() {
             stride: 7,
         });
         let want: Vec<u32> = inter.chunks_exact(7).flat_map(|v| bits(&v[..6])).collect();
-        for offset in 0..=8 {
+        // Packed at offsets 0-7, then stride 6 at offset 3.
+        for (offset, six) in (0..8).map(|o| (o, false)).chain([(3, true)]) {
             buffer.fill([f32::NAN; 6]);
-            // Offsets 0-7 packed; the last, stride 6 at offset 3.
-            let at = offset % 8 + 3 * usize::from(offset == 8);
-            let out = &mut buffer[at..at + n];
-            job(if offset < 8 {
-                Output::Packed(out)
-            } else {
+            let out = &mut buffer[offset..offset + n];
+            job(if six {
                 Output::Interleaved {
                     data: bytemuck::cast_slice_mut(out),
                     stride: 6,
                 }
+            } else {
+                Output::Packed(out)
             });
-            let got = bits(bytemuck::cast_slice(&buffer[at..at + n]));
+            let got = bits(bytemuck::cast_slice(&buffer[offset..offset + n]));
             let bad = got.iter().zip(&want).position(|(a, b)| a != b);
             assert_eq!(
                 bad,
                 None,
-                "{}, offset {offset}: first float apart",
+                "{}, offset {offset}, stride 6 {six}: first float apart",
                 m.name()
             );
         }
