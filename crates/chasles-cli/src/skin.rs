@@ -309,12 +309,13 @@ pub fn bench(mesh: &BenchMesh, threads: &[usize], rounds: Option<usize>) -> Resu
 }
 
 /// Which kernels the fast paths ran here, for the bench's reader: the eight-vertex AVX2+FMA
-/// ones, DIB's sixteen-vertex AVX-512F one where it runs, or the portable scalar ones.
+/// ones (built with AVX-512's 32 registers where it runs) and DIB's sixteen-vertex AVX-512F
+/// one where it runs, or the portable scalar ones.
 fn kernels_used() -> &'static str {
     use chasles_skin::fast::{uses_avx512, uses_simd};
     match (uses_simd(4), uses_avx512(4)) {
-        (true, true) => "the fast paths ran their AVX2+FMA kernels, eight vertices at a time, and DIB its AVX-512F kernel, sixteen at a time",
-        (true, false) => "the fast paths ran their AVX2+FMA kernels, eight vertices at a time (no AVX-512F here for DIB's sixteen-vertex kernel)",
+        (true, true) => "the fast paths ran their AVX2+FMA kernels, eight vertices at a time, built with AVX-512F and VL's 32 registers, and DIB its AVX-512F kernel, sixteen at a time",
+        (true, false) => "the fast paths ran their AVX2+FMA kernels, eight vertices at a time (no AVX-512F and VL here for the 32-register builds and DIB's sixteen-vertex kernel)",
         _ => "the fast paths ran their portable scalar kernels (no AVX2+FMA here)",
     }
 }

@@ -1791,8 +1791,8 @@ fn skin_bench_prints_every_kernel_on_every_thread_count_with_round_by_round_rati
         chasles_skin::fast::uses_simd(4),
         chasles_skin::fast::uses_avx512(4),
     ) {
-        (true, true) => "and DIB its AVX-512F kernel, sixteen at a time",
-        (true, false) => "eight vertices at a time (no AVX-512F here",
+        (true, true) => "VL's 32 registers, and DIB its AVX-512F kernel, sixteen at a time",
+        (true, false) => "eight vertices at a time (no AVX-512F and VL here",
         _ => "their portable scalar kernels",
     };
     assert!(out.contains(kernels), "{kernels}: {out}");

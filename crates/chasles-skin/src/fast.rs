@@ -1,7 +1,8 @@
 //! The fast path for every method: a compact vertex layout, fixed influence counts (4 or
 //! 8), eight-vertex AVX2+FMA kernels chosen at run time (every method, for 4 and 8 influences;
-//! DIB sixteen vertices at a time where the processor has AVX-512F, module `avx512`, to the
-//! same bits; elsewhere, and for meshes of under eight vertices, the scalar kernels), joint
+//! where the processor has AVX-512F and VL, built a second time with its 32 registers,
+//! module `avx2::registers`, and DIB sixteen vertices at a time, module `avx512`, both to
+//! the same bits; elsewhere, and for meshes of under eight vertices, the scalar kernels), joint
 //! transforms as flat arrays made once per pose (12 floats per matrix, 8 per dual
 //! quaternion — the register saving Kavan et al. 2006 note in §6; a 24-float row for QLB and
 //! SBS, module `qlb`; twists for Log, module `log`), one pass per vertex with no allocation
@@ -24,7 +25,8 @@
 //! `qε q0*`, which that component does not touch. And since every term of the transform is
 //! quadratic in the blend, that normalization is one factor 2/‖q0‖² (no square root). The
 //! antipodality signs depend only on the pair (pivot joint, joint), so the SIMD kernel
-//! looks them up in a table made once per pose (`antipodes`).
+//! looks them up in a table made once per pose (`antipodes`; for DQS, as which of each
+//! joint's two signed copies to blend).
 //!
 //! The quaternion and dual-quaternion algebra the kernels share — cross products, rotation
 //! by an unnormalized quaternion, DQS's transformation, products, Horner's rule, Log's
@@ -370,28 +372,35 @@ pub fn set_simd(allowed: bool) {
     SIMD_ALLOWED.store(allowed, Ordering::Relaxed);
 }
 
-/// Whether DIB's SIMD path may take sixteen vertices at a time; see [`set_avx512`].
+/// Whether the AVX-512 code may run; see [`set_avx512`].
 static AVX512_ALLOWED: AtomicBool = AtomicBool::new(true);
 
-/// Allows (the default) or forbids DIB's sixteen-vertex AVX-512F kernel for this process:
-/// with `false` DIB's SIMD path runs the eight-vertex AVX2 kernel alone, as on a processor
-/// without AVX-512 — to compare the two, or to test that path, on any machine. Each vertex
-/// gets the same numbers either way. Takes effect at the next job.
+/// Allows (the default) or forbids the AVX-512 code for this process: DIB's sixteen-vertex
+/// AVX-512F kernel, and the other kernels' builds with AVX-512F and VL's 32 registers
+/// (module `avx2::registers`). With `false` the SIMD paths run the AVX2+FMA code alone, as
+/// on a processor without AVX-512 — to compare the two, or to test that path, on any
+/// machine. Each vertex gets the same numbers either way. Takes effect at the next job.
 pub fn set_avx512(allowed: bool) {
     AVX512_ALLOWED.store(allowed, Ordering::Relaxed);
 }
 
-/// Whether DIB jobs on a rig of `k` influences take sixteen vertices at a time here: the
-/// SIMD kernels run ([`uses_simd`]), the processor has AVX-512F, and [`set_avx512`] has not
+/// Whether jobs on a rig of `k` influences run the AVX-512 code here (DIB sixteen vertices
+/// at a time, the other methods built with 32 registers): the SIMD kernels run
+/// ([`uses_simd`]), the processor has AVX-512F and AVX-512VL, and [`set_avx512`] has not
 /// forbidden it.
 pub fn uses_avx512(k: usize) -> bool {
     simd(k) && avx512()
 }
 
-/// Whether the sixteen-vertex kernel is allowed and the processor has AVX-512F.
+/// Whether the AVX-512 code is allowed and the processor has AVX-512F and AVX-512VL (every
+/// processor with AVX-512 but the Xeon Phi has both): DIB's sixteen-vertex kernel and the
+/// other kernels' builds with 32 registers (`avx2::registers`).
 fn avx512() -> bool {
     #[cfg(target_arch = "x86_64")]
-    if AVX512_ALLOWED.load(Ordering::Relaxed) && std::is_x86_feature_detected!("avx512f") {
+    if AVX512_ALLOWED.load(Ordering::Relaxed)
+        && std::is_x86_feature_detected!("avx512f")
+        && std::is_x86_feature_detected!("avx512vl")
+    {
         return true;
     }
     false
@@ -480,7 +489,7 @@ impl<const K: usize> Kernel<K> for DqsKernel {
     type Joint = [f32; 8];
     type Table = Antipodes;
     fn table(joints: &[[f32; 8]], vertices: usize) -> Antipodes {
-        Antipodes::new(joints, vertices)
+        Antipodes::copies(joints, vertices)
     }
     #[cfg(target_arch = "x86_64")]
     const AVX2: Option<SimdKernel<K, [f32; 8], Antipodes>> = Some(avx2::dqs::<K>);

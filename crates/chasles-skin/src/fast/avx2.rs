@@ -1,9 +1,10 @@
 //! Eight vertices at a time with AVX2 and FMA (x86-64, chosen at run time), the formulas
 //! of the scalar kernels with fused multiply-adds, so the results agree with them to
 //! rounding. DQS: each vertex's K (4 or 8) joint dual
-//! quaternions are whole-register loads and its blend runs in one register, the
-//! antipodality signs looked up in a per-pose table (`Antipodes`) or, for rigs too large
-//! for one, from dot products; eight blends, and eight vertices' positions and normals, are
+//! quaternions are whole-register loads and its blend runs in one register, each joint's
+//! copy with the antipodality sign (the joint or its negation) named by a per-pose table
+//! (`Antipodes::copies`) or, for rigs too large for one, the signs from dot products;
+//! eight blends, and eight vertices' positions and normals, are
 //! transposed into lanes for the transformation, normalized by one division (no square
 //! root). LBS likewise: each vertex's K joint matrices are whole-register loads blended in
 //! two registers, eight blends transposed into lanes for the transformation (fused, it
@@ -17,13 +18,15 @@
 use super::dest::Dest;
 use super::lane::{rotate, transform, two_over_norm2};
 use super::{Antipodes, Vertex};
+use registers::by_target;
 use std::arch::x86_64::*;
-use store::by_layout;
+pub(in crate::fast) use store::by_layout;
 pub(super) use store::{store_rows, Store};
 
 pub mod dib;
 pub mod log;
 pub mod qlb;
+pub(in crate::fast) mod registers;
 mod store;
 pub mod traffic;
 
@@ -129,43 +132,48 @@ pub(super) fn transpose4_halves(r: [__m256; 4]) -> [__m256; 4] {
     ]
 }
 
-/// One vertex's blended dual quaternion `Σ ±wₖ q̂ₖ`, as [`blend_one`], with the
-/// antipodality signs looked up in the row of `signs` (a table of `joints` columns) for the
-/// vertex's pivot: each signed weight is two broadcast loads and an exclusive or, so the
-/// blend has no shuffles. The first weight is never negated (`⟨q̂₀, q̂₀⟩ ≥ 0`).
+/// One vertex's blended dual quaternion `Σ ±wₖ q̂ₖ`, as [`blend_one`], from the pose's
+/// signed copies (`Antipodes::copies`): the pivot's row of offsets names, for each joint,
+/// its dual quaternion or its negation, so each influence is a broadcast weight (a load),
+/// one load of the copy and one fused multiply-add: no sign to apply and no shuffle. The
+/// first joint, the pivot, is never negated (`⟨q̂₀, q̂₀⟩ ≥ 0`).
+///
+/// # Safety
+/// As for [`dqs`]: AVX2 and FMA; `copies` and `at` are those of a table made from the
+/// joints of `joints` entries that `vx`'s indices are below.
 #[inline]
 #[target_feature(enable = "avx2,fma")]
-unsafe fn blend_signed<const K: usize>(
+unsafe fn blend_copies<const K: usize>(
     vx: &Vertex<K>,
-    db: *const f32,
-    signs: *const f32,
+    copies: *const u8,
+    at: *const u16,
     joints: usize,
 ) -> __m256 {
     unsafe {
         let j = vx.j.map(usize::from);
-        let q = j.map(|j| _mm256_loadu_ps(db.add(j * 8)));
-        let row = signs.add(j[0] * joints);
-        let mut b = _mm256_mul_ps(_mm256_broadcast_ss(&vx.w[0]), q[0]);
+        let row = at.add(j[0] * joints);
+        let copy = |offset: usize| _mm256_loadu_ps(copies.add(offset) as *const f32);
+        let mut b = _mm256_mul_ps(_mm256_broadcast_ss(&vx.w[0]), copy(j[0] * 64));
         // By index, as in the other kernels' blends: zipped iterators can compile slower.
         #[allow(clippy::needless_range_loop)]
         for k in 1..K {
-            let sign = _mm256_broadcast_ss(&*row.add(j[k]));
-            let w = _mm256_xor_ps(_mm256_broadcast_ss(&vx.w[k]), sign);
-            b = _mm256_fmadd_ps(w, q[k], b);
+            let q = copy(usize::from(*row.add(j[k])));
+            b = _mm256_fmadd_ps(_mm256_broadcast_ss(&vx.w[k]), q, b);
         }
         b
     }
 }
 
 /// DQS for the first `v.len() / 8 * 8` vertices; returns how many were done. Each
-/// vertex's blend runs in one register ([`blend_signed`] with a sign table, else
+/// vertex's blend runs in one register ([`blend_copies`] with a table, else
 /// [`blend_one`]); eight blends are transposed into lanes, and the normalization and
 /// transformation run lane-parallel.
 ///
 /// # Safety
-/// The processor must have AVX2 and FMA, K must be 4 or 8, every joint index in `v` must be below
-/// `d.len()`, `antipodes` must be empty or made from `d`, and `o.len() >= v.len()`; with
-/// `stream`, `o` must be packed and 32-byte aligned (see [`store_rows`]).
+/// The processor must have AVX2 and FMA, K must be 4 or 8, every joint index in `v` must be
+/// below `d.len()`, `antipodes` must be empty or made from `d` (its copies are read, if it
+/// has them), and `o.len() >= v.len()`; with `stream`, `o` must be packed and 32-byte
+/// aligned (see [`store_rows`]).
 #[target_feature(enable = "avx2,fma")]
 pub unsafe fn dqs<const K: usize>(
     v: &[Vertex<K>],
@@ -176,19 +184,20 @@ pub unsafe fn dqs<const K: usize>(
 ) -> usize {
     unsafe {
         let db = d.as_ptr() as *const f32;
-        if antipodes.is_empty() {
-            by_layout!(o, S => dqs_blocks::<K, S>(v, o, stream, |vx| blend_one(vx, db)))
+        // A table's offsets, else the dot products (no table, or one of signs alone).
+        if antipodes.at.is_empty() {
+            by_target!(o, S => dqs_blocks::<K, S>(v, o, stream, |vx| blend_one(vx, db)))
         } else {
-            let (signs, joints) = (antipodes.signs.as_ptr(), antipodes.joints);
-            by_layout!(o, S => dqs_blocks::<K, S>(v, o, stream, |vx| blend_signed(vx, db, signs, joints)))
+            let copies = antipodes.copies.as_ptr() as *const u8;
+            let (at, joints) = (antipodes.at.as_ptr(), antipodes.joints);
+            by_target!(o, S => dqs_blocks::<K, S>(v, o, stream, |vx| blend_copies(vx, copies, at, joints)))
         }
     }
 }
 
 /// The DQS kernel's body over whole blocks of eight for the layout `S`, with `blend` giving
 /// each vertex's blended dual quaternion.
-#[inline]
-#[target_feature(enable = "avx2,fma")]
+#[inline(always)]
 unsafe fn dqs_blocks<const K: usize, S: Store>(
     v: &[Vertex<K>],
     mut o: Dest<'_>,
@@ -253,12 +262,11 @@ pub unsafe fn lbs<const K: usize>(
     o: Dest<'_>,
     stream: bool,
 ) -> usize {
-    unsafe { by_layout!(o, S => lbs_blocks::<K, S>(v, m, o, stream)) }
+    unsafe { by_target!(o, S => lbs_blocks::<K, S>(v, m, o, stream)) }
 }
 
 /// [`lbs`]'s loop for the layout `S`.
-#[inline]
-#[target_feature(enable = "avx2,fma")]
+#[inline(always)]
 unsafe fn lbs_blocks<const K: usize, S: Store>(
     v: &[Vertex<K>],
     m: &[[f32; 12]],
@@ -277,7 +285,8 @@ unsafe fn lbs_blocks<const K: usize, S: Store>(
             let b = eight(|l| lbs_blend(v.get_unchecked(i + l), mb));
             let [a0, a1, a2, a3, a4, a5, a6, a7] = transpose8(eight(|l| b[l].0));
             // Row 2 of vertices l and l + 4 side by side, then 4×4 transposes per half.
-            let h = transpose4_halves([0, 1, 2, 3].map(|l| _mm256_set_m128(b[l + 4].1, b[l].1)));
+            let row2 = |l: usize| _mm256_set_m128(b[l + 4].1, b[l].1);
+            let h = transpose4_halves([row2(0), row2(1), row2(2), row2(3)]);
             let a = [a0, a1, a2, a3, a4, a5, a6, a7, h[0], h[1], h[2], h[3]];
             let mul = |p, q| _mm256_mul_ps(p, q);
             let fma = |p, q, r| _mm256_fmadd_ps(p, q, r);

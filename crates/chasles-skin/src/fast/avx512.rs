@@ -9,8 +9,9 @@
 //! AVX2's sixteen registers hold — the eight-lane kernel's loop body spills about a third
 //! of its operands to the stack — while AVX-512's thirty-two hold them, its comparisons
 //! land in mask registers, and one instruction does sixteen lanes' work. The other methods
-//! are a few dozen instructions a vertex with nothing spilled, bound by their loads and
-//! the memory (see `avx2`).
+//! are a few dozen instructions a vertex, bound by how many the core issues a cycle and by
+//! the memory; they take AVX-512's registers alone, on their eight lanes
+//! (`avx2::registers`).
 //!
 //! Tried on sixteen lanes and not kept (best of runs at 10⁵ vertices, one core, the
 //! variants in turn, 2026-12-04):

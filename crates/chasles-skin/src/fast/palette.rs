@@ -251,7 +251,7 @@ impl Palette {
     fn sign<const K: usize>(&mut self, rig: &FastRig<K>) {
         let n = if simd(K) { rig.vertices().len() } else { 0 };
         match &self.joints {
-            Joints::Dqs(d) => self.signs.refill::<8>(bytemuck::cast_slice(d), n),
+            Joints::Dqs(d) => self.signs.refill_copies(bytemuck::cast_slice(d), n),
             Joints::Qlb(j) | Joints::Sbs { joints: j, .. } => {
                 self.signs.refill::<24>(bytemuck::cast_slice(j), n)
             }

@@ -243,7 +243,8 @@ mod tests {
         if super::super::simd(4) {
             // SAFETY: AVX2 and FMA are present (`simd`), the synthetic rig's joint indices
             // are below 54 = f.len(), the table is empty or made from `f`.
-            let looked_up = super::super::antipodes::both_ways(&f, |table, out| unsafe {
+            let table = Antipodes::new(&f, usize::MAX);
+            let looked_up = super::super::antipodes::both_ways(table, |table, out| unsafe {
                 super::super::avx2::qlb::qlb(
                     rig.vertices(),
                     &f,

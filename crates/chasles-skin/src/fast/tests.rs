@@ -205,7 +205,7 @@ fn layouts<const K: usize>(n: usize) {
         let rest = p[done..].iter().chain(&nr[done..]).flatten();
         assert!(rest.clone().all(marked), "split: wrote past the blocks");
     };
-    let signs = Antipodes::new(&d8, n);
+    let signs = Antipodes::copies(&d8, n);
     let qsigns = Antipodes::new(&rows, n);
     assert_eq!(
         (signs.is_empty(), qsigns.is_empty()),

@@ -17,7 +17,7 @@
 
 use super::super::dest::Dest;
 use super::super::lane::{cross, horner, EXP_A as A, EXP_B as B, EXP_C as C};
-use super::{by_layout, eight, load_head, store_rows, transpose8, Store};
+use super::{by_target, eight, load_head, store_rows, transpose8, Store};
 use crate::fast::Vertex;
 use std::arch::x86_64::*;
 
@@ -53,12 +53,11 @@ pub unsafe fn log<const K: usize>(
     o: Dest<'_>,
     stream: bool,
 ) -> usize {
-    unsafe { by_layout!(o, S => log_blocks::<K, S>(v, t, o, stream)) }
+    unsafe { by_target!(o, S => log_blocks::<K, S>(v, t, o, stream)) }
 }
 
 /// [`log`]'s loop for the layout `S`.
-#[inline]
-#[target_feature(enable = "avx2,fma")]
+#[inline(always)]
 unsafe fn log_blocks<const K: usize, S: Store>(
     v: &[Vertex<K>],
     t: &[[f32; 8]],

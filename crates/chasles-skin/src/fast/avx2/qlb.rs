@@ -9,7 +9,7 @@
 use super::super::dest::Dest;
 use super::super::{real_dot, Antipodes, Vertex};
 use super::{
-    by_layout, eight, load_head, rotate, store_rows, transpose8, two_over_norm2, Store, PREFETCH,
+    by_target, eight, load_head, rotate, store_rows, transpose8, two_over_norm2, Store, PREFETCH,
 };
 use std::arch::x86_64::*;
 
@@ -27,7 +27,8 @@ unsafe fn signs<const K: usize>(
 ) -> [__m256; K] {
     unsafe {
         let j = vx.j.map(usize::from);
-        if table.is_empty() {
+        // A table's signs, else the dot products (no table, or one of copies alone).
+        if table.signs.is_empty() {
             let pivot = rows.get_unchecked(j[0]);
             j.map(|j| {
                 let neg = real_dot(rows.get_unchecked(j), pivot) < 0.0;
@@ -89,7 +90,7 @@ pub unsafe fn qlb<const K: usize>(
     o: Dest<'_>,
     stream: bool,
 ) -> usize {
-    unsafe { by_layout!(o, S => blocks::<K, false, S>(v, rows, table, &[], &[], o, stream)) }
+    unsafe { by_target!(o, S => blocks::<K, false, S>(v, rows, table, &[], &[], o, stream)) }
 }
 
 /// SBS for the first `v.len() / 8 * 8` vertices, each about its cluster's centre
@@ -108,15 +109,14 @@ pub unsafe fn sbs<const K: usize>(
     o: Dest<'_>,
     stream: bool,
 ) -> usize {
-    unsafe { by_layout!(o, S => blocks::<K, true, S>(v, rows, table, cluster, centres, o, stream)) }
+    unsafe { by_target!(o, S => blocks::<K, true, S>(v, rows, table, cluster, centres, o, stream)) }
 }
 
 /// The body over whole blocks of eight: each vertex's blended row, and its centre — its
 /// cluster's with `SBS` (`centres[cluster[i]]`), else the blend of its joints' origins.
 /// Generic over `SBS` rather than taking the blend as a closure: the closure stayed a call;
 /// and over the output's layout `S`.
-#[inline]
-#[target_feature(enable = "avx2,fma")]
+#[inline(always)]
 unsafe fn blocks<const K: usize, const SBS: bool, S: Store>(
     v: &[Vertex<K>],
     rows: &[[f32; ROW]],

@@ -54,7 +54,7 @@ macro_rules! by_layout {
         }
     };
 }
-pub(super) use by_layout;
+pub(in crate::fast) use by_layout;
 
 /// Writes eight vertices' results (six lane vectors) to vertices `i … i + 7` of `o`, in its
 /// layout `S`. Packed: as the block's 48 floats in six registers ([`pack6`]), by six whole

@@ -5,7 +5,7 @@
 
 use super::super::dest::Dest;
 use super::super::Vertex;
-use super::{by_layout, load_head, store_rows, Store};
+use super::{by_target, load_head, store_rows, Store};
 
 /// The first `v.len() / 8 * 8` vertices' positions and normals into `o`; returns how many
 /// were done (the joints and the table are units: nothing to read).
@@ -21,12 +21,11 @@ pub unsafe fn traffic<const K: usize>(
     o: Dest<'_>,
     stream: bool,
 ) -> usize {
-    unsafe { by_layout!(o, S => blocks::<K, S>(v, o, stream)) }
+    unsafe { by_target!(o, S => blocks::<K, S>(v, o, stream)) }
 }
 
 /// [`traffic`]'s loop for the layout `S`.
-#[inline]
-#[target_feature(enable = "avx2,fma")]
+#[inline(always)]
 unsafe fn blocks<const K: usize, S: Store>(
     v: &[Vertex<K>],
     mut o: Dest<'_>,
