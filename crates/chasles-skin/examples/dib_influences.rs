@@ -5,7 +5,7 @@
 //! through (each skinned as often as makes 10⁵ vertices a run); best of runs on one thread,
 //! the methods in turn, and DIB's cost in DQS's. A vertex of at most two influences stops
 //! after one update (Lemma 3: the pass that shows it converged is left out), so a block of
-//! such vertices makes one update and no second log sum. Where the processor has AVX-512F,
+//! such vertices makes one update and no second log sum. Where the processor has AVX-512F and VL,
 //! DIB is timed with its sixteen-vertex kernel and with the eight-vertex AVX2 kernel alone
 //! (`set_avx512(false)`), which give the same numbers
 //! (`cargo run --release -p chasles-skin --example dib_influences`).
@@ -22,7 +22,7 @@ type Count = fn(usize) -> usize;
 /// Vertices skinned a run, at least.
 const RUN: usize = 100_000;
 
-/// One line: DQS, then DIB with the eight-vertex kernel alone and, where AVX-512F runs,
+/// One line: DQS, then DIB with the eight-vertex kernel alone and, where AVX-512 runs,
 /// with the sixteen-vertex one, as rates and as DIB's cost in DQS's; the best of 30 rounds,
 /// each timing the three in turn (this machine's speed changes from one second to the next).
 fn line(name: &str, rig: &FastRig<4>, jt: &JointTransforms) {
@@ -57,7 +57,7 @@ fn line(name: &str, rig: &FastRig<4>, jt: &JointTransforms) {
     if wide {
         println!(", by sixteen {:.1} ({:.2}×)", rate(sixteen), sixteen / a);
     } else {
-        println!(" (no AVX-512F here)");
+        println!(" (no AVX-512F and VL here)");
     }
 }
 

@@ -2,8 +2,9 @@
 //! public job: DIB's sixteen-vertex kernel against its eight-vertex one, and every other
 //! method's kernels built with AVX-512F and VL's 32 registers (`avx2::registers`) against
 //! their AVX2 build. The same bits for every vertex, on the built-in characters (four and
-//! eight influences, one thread and all, packed, interleaved and split outputs) and on a
-//! mesh big enough to stream its output. One test in its own binary, since the switch is
+//! eight influences, one thread and all, packed, interleaved and split outputs), on a rig
+//! too small for a sign table, and on a mesh big enough to stream its output (which build
+//! ran is counted by a unit test, `avx2::registers`). One test in its own binary, since the switch is
 //! process-wide.
 
 use chasles_skin::fast::{
@@ -116,10 +117,19 @@ fn the_avx512_code_skins_every_vertex_to_the_bits_of_avx2() {
             }
         }
     }
-    // Streamed (packed output, non-temporal stores) past 2^18 vertices; 60° poses, and a
-    // sign table (the synthetic rig's 54 joints, far fewer than its vertices).
-    let big = synthetic::rig((1 << 18) + 13, 54, 3);
+    // No table (54² signs are more than 1003 vertices): the antipodality signs from dot
+    // products, the blends' other path; four and eight influences.
     let jt = synthetic::joints(54, 3);
+    same("no table", &synthetic::rig(1003, 54, 5), &jt, false);
+    same(
+        "no table",
+        &synthetic::rig_with::<8>(1003, 54, 5),
+        &jt,
+        true,
+    );
+    // Streamed (packed output, non-temporal stores) past 2^18 vertices; 60° poses, and a
+    // table (the synthetic rig's 54 joints, far fewer than its vertices).
+    let big = synthetic::rig((1 << 18) + 13, 54, 3);
     same("the big mesh", &big, &jt, true);
     assert_eq!(uses_avx512(4), wide, "the switch is back");
 }

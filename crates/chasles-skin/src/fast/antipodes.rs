@@ -54,6 +54,8 @@ pub(super) struct Signed(pub(super) [[f32; 8]; 2]);
 /// Most joints for which a table is made: 128² signs are 64 KiB, about what a core's
 /// first-level caches hold beside the joints and the vertex stream (128² offsets, 32 KiB).
 const MOST_JOINTS: usize = 128;
+// Every offset (below 64 · MOST_JOINTS) fits the table's u16.
+const _: () = assert!(64 * MOST_JOINTS <= 1 << 16);
 
 impl Antipodes {
     /// The sign table for joints `d` whose first 4 floats are their rotation quaternions
@@ -152,9 +154,11 @@ pub(super) fn both_ways(
     };
     let dots = go(&Antipodes::default());
     let looked_up = go(&table);
+    let bits = |o: &[super::Out]| o.iter().map(|v| v.map(f32::to_bits)).collect::<Vec<_>>();
     assert_eq!(
-        dots, looked_up,
-        "the sign table and the dot products disagree"
+        bits(&dots),
+        bits(&looked_up),
+        "the table and the dot products disagree"
     );
     looked_up
 }

@@ -64,7 +64,17 @@ pub(super) unsafe fn load_head<const K: usize>(v: &[Vertex<K>], i: usize) -> [__
 #[target_feature(enable = "avx2,fma")]
 unsafe fn blend_one<const K: usize>(vx: &Vertex<K>, db: *const f32) -> __m256 {
     unsafe {
-        let q = vx.j.map(|j| _mm256_loadu_ps(db.add(usize::from(j) * 8)));
+        let load = |j: u16| _mm256_loadu_ps(db.add(usize::from(j) * 8));
+        // Eight influences' loads one by one (see `avx2::log`'s blend); four's a map.
+        let q = if K == 4 {
+            vx.j.map(load)
+        } else {
+            let mut q = [_mm256_setzero_ps(); K];
+            for (k, q) in q.iter_mut().enumerate() {
+                *q = load(vx.j[k]);
+            }
+            q
+        };
         let pivot = _mm256_castps256_ps128(q[0]);
         let mut b = _mm256_setzero_ps();
         for g in 0..K / 4 {
@@ -197,6 +207,10 @@ pub unsafe fn dqs<const K: usize>(
 
 /// The DQS kernel's body over whole blocks of eight for the layout `S`, with `blend` giving
 /// each vertex's blended dual quaternion.
+///
+/// # Safety
+/// Only from AVX2+FMA code (`by_target!`'s builds, each its own copy, or `by_layout!` in
+/// an AVX2 function), with the preconditions of the kernel that calls it.
 #[inline(always)]
 unsafe fn dqs_blocks<const K: usize, S: Store>(
     v: &[Vertex<K>],
@@ -224,10 +238,24 @@ unsafe fn dqs_blocks<const K: usize, S: Store>(
 #[target_feature(enable = "avx2,fma")]
 unsafe fn lbs_blend<const K: usize>(vx: &Vertex<K>, mb: *const f32) -> (__m256, __m128) {
     unsafe {
-        let j = vx.j.map(|j| usize::from(j) * 12);
+        // Eight influences' indices are widened where they are used: as one array, the
+        // AVX-512 build made them 512-bit vector code (slower by a quarter); four's stay
+        // an array, as they were measured.
+        let j4 = if K == 4 {
+            vx.j.map(|j| usize::from(j) * 12)
+        } else {
+            [0; K]
+        };
+        let j = |k: usize| {
+            if K == 4 {
+                j4[k]
+            } else {
+                usize::from(vx.j[k]) * 12
+            }
+        };
         let w = |k: usize| _mm256_broadcast_ss(&vx.w[k]);
-        let rows01 = |k: usize| _mm256_loadu_ps(mb.add(j[k]));
-        let row2 = |k: usize| _mm_loadu_ps(mb.add(j[k] + 8));
+        let rows01 = |k: usize| _mm256_loadu_ps(mb.add(j(k)));
+        let row2 = |k: usize| _mm_loadu_ps(mb.add(j(k) + 8));
         let w0 = w(0);
         let (mut a, mut b) = (
             _mm256_mul_ps(w0, rows01(0)),
@@ -266,6 +294,10 @@ pub unsafe fn lbs<const K: usize>(
 }
 
 /// [`lbs`]'s loop for the layout `S`.
+///
+/// # Safety
+/// Only from AVX2+FMA code (`by_target!`'s builds, each its own copy, or `by_layout!` in
+/// an AVX2 function), with the preconditions of the kernel that calls it.
 #[inline(always)]
 unsafe fn lbs_blocks<const K: usize, S: Store>(
     v: &[Vertex<K>],

@@ -1,5 +1,6 @@
 //! DIB (Kavan et al. 2006, §4, the box "DIB") sixteen vertices at a time with AVX-512F,
-//! where the processor has it (chosen at run time; `set_avx512` forbids it): the lane
+//! where the processor has it and AVX-512VL (chosen at run time, as the other kernels'
+//! 32-register builds are, `avx2::registers`; `set_avx512` forbids both): the lane
 //! algebra's branch-free DIB (`lane::dib`) on `__m512`, one vertex a lane, with the AVX2
 //! kernel's loads, transposes and stores on each half of eight. Every operation is the
 //! eight-lane one's on twice the lanes (`lane::avx512`), so each vertex gets the AVX2
@@ -130,9 +131,10 @@ mod tests {
     /// and at every angle, meshes of 16k, 16k + 8 (a last block by eight) and odd lengths,
     /// every vertex a lane of every position (the mesh shifted by 0–15, so that blocks of
     /// sixteen whose halves need different passes come up), and a used NaN joint (NaN out
-    /// for its vertices, the same as by eight). On a processor with AVX-512F the other DIB
-    /// kernel tests (`avx2::dib`) run mostly the sixteen-vertex kernel through `dib`; without
-    /// it this test and `tests/avx512.rs` skip, and those run the eight-vertex one.
+    /// for its vertices, the same as by eight). On a processor with AVX-512F and VL the other
+    /// DIB kernel tests (`avx2::dib`) run mostly the sixteen-vertex kernel through `dib`;
+    /// without them this test skips, those run the eight-vertex one, and `tests/avx512.rs`
+    /// compares the AVX2 code with itself.
     #[test]
     fn sixteen_lanes_give_each_vertex_the_bits_of_eight() {
         if !(crate::fast::simd(4) && std::is_x86_feature_detected!("avx512f")) {

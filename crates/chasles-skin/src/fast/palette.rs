@@ -150,7 +150,8 @@ impl Joints {
 }
 
 /// A pose's [`Joints`] for one method, with what its kernel derives from them once per
-/// pose (DQS's, QLB's and SBS's antipodality signs against each pivot joint).
+/// pose (the antipodality table against each pivot joint: DQS's signed copies, QLB's and
+/// SBS's signs).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Palette {
     joints: Joints,
@@ -242,12 +243,13 @@ impl Palette {
         self.joints.len()
     }
 
-    /// The antipodality signs the SIMD kernels read (empty where they would not pay).
+    /// The antipodality table the SIMD kernels read (empty where it would not pay).
     pub(super) fn signs(&self) -> &Antipodes {
         &self.signs
     }
 
-    /// Remakes the sign table for the joints now held (DQS, QLB, SBS on the SIMD path).
+    /// Remakes the antipodality table for the joints now held (DQS's copies, QLB's and SBS's
+    /// signs, on the SIMD path).
     fn sign<const K: usize>(&mut self, rig: &FastRig<K>) {
         let n = if simd(K) { rig.vertices().len() } else { 0 };
         match &self.joints {

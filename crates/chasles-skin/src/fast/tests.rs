@@ -205,10 +205,10 @@ fn layouts<const K: usize>(n: usize) {
         let rest = p[done..].iter().chain(&nr[done..]).flatten();
         assert!(rest.clone().all(marked), "split: wrote past the blocks");
     };
-    let signs = Antipodes::copies(&d8, n);
+    let copies = Antipodes::copies(&d8, n);
     let qsigns = Antipodes::new(&rows, n);
     assert_eq!(
-        (signs.is_empty(), qsigns.is_empty()),
+        (copies.is_empty(), qsigns.is_empty()),
         (n < 54 * 54, n < 54 * 54)
     );
     // SAFETY (each kernel): the processor has AVX2 and FMA (`simd`), the synthetic rig's joint
@@ -217,7 +217,7 @@ fn layouts<const K: usize>(n: usize) {
     // starts 32-byte aligned (`simd_start`).
     let v = rig.vertices();
     run(&|o, s| unsafe { avx2::lbs(v, &m12, &(), o, s) });
-    run(&|o, s| unsafe { avx2::dqs(v, &d8, &signs, o, s) });
+    run(&|o, s| unsafe { avx2::dqs(v, &d8, &copies, o, s) });
     run(&|o, s| unsafe { avx2::log::log(v, &t, &(), o, s) });
     run(&|o, s| unsafe { avx2::qlb::qlb(v, &rows, &qsigns, o, s) });
     run(&|o, s| unsafe { avx2::dib::dib(v, &d8, &(), o, s) });

@@ -3,7 +3,7 @@
 //! of weight 0 in all eight vertices left out at the end, unused ones replaced by the
 //! identity), and the lane algebra's branch-free DIB (`lane::dib`, where the series and the
 //! stopping rule and the second-order step are) runs on `__m256`, one vertex per lane. The
-//! last step is DQS's transform. Where the processor has AVX-512F the whole blocks of
+//! last step is DQS's transform. Where the processor has AVX-512F and VL the whole blocks of
 //! sixteen go through the sixteen-vertex kernel (`fast::avx512`, the same lane algebra on
 //! `__m512`, the same bits) and only a last block of eight through this one.
 //!

@@ -17,7 +17,7 @@
 
 use super::super::dest::Dest;
 use super::super::lane::{cross, horner, EXP_A as A, EXP_B as B, EXP_C as C};
-use super::{by_target, eight, load_head, store_rows, transpose8, Store};
+use super::{by_layout, by_target, eight, load_head, store_rows, transpose8, Store};
 use crate::fast::Vertex;
 use std::arch::x86_64::*;
 
@@ -27,7 +27,18 @@ use std::arch::x86_64::*;
 unsafe fn blend<const K: usize>(vx: &Vertex<K>, tb: *const f32) -> __m256 {
     unsafe {
         // All K loads first: interleaved with the products, this ran 8 % slower.
-        let t = vx.j.map(|j| _mm256_loadu_ps(tb.add(usize::from(j) * 8)));
+        let load = |j: u16| _mm256_loadu_ps(tb.add(usize::from(j) * 8));
+        // Eight influences' loads one by one: as one array map, the AVX-512 build made
+        // their indices 512-bit vector code (slower by a quarter); four's stay a map.
+        let t = if K == 4 {
+            vx.j.map(load)
+        } else {
+            let mut t = [_mm256_setzero_ps(); K];
+            for (k, t) in t.iter_mut().enumerate() {
+                *t = load(vx.j[k]);
+            }
+            t
+        };
         let mut b = _mm256_mul_ps(_mm256_broadcast_ss(&vx.w[0]), t[0]);
         // By index: zipped iterators over the arrays compiled to slower code (7 %).
         #[allow(clippy::needless_range_loop)]
@@ -53,10 +64,22 @@ pub unsafe fn log<const K: usize>(
     o: Dest<'_>,
     stream: bool,
 ) -> usize {
-    unsafe { by_target!(o, S => log_blocks::<K, S>(v, t, o, stream)) }
+    unsafe {
+        // Eight influences stay on the AVX2 build: with 32 registers that loop ran slower
+        // (2.5·10⁴ vertices, one core: 172–182 → 146–162 M vertices/s), four's faster.
+        if K == 8 {
+            by_layout!(o, S => log_blocks::<K, S>(v, t, o, stream))
+        } else {
+            by_target!(o, S => log_blocks::<K, S>(v, t, o, stream))
+        }
+    }
 }
 
 /// [`log`]'s loop for the layout `S`.
+///
+/// # Safety
+/// Only from AVX2+FMA code (`by_target!`'s builds, each its own copy, or `by_layout!` in
+/// an AVX2 function), with the preconditions of the kernel that calls it.
 #[inline(always)]
 unsafe fn log_blocks<const K: usize, S: Store>(
     v: &[Vertex<K>],

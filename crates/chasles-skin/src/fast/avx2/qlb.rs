@@ -18,16 +18,54 @@ const ROW: usize = 24;
 
 /// The antipodality sign of each influence (−0.0 to flip, +0.0 to keep, in all lanes):
 /// from the table's row for the vertex's pivot, or the scalar kernel's dot products.
-#[inline]
-#[target_feature(enable = "avx2,fma")]
+/// `inline(always)` for [`blend`]'s reason: as an `#[inline]` AVX2 function it stayed a
+/// call, one per vertex, with eight influences.
+///
+/// # Safety
+/// Only from AVX2+FMA code (`blocks`), with [`qlb`]'s preconditions.
+#[inline(always)]
 unsafe fn signs<const K: usize>(
     vx: &Vertex<K>,
     rows: &[[f32; ROW]],
     table: &Antipodes,
 ) -> [__m256; K] {
     unsafe {
-        let j = vx.j.map(usize::from);
+        if K == 4 {
+            return signs4(vx, rows, table);
+        }
+        // Eight influences: by loops, each index widened where it is used (see
+        // `avx2::blend_copies`); array maps of closures stayed calls here.
+        let j = |k: usize| usize::from(vx.j[k]);
+        let mut s = [_mm256_setzero_ps(); K];
         // A table's signs, else the dot products (no table, or one of copies alone).
+        if table.signs.is_empty() {
+            let pivot = rows.get_unchecked(j(0));
+            for (k, s) in s.iter_mut().enumerate() {
+                let neg = real_dot(rows.get_unchecked(j(k)), pivot) < 0.0;
+                *s = _mm256_set1_ps(if neg { -0.0 } else { 0.0 });
+            }
+        } else {
+            let row = table.signs.as_ptr().add(j(0) * table.joints);
+            for (k, s) in s.iter_mut().enumerate() {
+                *s = _mm256_broadcast_ss(&*row.add(j(k)));
+            }
+        }
+        s
+    }
+}
+
+/// [`signs`] for four influences as it was written before the AVX-512 build: an `#[inline]`
+/// AVX2 function with array maps, inlined into both builds (by loops, the AVX2 build of QLB
+/// ran 150 → 140 M vertices/s at 2.5·10⁴ vertices).
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn signs4<const K: usize>(
+    vx: &Vertex<K>,
+    rows: &[[f32; ROW]],
+    table: &Antipodes,
+) -> [__m256; K] {
+    unsafe {
+        let j = vx.j.map(usize::from);
         if table.signs.is_empty() {
             let pivot = rows.get_unchecked(j[0]);
             j.map(|j| {
@@ -116,6 +154,10 @@ pub unsafe fn sbs<const K: usize>(
 /// cluster's with `SBS` (`centres[cluster[i]]`), else the blend of its joints' origins.
 /// Generic over `SBS` rather than taking the blend as a closure: the closure stayed a call;
 /// and over the output's layout `S`.
+///
+/// # Safety
+/// Only from AVX2+FMA code (`by_target!`'s builds, each its own copy, or `by_layout!` in
+/// an AVX2 function), with the preconditions of the kernel that calls it.
 #[inline(always)]
 unsafe fn blocks<const K: usize, const SBS: bool, S: Store>(
     v: &[Vertex<K>],

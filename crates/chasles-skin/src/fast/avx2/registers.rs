@@ -1,4 +1,4 @@
-//! The eight-vertex kernels compiled twice: for AVX2 and FMA, and, for processors with
+//! The eight-vertex kernels compiled twice (Log's for four influences): for AVX2 and FMA, and, for processors with
 //! AVX-512F and AVX-512VL (chosen at run time; `set_avx512` forbids it), with those as well —
 //! the same source and the same 256-bit operations, so the same numbers bit for bit (the
 //! tests compare every method's output both ways), but 32 vector registers where AVX2 has
@@ -13,7 +13,15 @@
 //! closures are `#[inline(always)]`. With plain closures the compiler left QLB's as one
 //! function that both builds called, compiled for AVX2 alone, and an array's `map` in LBS's
 //! loop stayed a call; the `avx512` test (every method both ways, bit for bit) runs either
-//! way, so only the speed shows it.
+//! way, so only the speed shows it (a unit test counts the wide build's runs). With eight
+//! influences, index arithmetic written as one array (`vx.j.map(…)`) became 512-bit vector
+//! code in the wide build (`vpmovzxwd`/`vpslld` on `zmm`: on Intel a 512-bit operation in
+//! flight takes port 1's vector unit away from the others), and LBS and Log ran a quarter
+//! slower than on AVX2; those blends now widen eight influences' indices where each is
+//! used (four's are as they were measured), and no `zmm` register appears in these builds
+//! (checked by disassembly). Log with eight influences still ran slower with 32 registers
+//! (2.5·10⁴ vertices: 172–182 → 146–162 M vertices/s) and keeps the AVX2 build alone; with
+//! eight, DQS (176–187 → 188–212), LBS (131–133 → 133–144) and QLB (72–82 → 91–93) gain.
 //!
 //! Measured on a 2-core Intel Xeon (family 6, model 167, AVX-512F and VL), one core, 54
 //! joints, four influences, each kernel alone on the synthetic mesh (a scratch loop; the two
@@ -45,7 +53,18 @@ pub(in crate::fast) unsafe fn narrow<R>(f: impl FnOnce() -> R) -> R {
 /// The processor must have all four.
 #[target_feature(enable = "avx2,fma,avx512f,avx512vl")]
 pub(in crate::fast) unsafe fn wide<R>(f: impl FnOnce() -> R) -> R {
+    debug_assert!(
+        std::is_x86_feature_detected!("avx512f") && std::is_x86_feature_detected!("avx512vl")
+    );
+    #[cfg(test)]
+    WIDE_RUNS.with(|n| n.set(n.get() + 1));
     f()
+}
+
+#[cfg(test)]
+thread_local! {
+    /// How many times [`wide`] ran on this thread (the tests' evidence of which build ran).
+    static WIDE_RUNS: std::cell::Cell<usize> = const { std::cell::Cell::new(0) };
 }
 
 /// `by_layout!($o, $s => $body)` compiled by [`wide`] where the processor has AVX-512F
@@ -62,3 +81,46 @@ macro_rules! by_target {
     };
 }
 pub(in crate::fast) use by_target;
+
+#[cfg(test)]
+mod tests {
+    use super::WIDE_RUNS;
+    use crate::fast::{dqs, lbs, log, qlb, set_avx512, simd, uses_avx512};
+    use crate::fast::{dual_quats8, matrices12, twists};
+    use crate::synthetic;
+
+    /// The AVX-512 build runs exactly where `uses_avx512` says, and never once
+    /// `set_avx512(false)` forbids it: each kernel on one thread (this one), the runs of
+    /// [`super::wide`] counted. (Another test flipping the switch meanwhile would only move
+    /// its own jobs between two builds that give the same bits; none does.)
+    #[test]
+    fn the_wide_build_runs_where_avx512_is_allowed_and_present() {
+        if !simd(4) {
+            eprintln!("no AVX2+FMA here: no SIMD kernel to count");
+            return;
+        }
+        let rig = synthetic::rig(4096, 54, 3);
+        let jt = synthetic::joints(54, 3);
+        let (m12, d8, tw) = (matrices12(&jt), dual_quats8(&jt), twists(&jt).unwrap());
+        let mut out = vec![[0f32; 6]; 4096];
+        let mut count = |allowed: bool| {
+            set_avx512(allowed);
+            let before = WIDE_RUNS.with(|n| n.get());
+            dqs(&rig, &d8, &mut out, false).unwrap();
+            lbs(&rig, &m12, &mut out, false).unwrap();
+            log(&rig, &tw, &mut out, false).unwrap();
+            qlb(&rig, &jt.dual_quats, &mut out, false).unwrap();
+            let runs = WIDE_RUNS.with(|n| n.get()) - before;
+            (uses_avx512(4), runs)
+        };
+        let (off, none) = count(false);
+        let (on, runs) = count(true);
+        assert_eq!((off, none), (false, 0));
+        // At least one run a kernel where the processor has them, else none.
+        assert_eq!(
+            (runs >= 4, runs == 0),
+            (on, !on),
+            "AVX-512F and VL here: {on}; {runs} runs"
+        );
+    }
+}

@@ -25,6 +25,10 @@ pub unsafe fn traffic<const K: usize>(
 }
 
 /// [`traffic`]'s loop for the layout `S`.
+///
+/// # Safety
+/// Only from AVX2+FMA code (`by_target!`'s builds, each its own copy, or `by_layout!` in
+/// an AVX2 function), with the preconditions of the kernel that calls it.
 #[inline(always)]
 unsafe fn blocks<const K: usize, S: Store>(
     v: &[Vertex<K>],
