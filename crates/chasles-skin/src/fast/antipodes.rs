@@ -114,7 +114,7 @@ impl Antipodes {
         self.at.clear();
         let pays = joints <= MOST_JOINTS && joints * joints <= vertices;
         self.joints = if pays { joints } else { 0 };
-        pays && joints > 0
+        self.joints > 0
     }
 
     /// Whether there is a table (the kernels look at the part they read).

@@ -56,6 +56,27 @@ pub(super) unsafe fn load_head<const K: usize>(v: &[Vertex<K>], i: usize) -> [__
     }
 }
 
+/// The 8-float joint rows of each influence, `base + 8 j`, as whole-register loads (DQS's
+/// dual quaternions, Log's twists). Four influences' as one array map, as measured; eight
+/// one by one: as one map, the AVX-512 build (`registers`) made their indices 512-bit
+/// vector code, and the kernels ran a quarter slower.
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+pub(super) unsafe fn joint_rows<const K: usize>(j: &[u16; K], base: *const f32) -> [__m256; K] {
+    unsafe {
+        let load = |j: u16| _mm256_loadu_ps(base.add(usize::from(j) * 8));
+        if K == 4 {
+            return j.map(load);
+        }
+        let mut rows = [_mm256_setzero_ps(); K];
+        // By index: zipped with `j`, the indices became 512-bit vector code again.
+        for (k, row) in rows.iter_mut().enumerate() {
+            *row = load(j[k]);
+        }
+        rows
+    }
+}
+
 /// One vertex's blended dual quaternion `Σ ±wₖ q̂ₖ` (8 floats in one register): its K
 /// joints' dual quaternions are whole-register loads, not gathers; the antipodality signs
 /// come from the dot products with the pivot (the heaviest influence), four at a time,
@@ -64,17 +85,7 @@ pub(super) unsafe fn load_head<const K: usize>(v: &[Vertex<K>], i: usize) -> [__
 #[target_feature(enable = "avx2,fma")]
 unsafe fn blend_one<const K: usize>(vx: &Vertex<K>, db: *const f32) -> __m256 {
     unsafe {
-        let load = |j: u16| _mm256_loadu_ps(db.add(usize::from(j) * 8));
-        // Eight influences' loads one by one (see `avx2::log`'s blend); four's a map.
-        let q = if K == 4 {
-            vx.j.map(load)
-        } else {
-            let mut q = [_mm256_setzero_ps(); K];
-            for (k, q) in q.iter_mut().enumerate() {
-                *q = load(vx.j[k]);
-            }
-            q
-        };
+        let q = joint_rows(&vx.j, db);
         let pivot = _mm256_castps256_ps128(q[0]);
         let mut b = _mm256_setzero_ps();
         for g in 0..K / 4 {

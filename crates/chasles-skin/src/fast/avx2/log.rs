@@ -17,7 +17,7 @@
 
 use super::super::dest::Dest;
 use super::super::lane::{cross, horner, EXP_A as A, EXP_B as B, EXP_C as C};
-use super::{by_layout, by_target, eight, load_head, store_rows, transpose8, Store};
+use super::{by_layout, by_target, eight, joint_rows, load_head, store_rows, transpose8, Store};
 use crate::fast::Vertex;
 use std::arch::x86_64::*;
 
@@ -27,18 +27,7 @@ use std::arch::x86_64::*;
 unsafe fn blend<const K: usize>(vx: &Vertex<K>, tb: *const f32) -> __m256 {
     unsafe {
         // All K loads first: interleaved with the products, this ran 8 % slower.
-        let load = |j: u16| _mm256_loadu_ps(tb.add(usize::from(j) * 8));
-        // Eight influences' loads one by one: as one array map, the AVX-512 build made
-        // their indices 512-bit vector code (slower by a quarter); four's stay a map.
-        let t = if K == 4 {
-            vx.j.map(load)
-        } else {
-            let mut t = [_mm256_setzero_ps(); K];
-            for (k, t) in t.iter_mut().enumerate() {
-                *t = load(vx.j[k]);
-            }
-            t
-        };
+        let t = joint_rows(&vx.j, tb);
         let mut b = _mm256_mul_ps(_mm256_broadcast_ss(&vx.w[0]), t[0]);
         // By index: zipped iterators over the arrays compiled to slower code (7 %).
         #[allow(clippy::needless_range_loop)]

@@ -85,14 +85,23 @@ pub(in crate::fast) use by_target;
 #[cfg(test)]
 mod tests {
     use super::WIDE_RUNS;
-    use crate::fast::{dqs, lbs, log, qlb, set_avx512, simd, uses_avx512};
-    use crate::fast::{dual_quats8, matrices12, twists};
+    use crate::fast::{dqs, dual_quats8, lbs, log, matrices12, qlb, sbs, traffic, twists};
+    use crate::fast::{set_avx512, simd, uses_avx512, FastRig, Out};
     use crate::synthetic;
 
+    /// How many times `f` ran the AVX-512 build on this thread.
+    fn wide_runs(f: impl FnOnce()) -> usize {
+        let before = WIDE_RUNS.with(|n| n.get());
+        f();
+        WIDE_RUNS.with(|n| n.get()) - before
+    }
+
     /// The AVX-512 build runs exactly where `uses_avx512` says, and never once
-    /// `set_avx512(false)` forbids it: each kernel on one thread (this one), the runs of
-    /// [`super::wide`] counted. (Another test flipping the switch meanwhile would only move
-    /// its own jobs between two builds that give the same bits; none does.)
+    /// `set_avx512(false)` forbids it: each kernel on one thread (this one) over one chunk of
+    /// 4096 vertices (one kernel call), the runs of [`super::wide`] counted kernel by kernel;
+    /// with eight influences Log keeps the AVX2 build and DQS takes the wide one. (Another
+    /// test flipping the switch meanwhile would only move its own jobs between two builds
+    /// that give the same bits; none does.)
     #[test]
     fn the_wide_build_runs_where_avx512_is_allowed_and_present() {
         if !simd(4) {
@@ -100,27 +109,31 @@ mod tests {
             return;
         }
         let rig = synthetic::rig(4096, 54, 3);
+        let eight: FastRig<8> = synthetic::rig_with(4096, 54, 3);
         let jt = synthetic::joints(54, 3);
         let (m12, d8, tw) = (matrices12(&jt), dual_quats8(&jt), twists(&jt).unwrap());
-        let mut out = vec![[0f32; 6]; 4096];
-        let mut count = |allowed: bool| {
+        let d = &jt.dual_quats;
+        let mut out: Vec<Out> = vec![[0.0; 6]; 4096];
+        for allowed in [false, true] {
             set_avx512(allowed);
-            let before = WIDE_RUNS.with(|n| n.get());
-            dqs(&rig, &d8, &mut out, false).unwrap();
-            lbs(&rig, &m12, &mut out, false).unwrap();
-            log(&rig, &tw, &mut out, false).unwrap();
-            qlb(&rig, &jt.dual_quats, &mut out, false).unwrap();
-            let runs = WIDE_RUNS.with(|n| n.get()) - before;
-            (uses_avx512(4), runs)
-        };
-        let (off, none) = count(false);
-        let (on, runs) = count(true);
-        assert_eq!((off, none), (false, 0));
-        // At least one run a kernel where the processor has them, else none.
-        assert_eq!(
-            (runs >= 4, runs == 0),
-            (on, !on),
-            "AVX-512F and VL here: {on}; {runs} runs"
-        );
+            let on = usize::from(uses_avx512(4));
+            assert!(allowed || on == 0);
+            let o = &mut out;
+            let runs = [
+                wide_runs(|| dqs(&rig, &d8, o, false).unwrap()),
+                wide_runs(|| lbs(&rig, &m12, o, false).unwrap()),
+                wide_runs(|| log(&rig, &tw, o, false).unwrap()),
+                wide_runs(|| qlb(&rig, d, o, false).unwrap()),
+                wide_runs(|| sbs(&rig, rig.clusters(), d, o, false).unwrap()),
+                wide_runs(|| traffic(&rig, &mut o[..], false).unwrap()),
+                wide_runs(|| dqs(&eight, &d8, o, false).unwrap()),
+                wide_runs(|| log(&eight, &tw, o, false).unwrap()),
+            ];
+            assert_eq!(
+                runs,
+                [on, on, on, on, on, on, on, 0],
+                "allowed {allowed}: DQS, LBS, Log, QLB, SBS, traffic; DQS and Log of eight"
+            );
+        }
     }
 }
