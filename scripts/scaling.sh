@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The skinning scaling curve (issue 18, item 3) on a machine of many cores, as one short
-# run: the host's facts (cores, NUMA nodes, memory), then `chasles skin --bench` at 10^6
-# and 4*10^6 vertices on 1, 2, 4, ... up to every thread, each kernel beside the copy of
+# run: the host's facts (cores, NUMA nodes, memory), then `chasles skin --bench` at 10^6,
+# 4*10^6 and 10^7 vertices (SIZES) on 1, 2, 4, ... up to every thread, each kernel beside the copy of
 # the bytes it moves; on a machine of several NUMA nodes, the same on one node's cores and
 # memory and with memory interleaved over the nodes (numactl), to tell NUMA from the rest.
 #
@@ -10,9 +10,12 @@
 #                   strip a copy to carry it to another machine: about 14 MB; it needs
 #                   glibc 2.35 or newer, as built on this Debian 12)
 #   OUT_DIR         where scaling.md and host.txt go (default: the current folder)
+#   SIZES           the mesh sizes (default 1000000,4000000,10000000: a many-core host's
+#                   last-level cache can hold the 288 MB of 4*10^6, not the 720 MB of 10^7)
 set -euo pipefail
 bin=${1:-target/release/chasles}
 out=${2:-.}
+sizes=${SIZES:-1000000,4000000,10000000}
 mkdir -p "$out"
 n=$(nproc)
 # 1, 2, 4, ... below $1, then $1.
@@ -31,6 +34,7 @@ threads=$(curve "$n")
     date -u
     uname -a
     lscpu || true
+    lscpu -e || true
     free -g || true
     if command -v numactl >/dev/null; then
         numactl --hardware || true
@@ -57,7 +61,7 @@ node0_cpus() {
     echo "$n"
 }
 bench() {
-    "$@" "$bin" skin --bench --bench-vertices 1000000,4000000 --bench-threads "$threads" \
+    "$@" "$bin" skin --bench --bench-vertices "$sizes" --bench-threads "$threads" \
         --bench-rounds 7
 }
 {
