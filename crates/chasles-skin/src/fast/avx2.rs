@@ -31,7 +31,10 @@ mod store;
 pub mod traffic;
 
 /// How many vertices ahead the kernels prefetch their input (tried: 32, 64, 128; and, on
-/// two threads at 10⁶ vertices, 160 and the L2 hint instead of L1: neither better).
+/// two threads at 10⁶ vertices, 160 and the L2 hint instead of L1: neither better). On 16
+/// cores at 10⁷ vertices none ahead took DQS from 1276–1329 to 979–1046 M vertices/s and
+/// 256 ahead gave 1333–1375, but 256 took one thread of LBS on a 2-core Xeon from 176 to
+/// 146 (README, "Scaling with cores").
 const PREFETCH: usize = 64;
 
 /// The first 8 floats of vertices `i … i + 7` in lanes, by eight loads and a transpose:
