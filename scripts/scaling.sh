@@ -1,17 +1,19 @@
 #!/usr/bin/env bash
-# The skinning scaling curve (issue 18, item 3) on a machine of many cores, as one short
-# run: the host's facts (cores, NUMA nodes, memory), then `chasles skin --bench` at 10^6,
-# 4*10^6 and 10^7 vertices (SIZES) on 1, 2, 4, ... up to every thread, each kernel beside the copy of
-# the bytes it moves; on a machine of several NUMA nodes, the same on one node's cores and
-# memory and with memory interleaved over the nodes (numactl), to tell NUMA from the rest.
+# The skinning scaling curve (issue 18, item 3) on a machine of many cores, as one
+# short run: the host's facts (cores, NUMA nodes, memory), then `chasles skin --bench` at
+# 10^6, 4*10^6 and 10^7 vertices (SIZES) on 1, 2, 4, ... up to every thread, each kernel
+# beside the copy of the bytes it moves; on a machine of several NUMA nodes, the same on
+# one node's cores and memory and with memory interleaved over the nodes (numactl), to
+# tell NUMA from the rest.
 #
 # Usage: scripts/scaling.sh [CHASLES_BINARY] [OUT_DIR]
 #   CHASLES_BINARY  default target/release/chasles (build: cargo build --release -p chasles-cli;
 #                   strip a copy to carry it to another machine: about 14 MB; it needs
 #                   glibc 2.35 or newer, as built on this Debian 12)
 #   OUT_DIR         where scaling.md and host.txt go (default: the current folder)
+# Environment:
 #   SIZES           the mesh sizes (default 1000000,4000000,10000000: a many-core host's
-#                   last-level cache can hold the 288 MB of 4*10^6, not the 720 MB of 10^7)
+#                   last-level cache may hold the 288 MB of 4*10^6, not the 720 MB of 10^7)
 set -euo pipefail
 bin=${1:-target/release/chasles}
 out=${2:-.}

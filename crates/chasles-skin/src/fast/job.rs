@@ -26,12 +26,12 @@
 //!
 //! On 16 cores (a lent Intel Xeon of family 6 model 207, one NUMA node, no SMT, 300 MiB
 //! of L3; `scripts/scaling.sh`, 2026-12-04) the curve is the README's "Scaling with
-//! cores". Out of the cache (10⁷ vertices) DQS on 16 threads ran at 0.87–0.90 of the
-//! loads and stores alone on 16 threads (1.31–1.34× a 16-thread memcpy): bound by the
-//! memory's bandwidth. Chunks of 1024, 4096 and 16 384 vertices (binaries run in turn,
-//! twice, at 8 and 16 threads): at 10⁷ on 16 threads 1024 was about 7 % slower and 16 384
-//! no faster than 4096; elsewhere the three were within one binary's run-to-run change. A
-//! pose there takes ~5 ms, against rayon's tens of µs.
+//! cores". Out of the cache (10⁷ vertices) DQS on 16 threads with these chunks ran at
+//! 0.87–0.90 of the loads and stores alone on 16 threads (1.31–1.34× a 16-thread
+//! memcpy): bound by the memory's bandwidth. Chunks of 1024, 4096 and 16 384 vertices
+//! (binaries run in turn, twice, at 8 and 16 threads): at 10⁷ on 16 threads 1024 was 7–9 %
+//! slower and 16 384 no faster than 4096; elsewhere the three were within one binary's
+//! run-to-run change. A pose there takes ~5 ms, against rayon's tens of µs.
 
 use super::dest::Dest;
 use super::palette::{Joints, Palette};

@@ -27,10 +27,10 @@
 //! branch, off the chain of dependent operations (`real::shorter_arc`). Together these
 //! make the blend 2.1–2.2× as fast as nalgebra's `sclerp` over stored random pairs
 //! (`cargo run --release -p chasles --example stored_pairs`), with the rare paths (the
-//! error, the general blend) out of line and `sclerp` itself `#[inline]`. Elsewhere — extrapolation
-//! (t outside [0, 1]), inputs off unit length — the general path takes `acos` of the dot
-//! product where well conditioned (Ω > 18°), else
-//! the angle from the chord, and the library `sin_cos`. Below Ω = 0.01 the weights and their
+//! error, the general blend) out of line and `sclerp` itself `#[inline]`. Elsewhere —
+//! extrapolation (t outside [0, 1]), inputs off unit length — the general path takes
+//! `acos` of the dot product where well conditioned (Ω > 18°), else the angle from the
+//! chord, and the library `sin_cos`. Below Ω = 0.01 the weights and their
 //! derivatives come from their Taylor series in Ω (`sin(tΩ)/sin Ω = t(1 + c₁Ω² + c₂Ω⁴ +
 //! c₃Ω⁶)`), so a pure translation (Ω = 0) is exact. [`sclerp_pow`] is the definition
 //! itself, through the dual power.
@@ -65,7 +65,8 @@ fn weight_series<T: Real>(t: T, omega: T) -> (T, T) {
 }
 
 /// ScLERP from `p` to `q` (unit dual quaternions) at `t`, the shorter way; exact at t = 0
-/// and t = 1. Errors: non-finite input.
+/// and t = 1. Errors: non-finite input (found by `v − v ≠ 0`, so a [`Real`] must give
+/// exactly zero there for every finite v, as f32 and f64 do).
 #[inline]
 pub fn sclerp<T: Real>(p: DualQuat<T>, q: DualQuat<T>, t: T) -> Result<DualQuat<T>> {
     // v − v is exactly 0 for every finite v and NaN otherwise: one branch for 17 values;
