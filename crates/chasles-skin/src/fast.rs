@@ -376,8 +376,9 @@ pub fn set_simd(allowed: bool) {
 static AVX512_ALLOWED: AtomicBool = AtomicBool::new(true);
 
 /// Allows (the default) or forbids the AVX-512 code for this process: DIB's sixteen-vertex
-/// AVX-512F kernel, and the other kernels' builds with AVX-512F and VL's 32 registers
-/// (module `avx2::registers`). With `false` the SIMD paths run the AVX2+FMA code alone, as
+/// AVX-512F kernel, the other kernels' builds with AVX-512F and VL's 32 registers
+/// (module `avx2::registers`) and SBS's centre solve eight clusters at a time
+/// (`rotation_centre`). With `false` the SIMD paths run the AVX2+FMA code alone, as
 /// on a processor without AVX-512 — to compare the two, or to test that path, on any
 /// machine. Each vertex gets the same numbers either way. Takes effect at the next job.
 pub fn set_avx512(allowed: bool) {
@@ -385,7 +386,8 @@ pub fn set_avx512(allowed: bool) {
 }
 
 /// Whether jobs on a rig of `k` influences run the AVX-512 code here (DIB sixteen vertices
-/// at a time, the other methods built with 32 registers): the SIMD kernels run
+/// at a time, the other methods built with 32 registers, SBS's centres eight clusters at a
+/// time): the SIMD kernels run
 /// ([`uses_simd`]), the processor has AVX-512F and AVX-512VL, and [`set_avx512`] has not
 /// forbidden it.
 pub fn uses_avx512(k: usize) -> bool {

@@ -26,7 +26,15 @@
 //! `RᵀR` and `Rᵀt` are made once per pose ([`Motions`]), and the system is solved by its
 //! adjugate with one division — four clusters at once in AVX2's f64 lanes where the
 //! processor has them (module `wide`: 20 ns a cluster against 35 one by one, on a rig of
-//! 3·10⁵ clusters), with the same operations in the same order, so the same numbers.
+//! 3·10⁵ clusters), eight in AVX-512F's, with the same operations in the same order, so
+//! the same numbers; the choice of the solution or the prior and the rounding to f32 run
+//! in the lanes too. On the synthetic rig of 10⁵ vertices (85 582 clusters, a 2-core Intel
+//! Xeon, best of runs of 20 poses): 16.4 ns a cluster with four lanes and that choice made
+//! one lane at a time, 14.1–14.6 with eight lanes, 8.7–9.1 with eight and the choice in
+//! the lanes (13.9–15.1 with four); SBS's whole pose 2213 → 1610–1624 µs. Numbering the
+//! clusters by their joint count, so that the loops over the joints of four neighbours
+//! run alike, gained 4 % (16.4 → 15.7) and was not kept. The centres are written straight
+//! into the caller's table (`Clusters::centres_into`: the fast path's palette).
 //!
 //! The reference and fast paths share this code, so their centres are the same numbers.
 
@@ -117,28 +125,63 @@ impl Clusters {
         bind: &[Vec3<f32>],
         parallel: bool,
     ) -> Vec<Vec3<f32>> {
+        let mut out = vec![Vec3::zero(); self.len()];
+        self.centres_into(d, bind, parallel, &mut out, |c| c);
+        out
+    }
+
+    /// [`Clusters::centres`] into `out`, one entry a cluster (`out.len()` must be
+    /// `self.len()`; entries past the shorter are left as they are), each centre as `put`
+    /// makes it: the fast path's palette takes them padded to four floats with no vector of
+    /// centres made on the way (on a rig of 85 582 clusters that vector and its padded copy
+    /// were 2.4 MB a pose).
+    pub(crate) fn centres_into<O: Send>(
+        &self,
+        d: &[DualQuat<f32>],
+        bind: &[Vec3<f32>],
+        parallel: bool,
+        out: &mut [O],
+        put: impl Fn(Vec3<f32>) -> O + Sync,
+    ) {
+        debug_assert_eq!(out.len(), self.len());
         let motions = Motions::new(d, bind);
         // The lanes where the fast path's SIMD kernels run (and not where `fast::set_simd`
-        // forbids them, so that the fallback is measured whole).
-        let avx2 = crate::fast::uses_simd(4);
-        // Four clusters at a time (the last few one by one).
-        let solve = |(g, out): (usize, &mut [Vec3<f32>])| {
-            let c = 4 * g;
-            if let Ok(out) = <&mut [Vec3<f32>; 4]>::try_from(&mut *out) {
-                *out = four([0, 1, 2, 3].map(|k| self.joints(c + k)), &motions, avx2);
-            } else {
-                for (k, o) in out.iter_mut().enumerate() {
-                    *o = rotation_centre(self.joints(c + k), &motions);
+        // or `fast::set_avx512` forbid them, so that the fallback is measured whole).
+        let lanes = Lanes {
+            avx2: crate::fast::uses_simd(4),
+            avx512: crate::fast::uses_avx512(4),
+        };
+        let write = |out: &mut [O], centres: &[Vec3<f32>]| {
+            for (o, c) in out.iter_mut().zip(centres) {
+                *o = put(*c);
+            }
+        };
+        // Eight clusters at a time (four and four, or the last few one by one).
+        let solve = |(g, out): (usize, &mut [O])| {
+            let c = 8 * g;
+            let joints = |k: usize| self.joints(c + k);
+            if out.len() == 8 {
+                write(out, &eight(core::array::from_fn(joints), &motions, lanes));
+                return;
+            }
+            for (h, out) in out.chunks_mut(4).enumerate() {
+                let joints = |k: usize| joints(4 * h + k);
+                if out.len() == 4 {
+                    write(out, &four([0, 1, 2, 3].map(joints), &motions, lanes.avx2));
+                } else {
+                    for (k, o) in out.iter_mut().enumerate() {
+                        *o = put(rotation_centre(joints(k), &motions));
+                    }
                 }
             }
         };
-        let mut out = vec![Vec3::zero(); self.len()];
+        let n = self.len().min(out.len());
+        let out = &mut out[..n];
         if parallel && self.len() >= PARALLEL {
-            out.par_chunks_mut(4).enumerate().for_each(solve);
+            out.par_chunks_mut(8).enumerate().for_each(solve);
         } else {
-            out.chunks_mut(4).enumerate().for_each(solve);
+            out.chunks_mut(8).enumerate().for_each(solve);
         }
-        out
     }
 }
 
@@ -286,6 +329,27 @@ fn four(joints: [&[u16]; 4], motions: &Motions, avx2: bool) -> [Vec3<f32>; 4] {
     joints.map(|j| rotation_centre(j, motions))
 }
 
+/// Which lanes the centre solve may use, checked once a pose.
+#[derive(Clone, Copy)]
+struct Lanes {
+    /// AVX2's four f64.
+    avx2: bool,
+    /// AVX-512F's eight.
+    avx512: bool,
+}
+
+/// Eight clusters' centres: in one AVX-512 register a field where allowed ([`wide::eight`]),
+/// else as two [`four`]s; the same numbers either way.
+fn eight(joints: [&[u16]; 8], motions: &Motions, lanes: Lanes) -> [Vec3<f32>; 8] {
+    #[cfg(target_arch = "x86_64")]
+    if lanes.avx512 {
+        // SAFETY: the caller found AVX-512F on this processor (`fast::uses_avx512`).
+        return unsafe { wide::eight(joints, motions) };
+    }
+    let [a, b] = [0, 4].map(|h| four(core::array::from_fn(|k| joints[h + k]), motions, lanes.avx2));
+    core::array::from_fn(|k| if k < 4 { a[k] } else { b[k - 4] })
+}
+
 #[cfg(target_arch = "x86_64")]
 mod wide;
 
@@ -388,6 +452,68 @@ mod tests {
         }
         if !avx2 {
             eprintln!("no AVX2 here: four at once ran one by one");
+        }
+    }
+
+    /// Eight clusters at once (AVX-512F's lanes where the processor has them, else two
+    /// fours) give each cluster's centre alone bit for bit: clusters of 1 to 8 joints side
+    /// by side, with a non-finite joint (the prior) and equal rotations (the prior by the
+    /// determinant) among them, every set in every lane.
+    #[test]
+    fn eight_at_once_are_each_alone_bit_for_bit() {
+        let mut d: Vec<DualQuat<f32>> = (0..20)
+            .map(|j| {
+                let axis = Vec3::new(1.0, j as f32, -2.0 + 0.1 * j as f32);
+                let q = Quat::from_axis_angle(axis, 0.29 * j as f32).unwrap();
+                DualQuat::from_rotation_translation(q, Vec3::new(0.5, j as f32, -1.0))
+            })
+            .collect();
+        d[19].real.w = f32::INFINITY;
+        d[18] = d[17];
+        let bind: Vec<Vec3<f32>> = (0..20).map(|j| Vec3::new(j as f32, 1.0, -0.5)).collect();
+        let m = Motions::new(&d, &bind);
+        let sets: [&[u16]; 11] = [
+            &[0, 3, 5, 7, 9, 11, 13, 15],
+            &[2],
+            &[1, 4, 6],
+            &[8, 9],
+            &[0, 19],
+            &[17, 18],
+            &[3, 4, 5, 6, 12],
+            &[7, 8, 10, 14, 16, 2, 1],
+            &[10, 11, 12, 13, 14, 15],
+            &[16, 17, 18, 19],
+            &[5, 6],
+        ];
+        #[cfg(target_arch = "x86_64")]
+        let (avx2, avx512) = (
+            std::arch::is_x86_feature_detected!("avx2"),
+            std::arch::is_x86_feature_detected!("avx512f"),
+        );
+        #[cfg(not(target_arch = "x86_64"))]
+        let (avx2, avx512) = (false, false);
+        for widths in [(false, false), (avx2, false), (avx2, avx512)] {
+            let lanes = Lanes {
+                avx2: widths.0,
+                avx512: widths.1,
+            };
+            for shift in 0..sets.len() {
+                let group: [&[u16]; 8] = core::array::from_fn(|k| sets[(k + shift) % sets.len()]);
+                let got = eight(group, &m, lanes);
+                for (set, got) in group.iter().zip(got) {
+                    let want = rotation_centre(set, &m);
+                    assert_eq!(
+                        got.to_array().map(f32::to_bits),
+                        want.to_array().map(f32::to_bits),
+                        "{set:?} shift {shift} lanes ({}, {})",
+                        lanes.avx2,
+                        lanes.avx512
+                    );
+                }
+            }
+        }
+        if !avx512 {
+            eprintln!("no AVX-512F here: eight at once ran as two fours");
         }
     }
 

@@ -17,7 +17,7 @@
 
 use super::antipodes::Antipodes;
 use super::log::row as twist_row;
-use super::qlb::{padded, row as qlb_row};
+use super::qlb::{pad, row as qlb_row};
 use super::{simd, FastRig};
 use crate::error::{same_count, Result, FAST_RIG};
 use crate::pose::{rigid_of, JointTransforms};
@@ -345,7 +345,10 @@ impl Palette {
                     }
                 };
                 refill(joints, d.iter().zip(centres).map(|(d, c)| qlb_joint(d, *c)));
-                refill(c, sbs_centres(rig, d, parallel));
+                // Every entry is written: resized, not cleared.
+                let clusters = rig.clusters();
+                c.resize(clusters.len(), RotationCentre::zeroed());
+                clusters.centres_into(d, centres, parallel, c, |x| bytemuck::cast(pad(x)));
             }
         }
         self.sign(rig);
@@ -379,14 +382,4 @@ pub(crate) fn unit(d: &DualQuat<f32>) -> UnitDualQuat {
 /// A joint's rigid motion `d` and bind origin `c` as QLB's and SBS's joint.
 fn qlb_joint(d: &DualQuat<f32>, c: Vec3<f32>) -> QlbJoint {
     bytemuck::cast(qlb_row(d, c))
-}
-
-fn sbs_centres<const K: usize>(
-    rig: &FastRig<K>,
-    d: &[DualQuat<f32>],
-    parallel: bool,
-) -> impl Iterator<Item = RotationCentre> {
-    padded(&rig.clusters().centres(d, rig.centres(), parallel))
-        .into_iter()
-        .map(bytemuck::cast)
 }

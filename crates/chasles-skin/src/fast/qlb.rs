@@ -132,7 +132,8 @@ pub fn sbs<const K: usize>(
     parallel: bool,
 ) -> Result<()> {
     check(rig, d.len(), out.len())?;
-    let centres = padded(&clusters.centres(d, rig.centres(), parallel));
+    let mut centres = vec![[0f32; 4]; clusters.len()];
+    clusters.centres_into(d, rig.centres(), parallel, &mut centres, pad);
     let rows = rows(d, rig.centres());
     let (_, table) = pose_table::<K, QlbKernel>(&rows, rig.vertices().len());
     sbs_into(rig, clusters, &rows, &table, &centres, out.into(), parallel)
@@ -185,9 +186,9 @@ pub(super) fn sbs_into<const K: usize>(
     Ok(())
 }
 
-/// The centres as the kernels read them: 4 floats each, the centre first.
-pub(super) fn padded(centres: &[chasles::Vec3<f32>]) -> Vec<[f32; 4]> {
-    centres.iter().map(|c| [c.x, c.y, c.z, 0.0]).collect()
+/// A centre as the kernels read it: 4 floats, the centre first.
+pub(super) fn pad(c: chasles::Vec3<f32>) -> [f32; 4] {
+    [c.x, c.y, c.z, 0.0]
 }
 
 /// The SBS clusters of a fast rig: its vertices grouped by the joints of positive weight.

@@ -88,7 +88,7 @@ fn the_simd_kernels_take_8_influences() {
     // SBS: the SIMD kernel against the scalar one about the same cluster centres.
     let cl = clusters(&rig);
     let centres = cl.centres(&jt.dual_quats, rig.centres(), false);
-    let padded = qlb::padded(&centres);
+    let padded: Vec<[f32; 4]> = centres.iter().map(|c| qlb::pad(*c)).collect();
     let mut o = vec![[f32::NAN; 6]; 1003];
     let table = Antipodes::new(&rows, 1003);
     // SAFETY: as in `both`, and every cluster index is below `padded.len()`.
@@ -145,7 +145,8 @@ fn layouts<const K: usize>(n: usize) {
     let t = log::rows(&twists(&jt).unwrap());
     let rows = qlb::rows(&jt.dual_quats, rig.centres());
     let cl = clusters(&rig);
-    let padded = qlb::padded(&cl.centres(&jt.dual_quats, rig.centres(), false));
+    let centres = cl.centres(&jt.dual_quats, rig.centres(), false);
+    let padded: Vec<[f32; 4]> = centres.iter().map(|c| qlb::pad(*c)).collect();
     let sbs = |v: &[Vertex<K>], rows: &[qlb::Row], table: &Antipodes, o: Dest<'_>, s| {
         // SAFETY: as in `both`, and every cluster index is below `padded.len()`.
         unsafe { avx2::qlb::sbs(v, rows, table, cl.of_vertex(), &padded, o, s) }

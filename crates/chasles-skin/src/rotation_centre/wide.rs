@@ -1,9 +1,14 @@
-//! Four clusters solved at once, one in each lane of AVX2's four f64: a cluster's solve
-//! is about 270 instructions one at a time (35 ns), the sums over the joints by SSE2's
-//! pairs and the rest scalar; the compiler's own vectorization of a four-lane form
-//! shuffled more than it computed, so the lanes are written with intrinsics here.
+//! Four clusters solved at once, one in each lane of AVX2's four f64, or eight in
+//! AVX-512F's: a cluster's solve is about 270 instructions one at a time (35 ns), the sums
+//! over the joints by SSE2's pairs and the rest scalar; the compiler's own vectorization
+//! of a four-lane form shuffled more than it computed, so the lanes are written with
+//! intrinsics here. Eight lanes halve the solve's arithmetic and the sums' loads and adds
+//! a cluster; the lanes are the same operations in the same order, so every width gives
+//! the same bits. Both widths also choose between the solution and the prior and round to
+//! f32 in the lanes (`pick`'s test, one lane at a time from the stored lanes, had taken
+//! about a third of the eight-lane solve).
 
-use super::{pick, solve, Motion, Motions, Num};
+use super::{solve, Motion, Motions, Num};
 use chasles::Vec3;
 use std::arch::x86_64::*;
 use std::ops::{Add, Div, Mul, Sub};
@@ -13,22 +18,31 @@ use std::ops::{Add, Div, Mul, Sub};
 #[derive(Clone, Copy)]
 struct W(__m256d);
 
+/// Eight clusters' values of one quantity, as [`W`] for AVX-512F ([`eight`]).
+#[derive(Clone, Copy)]
+struct W8(__m512d);
+
 macro_rules! op {
-    ($trait:ident, $f:ident, $intrinsic:ident) => {
-        impl $trait for W {
-            type Output = W;
+    ($w:ident, $trait:ident, $f:ident, $intrinsic:ident) => {
+        impl $trait for $w {
+            type Output = $w;
             #[inline(always)]
-            fn $f(self, o: W) -> W {
-                // SAFETY: `W` is made only inside `four`, which runs with AVX2.
-                W(unsafe { $intrinsic(self.0, o.0) })
+            fn $f(self, o: $w) -> $w {
+                // SAFETY: a `W` is made only inside `four`, which runs with AVX2, and a
+                // `W8` only inside `eight`, which runs with AVX-512F.
+                $w(unsafe { $intrinsic(self.0, o.0) })
             }
         }
     };
 }
-op!(Add, add, _mm256_add_pd);
-op!(Sub, sub, _mm256_sub_pd);
-op!(Mul, mul, _mm256_mul_pd);
-op!(Div, div, _mm256_div_pd);
+op!(W, Add, add, _mm256_add_pd);
+op!(W, Sub, sub, _mm256_sub_pd);
+op!(W, Mul, mul, _mm256_mul_pd);
+op!(W, Div, div, _mm256_div_pd);
+op!(W8, Add, add, _mm512_add_pd);
+op!(W8, Sub, sub, _mm512_sub_pd);
+op!(W8, Mul, mul, _mm512_mul_pd);
+op!(W8, Div, div, _mm512_div_pd);
 
 impl Num for W {
     #[inline(always)]
@@ -43,13 +57,17 @@ impl Num for W {
     }
 }
 
-/// The four lanes of `x`.
-#[inline(always)]
-fn lanes(x: W) -> [f64; 4] {
-    let mut out = [0f64; 4];
-    // SAFETY: as for the operators; `out` holds four f64.
-    unsafe { _mm256_storeu_pd(out.as_mut_ptr(), x.0) };
-    out
+impl Num for W8 {
+    #[inline(always)]
+    fn splat(x: f64) -> Self {
+        // SAFETY: as for the operators.
+        W8(unsafe { _mm512_set1_pd(x) })
+    }
+    #[inline(always)]
+    fn at_least_one(self) -> Self {
+        // As for `W`.
+        W8(unsafe { _mm512_max_pd(self.0, _mm512_set1_pd(1.0)) })
+    }
 }
 
 /// The centres of four clusters: each one's sums over its joints in six registers,
@@ -88,7 +106,109 @@ pub(super) unsafe fn four(joints: [&[u16]; 4], motions: &Motions) -> [Vec3<f32>;
     let n = joints.map(|j| j.len() as f64);
     let n = W(_mm256_setr_pd(n[0], n[1], n[2], n[3]));
     let (x, prior, det) = solve(|i| f[i], n);
-    let (x, prior, det) = (x.map(lanes), prior.map(lanes), lanes(det));
-    let at = |v: &[[f64; 4]; 3], l: usize| [v[0][l], v[1][l], v[2][l]];
-    [0, 1, 2, 3].map(|l| pick(at(&x, l), at(&prior, l), det[l]))
+    // `pick` in the lanes (one by one, the lanes' stores and reloads and the scalar tests
+    // took about a third of the solve): the solution where 0 < det < ∞ (ordered: not
+    // NaN), else the prior, rounded to f32 as `as` rounds (to nearest).
+    let ok = _mm256_and_pd(
+        _mm256_cmp_pd::<_CMP_GT_OQ>(det.0, _mm256_setzero_pd()),
+        _mm256_cmp_pd::<_CMP_LT_OQ>(det.0, _mm256_set1_pd(f64::INFINITY)),
+    );
+    let xyz: [[f32; 4]; 3] = core::array::from_fn(|i| {
+        let v = _mm256_cvtpd_ps(_mm256_blendv_pd(prior[i].0, x[i].0, ok));
+        let mut out = [0f32; 4];
+        // SAFETY: `out` holds four f32.
+        unsafe { _mm_storeu_ps(out.as_mut_ptr(), v) };
+        out
+    });
+    core::array::from_fn(|l| Vec3::new(xyz[0][l], xyz[1][l], xyz[2][l]))
+}
+
+/// Transposes 8 registers of 8 f64: element k of result row c is element c of input k.
+#[inline]
+#[target_feature(enable = "avx512f")]
+fn transpose8(a: [__m512d; 8]) -> [__m512d; 8] {
+    // Pairs: t[2i] = (a[2i]₀, a[2i+1]₀, a[2i]₂, a[2i+1]₂, …), t[2i+1] the odd elements.
+    let t: [__m512d; 8] = core::array::from_fn(|k| {
+        let (x, y) = (a[k & !1], a[k | 1]);
+        if k % 2 == 0 {
+            _mm512_unpacklo_pd(x, y)
+        } else {
+            _mm512_unpackhi_pd(x, y)
+        }
+    });
+    // Quads, by 128-bit lanes: u[4h + 0] = elements 0 and 4 of inputs 4h … 4h + 3, u[4h + 1]
+    // elements 2 and 6, u[4h + 2] elements 1 and 5, u[4h + 3] elements 3 and 7.
+    let quads = |h: usize| {
+        let (e0, o0, e1, o1) = (t[4 * h], t[4 * h + 1], t[4 * h + 2], t[4 * h + 3]);
+        [
+            _mm512_shuffle_f64x2::<0x88>(e0, e1),
+            _mm512_shuffle_f64x2::<0xDD>(e0, e1),
+            _mm512_shuffle_f64x2::<0x88>(o0, o1),
+            _mm512_shuffle_f64x2::<0xDD>(o0, o1),
+        ]
+    };
+    let (lo, hi) = (quads(0), quads(1));
+    // Element e of every input: e = 0, 4 from u[0]; 2, 6 from u[1]; 1, 5 from u[2];
+    // 3, 7 from u[3].
+    let row = |u: usize, high: bool| {
+        if high {
+            _mm512_shuffle_f64x2::<0xDD>(lo[u], hi[u])
+        } else {
+            _mm512_shuffle_f64x2::<0x88>(lo[u], hi[u])
+        }
+    };
+    [
+        row(0, false),
+        row(2, false),
+        row(1, false),
+        row(3, false),
+        row(0, true),
+        row(2, true),
+        row(1, true),
+        row(3, true),
+    ]
+}
+
+/// The centres of eight clusters, as [`four`] on AVX-512F's eight lanes: each one's sums
+/// over its joints in three registers, transposed into one register per field.
+///
+/// # Safety
+/// The processor must have AVX-512F.
+#[target_feature(enable = "avx512f")]
+pub(super) unsafe fn eight(joints: [&[u16]; 8], motions: &Motions) -> [Vec3<f32>; 8] {
+    chasles::frame::align_frame();
+    let mut s = [[_mm512_setzero_pd(); 3]; 8];
+    for (s, joints) in s.iter_mut().zip(joints) {
+        let mut acc = [_mm512_setzero_pd(); 3];
+        for j in joints {
+            let m: &Motion = &motions.0[usize::from(*j)];
+            for (r, a) in acc.iter_mut().enumerate() {
+                // SAFETY: fields 8r … 8r + 7 of the 24.
+                *a = _mm512_add_pd(*a, unsafe { _mm512_loadu_pd(m.as_ptr().add(8 * r)) });
+            }
+        }
+        *s = acc;
+    }
+    let mut f = [W8(_mm512_setzero_pd()); 24];
+    for r in 0..3 {
+        let rows = transpose8(core::array::from_fn(|c| s[c][r]));
+        for (k, row) in rows.into_iter().enumerate() {
+            f[8 * r + k] = W8(row);
+        }
+    }
+    let n = joints.map(|j| j.len() as f64);
+    // SAFETY: `n` holds eight f64.
+    let n = W8(unsafe { _mm512_loadu_pd(n.as_ptr()) });
+    let (x, prior, det) = solve(|i| f[i], n);
+    // `pick` in the lanes, as in `four`.
+    let ok = _mm512_cmp_pd_mask::<_CMP_GT_OQ>(det.0, _mm512_setzero_pd())
+        & _mm512_cmp_pd_mask::<_CMP_LT_OQ>(det.0, _mm512_set1_pd(f64::INFINITY));
+    let xyz: [[f32; 8]; 3] = core::array::from_fn(|i| {
+        let v = _mm512_cvtpd_ps(_mm512_mask_blend_pd(ok, prior[i].0, x[i].0));
+        let mut out = [0f32; 8];
+        // SAFETY: `out` holds eight f32.
+        unsafe { _mm256_storeu_ps(out.as_mut_ptr(), v) };
+        out
+    });
+    core::array::from_fn(|l| Vec3::new(xyz[0][l], xyz[1][l], xyz[2][l]))
 }
