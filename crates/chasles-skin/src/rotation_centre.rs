@@ -28,8 +28,8 @@
 //! processor has them (module `wide`: 20 ns a cluster against 35 one by one, on a rig of
 //! 3·10⁵ clusters), eight in AVX-512F's, with the same operations in the same order, so
 //! the same numbers; the choice of the solution or the prior and the rounding to f32 run
-//! in the lanes too. On the synthetic rig of 10⁵ vertices (85 582 clusters, a 2-core Intel
-//! Xeon, best of runs of 20 poses): 16.4 ns a cluster with four lanes and that choice made
+//! in the lanes too. On the synthetic rig of 10⁵ vertices (`synthetic::rig(100000, 54, 5)`:
+//! 85 582 clusters; a 2-core Intel Xeon, best of runs of 20 poses): 16.4 ns a cluster with four lanes and that choice made
 //! one lane at a time, 14.1–14.6 with eight lanes, 8.7–9.1 with eight and the choice in
 //! the lanes (13.9–15.1 with four); SBS's whole pose 2213 → 1610–1624 µs. Numbering the
 //! clusters by their joint count, so that the loops over the joints of four neighbours
@@ -118,7 +118,9 @@ impl Clusters {
 
     /// The rotation centre of every cluster for joint transforms `d` (one per joint) and the
     /// joints' bind origins `bind` ([`joint_centres`]); on all threads when `parallel` and
-    /// there are many clusters.
+    /// there are many clusters. The same bits on every processor and in every lane width,
+    /// but for the payload of a NaN (a centre from non-finite input, which the fast path's
+    /// palette refuses).
     pub fn centres(
         &self,
         d: &[DualQuat<f32>],
@@ -130,11 +132,13 @@ impl Clusters {
         out
     }
 
-    /// [`Clusters::centres`] into `out`, one entry a cluster (`out.len()` must be
-    /// `self.len()`; entries past the shorter are left as they are), each centre as `put`
+    /// [`Clusters::centres`] into `out`, one entry a cluster, each centre as `put`
     /// makes it: the fast path's palette takes them padded to four floats with no vector of
     /// centres made on the way (on a rig of 85 582 clusters that vector and its padded copy
     /// were 2.4 MB a pose).
+    ///
+    /// # Panics
+    /// If `out.len()` is not `self.len()` (the callers size it so).
     pub(crate) fn centres_into<O: Send>(
         &self,
         d: &[DualQuat<f32>],
@@ -143,14 +147,11 @@ impl Clusters {
         out: &mut [O],
         put: impl Fn(Vec3<f32>) -> O + Sync,
     ) {
-        debug_assert_eq!(out.len(), self.len());
+        assert_eq!(out.len(), self.len(), "one centre a cluster");
         let motions = Motions::new(d, bind);
         // The lanes where the fast path's SIMD kernels run (and not where `fast::set_simd`
         // or `fast::set_avx512` forbid them, so that the fallback is measured whole).
-        let lanes = Lanes {
-            avx2: crate::fast::uses_simd(4),
-            avx512: crate::fast::uses_avx512(4),
-        };
+        let lanes = Lanes::allowed(crate::fast::uses_simd(4), crate::fast::uses_avx512(4));
         let write = |out: &mut [O], centres: &[Vec3<f32>]| {
             for (o, c) in out.iter_mut().zip(centres) {
                 *o = put(*c);
@@ -175,8 +176,6 @@ impl Clusters {
                 }
             }
         };
-        let n = self.len().min(out.len());
-        let out = &mut out[..n];
         if parallel && self.len() >= PARALLEL {
             out.par_chunks_mut(8).enumerate().for_each(solve);
         } else {
@@ -211,9 +210,9 @@ fn gram<X: Num>(m: [X; 9], t: [X; 3]) -> ([X; 6], [X; 3]) {
     )
 }
 
-/// The arithmetic of the solve: `f64` for one cluster, and (with AVX2) four clusters'
-/// numbers in one register, lane by lane the same operations in the same order (so equal
-/// bits: no fused multiply-adds).
+/// The arithmetic of the solve: `f64` for one cluster, and four clusters' numbers in one
+/// AVX2 register or eight in one AVX-512 register, lane by lane the same operations in the
+/// same order (so equal bits: no fused multiply-adds).
 trait Num:
     Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Self> + Div<Output = Self>
 {
@@ -329,7 +328,8 @@ fn four(joints: [&[u16]; 4], motions: &Motions, avx2: bool) -> [Vec3<f32>; 4] {
     joints.map(|j| rotation_centre(j, motions))
 }
 
-/// Which lanes the centre solve may use, checked once a pose.
+/// Which lanes the centre solve may use, checked once a pose. Made only by
+/// [`Lanes::allowed`], which asks the processor, so a `true` is always a feature it has.
 #[derive(Clone, Copy)]
 struct Lanes {
     /// AVX2's four f64.
@@ -338,14 +338,35 @@ struct Lanes {
     avx512: bool,
 }
 
+impl Lanes {
+    /// The lanes among those allowed that this processor has.
+    fn allowed(avx2: bool, avx512: bool) -> Self {
+        #[cfg(target_arch = "x86_64")]
+        return Lanes {
+            avx2: avx2 && std::arch::is_x86_feature_detected!("avx2"),
+            avx512: avx512 && std::arch::is_x86_feature_detected!("avx512f"),
+        };
+        #[cfg(not(target_arch = "x86_64"))]
+        {
+            let _ = (avx2, avx512);
+            Lanes {
+                avx2: false,
+                avx512: false,
+            }
+        }
+    }
+}
+
 /// Eight clusters' centres: in one AVX-512 register a field where allowed ([`wide::eight`]),
 /// else as two [`four`]s; the same numbers either way.
 fn eight(joints: [&[u16]; 8], motions: &Motions, lanes: Lanes) -> [Vec3<f32>; 8] {
     #[cfg(target_arch = "x86_64")]
     if lanes.avx512 {
-        // SAFETY: the caller found AVX-512F on this processor (`fast::uses_avx512`).
+        // SAFETY: `Lanes::allowed` found AVX-512F on this processor.
         return unsafe { wide::eight(joints, motions) };
     }
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = lanes.avx512;
     let [a, b] = [0, 4].map(|h| four(core::array::from_fn(|k| joints[h + k]), motions, lanes.avx2));
     core::array::from_fn(|k| if k < 4 { a[k] } else { b[k - 4] })
 }
@@ -408,6 +429,40 @@ mod tests {
         let c = Clusters::new(sets.len(), |v| sets[v]);
         assert!(c.len() >= PARALLEL, "{}", c.len());
         assert_eq!(c.centres(&d, &bind, true), c.centres(&d, &bind, false));
+    }
+
+    /// Every cluster's centre is its own, solved alone, bit for bit, whatever the count
+    /// (the eights, fours and last few of `centres_into`'s chunks) and on all threads or
+    /// one (in the widest lanes here: `fast::set_avx512` is the process's, which tests
+    /// running beside this one count on; the widths are compared in the test below).
+    #[test]
+    fn every_cluster_gets_its_own_centre() {
+        let d: Vec<DualQuat<f32>> = (0..16)
+            .map(|j| {
+                let q = Quat::from_axis_angle(Vec3::new(1.0, j as f32, 2.0), 0.3 * j as f32);
+                DualQuat::from_rotation_translation(q.unwrap(), Vec3::new(j as f32, 1.0, 0.5))
+            })
+            .collect();
+        let bind: Vec<Vec3<f32>> = (0..16).map(|j| Vec3::new(0.0, j as f32, 1.0)).collect();
+        let m = Motions::new(&d, &bind);
+        // Sets of 1 to 5 joints, all different, in a mixed order.
+        let sets: Vec<Vec<u16>> = (0..PARALLEL as u16 + 13)
+            .map(|i| (0..1 + i % 5).map(|k| (i * 7 + k * 3) % 16).collect())
+            .collect();
+        for n in (1..=20).chain([PARALLEL + 13]) {
+            let c = Clusters::new(n, |v| sets[v].iter().copied());
+            for parallel in [false, true] {
+                let got = c.centres(&d, &bind, parallel);
+                for (i, got) in got.iter().enumerate() {
+                    let want = rotation_centre(c.joints(i), &m);
+                    assert_eq!(
+                        got.to_array().map(f32::to_bits),
+                        want.to_array().map(f32::to_bits),
+                        "n {n} cluster {i} parallel {parallel}"
+                    );
+                }
+            }
+        }
     }
 
     /// Four clusters at once (AVX2 lanes, where the processor has them) give each one's
@@ -493,10 +548,7 @@ mod tests {
         #[cfg(not(target_arch = "x86_64"))]
         let (avx2, avx512) = (false, false);
         for widths in [(false, false), (avx2, false), (avx2, avx512)] {
-            let lanes = Lanes {
-                avx2: widths.0,
-                avx512: widths.1,
-            };
+            let lanes = Lanes::allowed(widths.0, widths.1);
             for shift in 0..sets.len() {
                 let group: [&[u16]; 8] = core::array::from_fn(|k| sets[(k + shift) % sets.len()]);
                 let got = eight(group, &m, lanes);

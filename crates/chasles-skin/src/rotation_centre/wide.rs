@@ -106,9 +106,15 @@ pub(super) unsafe fn four(joints: [&[u16]; 4], motions: &Motions) -> [Vec3<f32>;
     let n = joints.map(|j| j.len() as f64);
     let n = W(_mm256_setr_pd(n[0], n[1], n[2], n[3]));
     let (x, prior, det) = solve(|i| f[i], n);
-    // `pick` in the lanes (one by one, the lanes' stores and reloads and the scalar tests
-    // took about a third of the solve): the solution where 0 < det < ∞ (ordered: not
-    // NaN), else the prior, rounded to f32 as `as` rounds (to nearest).
+    pick4(x, prior, det)
+}
+
+/// `pick` in four lanes (one by one, the lanes' stores and reloads and the scalar tests had
+/// taken about a third of the solve): the solution where 0 < det < ∞ (ordered: not NaN),
+/// else the prior, rounded to f32 as `as` rounds (to nearest).
+#[inline]
+#[target_feature(enable = "avx2")]
+fn pick4(x: [W; 3], prior: [W; 3], det: W) -> [Vec3<f32>; 4] {
     let ok = _mm256_and_pd(
         _mm256_cmp_pd::<_CMP_GT_OQ>(det.0, _mm256_setzero_pd()),
         _mm256_cmp_pd::<_CMP_LT_OQ>(det.0, _mm256_set1_pd(f64::INFINITY)),
@@ -200,7 +206,13 @@ pub(super) unsafe fn eight(joints: [&[u16]; 8], motions: &Motions) -> [Vec3<f32>
     // SAFETY: `n` holds eight f64.
     let n = W8(unsafe { _mm512_loadu_pd(n.as_ptr()) });
     let (x, prior, det) = solve(|i| f[i], n);
-    // `pick` in the lanes, as in `four`.
+    pick8(x, prior, det)
+}
+
+/// [`pick4`] in eight lanes.
+#[inline]
+#[target_feature(enable = "avx512f")]
+fn pick8(x: [W8; 3], prior: [W8; 3], det: W8) -> [Vec3<f32>; 8] {
     let ok = _mm512_cmp_pd_mask::<_CMP_GT_OQ>(det.0, _mm512_setzero_pd())
         & _mm512_cmp_pd_mask::<_CMP_LT_OQ>(det.0, _mm512_set1_pd(f64::INFINITY));
     let xyz: [[f32; 8]; 3] = core::array::from_fn(|i| {
@@ -211,4 +223,105 @@ pub(super) unsafe fn eight(joints: [&[u16]; 8], motions: &Motions) -> [Vec3<f32>
         out
     });
     core::array::from_fn(|l| Vec3::new(xyz[0][l], xyz[1][l], xyz[2][l]))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The lanes' choice of solution or prior and its rounding are `pick`'s, bit for bit, on
+    /// every kind of determinant (NaN, ±∞, ±0, negative, subnormal, tiny, huge) and of
+    /// value (NaN, ±∞, f64's extremes, values that round, halfway cases) in every lane.
+    #[test]
+    fn the_lanes_pick_as_pick_does() {
+        let dets = [
+            f64::NAN,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            0.0,
+            -0.0,
+            -1.0,
+            f64::MIN_POSITIVE / 4.0,
+            1e-300,
+            1.0,
+            f64::MAX,
+        ];
+        let values = [
+            f64::NAN,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::MAX,
+            -f64::MAX,
+            1e-310,
+            1.0 + f64::EPSILON,
+            0.1,
+            -3.5,
+            f64::from(f32::MAX) * 1.5,
+            1.0 + 2f64.powi(-24),
+        ];
+        let x8 =
+            |k: usize| -> [f64; 8] { core::array::from_fn(|l| values[(k + 3 * l) % values.len()]) };
+        let p8 = |k: usize| -> [f64; 8] {
+            core::array::from_fn(|l| values[(k + 5 * l + 1) % values.len()])
+        };
+        let have = (
+            std::arch::is_x86_feature_detected!("avx2"),
+            std::arch::is_x86_feature_detected!("avx512f"),
+        );
+        for shift in 0..dets.len() {
+            let det: [f64; 8] = core::array::from_fn(|l| dets[(l + shift) % dets.len()]);
+            let (x, prior) = (
+                [0, 1, 2].map(|i| x8(shift + i)),
+                [0, 1, 2].map(|i| p8(shift + i)),
+            );
+            let want: [Vec3<f32>; 8] = core::array::from_fn(|l| {
+                super::super::pick(
+                    [x[0][l], x[1][l], x[2][l]],
+                    [prior[0][l], prior[1][l], prior[2][l]],
+                    det[l],
+                )
+            });
+            let bits = |v: &[Vec3<f32>]| {
+                v.iter()
+                    .map(|c| c.to_array().map(f32::to_bits))
+                    .collect::<Vec<_>>()
+            };
+            if have.0 {
+                for h in [0, 4] {
+                    // SAFETY: the processor has AVX2; each array holds four f64 from `h`.
+                    let got = unsafe { four_lanes(&x, &prior, &det, h) };
+                    assert_eq!(bits(&got), bits(&want[h..h + 4]), "shift {shift} half {h}");
+                }
+            }
+            if have.1 {
+                // SAFETY: the processor has AVX-512F.
+                let got = unsafe { eight_lanes(&x, &prior, &det) };
+                assert_eq!(bits(&got), bits(&want), "shift {shift}");
+            }
+        }
+        if !have.1 {
+            eprintln!("no AVX-512F here: the eight lanes' pick was not checked");
+        }
+    }
+
+    /// [`pick4`] on lanes `h … h + 3` of the arrays.
+    #[target_feature(enable = "avx2")]
+    unsafe fn four_lanes(
+        x: &[[f64; 8]; 3],
+        p: &[[f64; 8]; 3],
+        det: &[f64; 8],
+        h: usize,
+    ) -> [Vec3<f32>; 4] {
+        // SAFETY: `h` is 0 or 4, so each load reads four f64 of an array of eight.
+        let w = |a: &[f64; 8]| W(unsafe { _mm256_loadu_pd(a.as_ptr().add(h)) });
+        pick4(x.each_ref().map(w), p.each_ref().map(w), w(det))
+    }
+
+    /// [`pick8`] on the arrays.
+    #[target_feature(enable = "avx512f")]
+    unsafe fn eight_lanes(x: &[[f64; 8]; 3], p: &[[f64; 8]; 3], det: &[f64; 8]) -> [Vec3<f32>; 8] {
+        // SAFETY: each load reads the eight f64 of an array of eight.
+        let w = |a: &[f64; 8]| W8(unsafe { _mm512_loadu_pd(a.as_ptr()) });
+        pick8(x.each_ref().map(w), p.each_ref().map(w), w(det))
+    }
 }
