@@ -413,16 +413,22 @@ mod tests {
         assert_eq!(c.joints(2), &[0, 2]);
     }
 
-    #[test]
-    fn many_clusters_solve_alike_on_all_threads() {
-        // The 560 sets of 3 of 16 joints: over the threshold for threads.
-        let d: Vec<DualQuat<f32>> = (0..16)
+    /// Sixteen joints, each turned and moved its own way, and their bind origins.
+    fn sixteen_joints() -> (Vec<DualQuat<f32>>, Vec<Vec3<f32>>) {
+        let d = (0..16)
             .map(|j| {
                 let q = Quat::from_axis_angle(Vec3::new(1.0, j as f32, 2.0), 0.3 * j as f32);
                 DualQuat::from_rotation_translation(q.unwrap(), Vec3::new(j as f32, 1.0, 0.5))
             })
             .collect();
-        let bind: Vec<Vec3<f32>> = (0..16).map(|j| Vec3::new(0.0, j as f32, 1.0)).collect();
+        let bind = (0..16).map(|j| Vec3::new(0.0, j as f32, 1.0)).collect();
+        (d, bind)
+    }
+
+    #[test]
+    fn many_clusters_solve_alike_on_all_threads() {
+        // The 560 sets of 3 of 16 joints: over the threshold for threads.
+        let (d, bind) = sixteen_joints();
         let sets: Vec<[u16; 3]> = (0..16u16)
             .flat_map(|a| (a + 1..16).flat_map(move |b| (b + 1..16).map(move |c| [a, b, c])))
             .collect();
@@ -437,15 +443,9 @@ mod tests {
     /// running beside this one count on; the widths are compared in the test below).
     #[test]
     fn every_cluster_gets_its_own_centre() {
-        let d: Vec<DualQuat<f32>> = (0..16)
-            .map(|j| {
-                let q = Quat::from_axis_angle(Vec3::new(1.0, j as f32, 2.0), 0.3 * j as f32);
-                DualQuat::from_rotation_translation(q.unwrap(), Vec3::new(j as f32, 1.0, 0.5))
-            })
-            .collect();
-        let bind: Vec<Vec3<f32>> = (0..16).map(|j| Vec3::new(0.0, j as f32, 1.0)).collect();
+        let (d, bind) = sixteen_joints();
         let m = Motions::new(&d, &bind);
-        // Sets of 1 to 5 joints, all different, in a mixed order.
+        // Sets of 1 to 5 joints in a mixed order (equal sets make one cluster).
         let sets: Vec<Vec<u16>> = (0..PARALLEL as u16 + 13)
             .map(|i| (0..1 + i % 5).map(|k| (i * 7 + k * 3) % 16).collect())
             .collect();
