@@ -112,6 +112,7 @@ impl Clusters {
     }
 
     /// The sorted joints of cluster `c`.
+    #[inline]
     pub fn joints(&self, c: usize) -> &[u16] {
         &self.joints[self.start[c] as usize..self.start[c + 1] as usize]
     }
