@@ -132,8 +132,7 @@ pub fn sbs<const K: usize>(
     parallel: bool,
 ) -> Result<()> {
     check(rig, d.len(), out.len())?;
-    let mut centres = vec![[0f32; 4]; clusters.len()];
-    clusters.centres_into(d, rig.centres(), parallel, &mut centres, pad);
+    let centres = padded_centres(clusters, d, rig.centres(), parallel);
     let rows = rows(d, rig.centres());
     let (_, table) = pose_table::<K, QlbKernel>(&rows, rig.vertices().len());
     sbs_into(rig, clusters, &rows, &table, &centres, out.into(), parallel)
@@ -189,6 +188,19 @@ pub(super) fn sbs_into<const K: usize>(
 /// A centre as the kernels read it: 4 floats, the centre first.
 pub(super) fn pad(c: chasles::Vec3<f32>) -> [f32; 4] {
     [c.x, c.y, c.z, 0.0]
+}
+
+/// The centres of `clusters` for joints `d` with bind origins `bind`, as the kernels read
+/// them ([`pad`]).
+pub(super) fn padded_centres(
+    clusters: &Clusters,
+    d: &[DualQuat<f32>],
+    bind: &[chasles::Vec3<f32>],
+    parallel: bool,
+) -> Vec<[f32; 4]> {
+    let mut centres = vec![[0f32; 4]; clusters.len()];
+    clusters.centres_into(d, bind, parallel, &mut centres, pad);
+    centres
 }
 
 /// The SBS clusters of a fast rig: its vertices grouped by the joints of positive weight.

@@ -87,8 +87,7 @@ fn the_simd_kernels_take_8_influences() {
     assert!(most < 1e-4, "DIB {most}");
     // SBS: the SIMD kernel against the scalar one about the same cluster centres.
     let cl = clusters(&rig);
-    let centres = cl.centres(&jt.dual_quats, rig.centres(), false);
-    let padded: Vec<[f32; 4]> = centres.iter().map(|c| qlb::pad(*c)).collect();
+    let padded = qlb::padded_centres(&cl, &jt.dual_quats, rig.centres(), false);
     let mut o = vec![[f32::NAN; 6]; 1003];
     let table = Antipodes::new(&rows, 1003);
     // SAFETY: as in `both`, and every cluster index is below `padded.len()`.
@@ -108,8 +107,8 @@ fn the_simd_kernels_take_8_influences() {
         .iter()
         .zip(cl.of_vertex())
         .map(|(v, c)| {
-            let c = centres[*c as usize];
-            qlb::about(v, &qlb::blend(v, &rows), [c.x, c.y, c.z])
+            let [x, y, z, _] = padded[*c as usize];
+            qlb::about(v, &qlb::blend(v, &rows), [x, y, z])
         })
         .collect();
     let (most, within) = apart(&o[..done], &want, 4e-6);
@@ -145,8 +144,7 @@ fn layouts<const K: usize>(n: usize) {
     let t = log::rows(&twists(&jt).unwrap());
     let rows = qlb::rows(&jt.dual_quats, rig.centres());
     let cl = clusters(&rig);
-    let centres = cl.centres(&jt.dual_quats, rig.centres(), false);
-    let padded: Vec<[f32; 4]> = centres.iter().map(|c| qlb::pad(*c)).collect();
+    let padded = qlb::padded_centres(&cl, &jt.dual_quats, rig.centres(), false);
     let sbs = |v: &[Vertex<K>], rows: &[qlb::Row], table: &Antipodes, o: Dest<'_>, s| {
         // SAFETY: as in `both`, and every cluster index is below `padded.len()`.
         unsafe { avx2::qlb::sbs(v, rows, table, cl.of_vertex(), &padded, o, s) }
