@@ -23,7 +23,9 @@
 //! matrices are orthogonal only to rounding, and `n² I − SᵀS` would then give the null
 //! direction of two joints (their relative rotation's axis) an eigenvalue of about 1e-7 —
 //! as large as the Tikhonov term — and move the centre along it. Each joint's `R`, `t`,
-//! `RᵀR` and `Rᵀt` are made once per pose ([`Motions`]), and the system is solved by its
+//! `RᵀR` and `Rᵀt` are made once per pose ([`Motions`], each on whole cache lines: the
+//! sums' 64-byte loads straddled two lines wherever the allocator put the vector, and the
+//! solve took 1.2 times as long in those runs), and the system is solved by its
 //! adjugate with one division — four clusters at once in AVX2's f64 lanes where the
 //! processor has them (module `wide`: 20 ns a cluster against 35 one by one, on a rig of
 //! 3·10⁵ clusters), eight in AVX-512F's, with the same operations in the same order, so
@@ -35,6 +37,18 @@
 //! clusters by their joint count, so that the loops over the joints of four neighbours
 //! run alike, gained 4 % (16.4 → 15.7) and was not kept. The centres are written straight
 //! into the caller's table (`Clusters::centres_into`: the fast path's palette).
+//!
+//! Tried on that rig and not kept (old and new builds in turn, three runs each; the eight
+//! lanes are bound by their 512-bit ports, about 300 vector instructions for eight
+//! clusters: 96 adds of the sums, 72 shuffles of the transposes, the rest the solve):
+//! * Summing each cluster's *pairs* (the definition's `Σ_{a<b}`, with each distinct pair's
+//!   `DᵀD`, `−Dᵀe` and origins made once per pose) takes no Gram matrix of S and half the
+//!   transposes, but 10.4–10.7 ns a cluster against 9.8: a cluster of four joints reads
+//!   six pair records of 13 f64 (two lines each) from a table of 1431 pairs that lives in
+//!   the second-level cache, where the joints' 54 motions stay in the first. Records in
+//!   f32 (one line) would perturb the null direction of a two-joint cluster by about 6 %
+//!   of the Tikhonov term, and move its centre along its axis by as much.
+//! * The four joints of a cluster unrolled, without bounds checks: 2 %.
 //!
 //! The reference and fast paths share this code, so their centres are the same numbers.
 
@@ -236,9 +250,16 @@ impl Num for f64 {
     }
 }
 
+/// A [`Motion`] on whole cache lines of its own, so the eight-lane sums' 64-byte loads
+/// never straddle two (from an 8- or 16-byte aligned vector, the pose's centre solve took
+/// 1.2 times as long in some runs as in others).
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[repr(C, align(64))]
+struct Lines(Motion);
+
 /// The joints of one pose as the centre solve sums them.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Motions(Vec<Motion>);
+pub struct Motions(Vec<Lines>);
 
 impl Motions {
     /// The motions of joint transforms `d` (one per joint: `[R | t]` of each dual
@@ -264,7 +285,7 @@ impl Motions {
                     );
                     x[G..T].copy_from_slice(&g);
                     x[U..ORIGIN].copy_from_slice(&u);
-                    x
+                    Lines(x)
                 })
                 .collect(),
         )
@@ -281,7 +302,7 @@ impl Motions {
 pub fn rotation_centre(joints: &[u16], motions: &Motions) -> Vec3<f32> {
     let mut sum = [0f64; 24];
     for j in joints {
-        let m = &motions.0[usize::from(*j)];
+        let m = &motions.0[usize::from(*j)].0;
         for i in 0..24 {
             sum[i] += m[i];
         }
@@ -425,6 +446,23 @@ mod tests {
             .collect();
         let bind = (0..16).map(|j| Vec3::new(0.0, j as f32, 1.0)).collect();
         (d, bind)
+    }
+
+    /// Every motion starts a cache line, wherever the allocator puts the vector, so no
+    /// 64-byte load of the eight-lane sums straddles two.
+    #[test]
+    fn motions_sit_on_whole_cache_lines() {
+        let (d, bind) = sixteen_joints();
+        for _ in 0..4 {
+            let m = Motions::new(&d, &bind);
+            assert_eq!(m.0.len(), 16);
+            for x in &m.0 {
+                assert_eq!(std::ptr::from_ref(x) as usize % 64, 0);
+            }
+            assert_eq!(size_of::<Lines>(), size_of::<Motion>(), "no padding");
+            // Another allocation between poses, so the next vector may start elsewhere.
+            std::hint::black_box(vec![0u8; 24]);
+        }
     }
 
     #[test]

@@ -84,7 +84,7 @@ pub(super) unsafe fn four(joints: [&[u16]; 4], motions: &Motions) -> [Vec3<f32>;
     for (s, joints) in s.iter_mut().zip(joints) {
         let mut acc = [_mm256_setzero_pd(); 6];
         for j in joints {
-            let m: &Motion = &motions.0[usize::from(*j)];
+            let m: &Motion = &motions.0[usize::from(*j)].0;
             for (r, a) in acc.iter_mut().enumerate() {
                 // SAFETY: fields 4r … 4r + 3 of the 24.
                 *a = _mm256_add_pd(*a, unsafe { _mm256_loadu_pd(m.as_ptr().add(4 * r)) });
@@ -187,7 +187,7 @@ pub(super) unsafe fn eight(joints: [&[u16]; 8], motions: &Motions) -> [Vec3<f32>
     for (s, joints) in s.iter_mut().zip(joints) {
         let mut acc = [_mm512_setzero_pd(); 3];
         for j in joints {
-            let m: &Motion = &motions.0[usize::from(*j)];
+            let m: &Motion = &motions.0[usize::from(*j)].0;
             for (r, a) in acc.iter_mut().enumerate() {
                 // SAFETY: fields 8r … 8r + 7 of the 24.
                 *a = _mm512_add_pd(*a, unsafe { _mm512_loadu_pd(m.as_ptr().add(8 * r)) });
