@@ -46,8 +46,9 @@
 //!   transposes, but 10.4–10.7 ns a cluster against 9.8: a cluster of four joints reads
 //!   six pair records of 13 f64 (two lines each) from a table of 1431 pairs that lives in
 //!   the second-level cache, where the joints' 54 motions stay in the first. Records in
-//!   f32 (one line) would perturb the null direction of a two-joint cluster by about 6 %
-//!   of the Tikhonov term, and move its centre along its axis by as much.
+//!   f32 (one line) would give the null direction of a two-joint cluster an eigenvalue of
+//!   a few per cent of the Tikhonov term, and move its centre along that axis by a few
+//!   per cent of its distance from the prior.
 //! * The four joints of a cluster unrolled, without bounds checks: 2 %.
 //!
 //! The reference and fast paths share this code, so their centres are the same numbers.
