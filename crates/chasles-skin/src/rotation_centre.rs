@@ -461,6 +461,7 @@ mod tests {
                 assert_eq!(std::ptr::from_ref(x) as usize % 64, 0);
             }
             assert_eq!(size_of::<Lines>(), size_of::<Motion>(), "no padding");
+            assert_eq!(align_of::<Lines>(), 64);
             // Another allocation between poses, so the next vector may start elsewhere.
             std::hint::black_box(vec![0u8; 24]);
         }
@@ -531,10 +532,7 @@ mod tests {
             &[3, 4, 5, 6],
             &[7],
         ];
-        #[cfg(target_arch = "x86_64")]
-        let avx2 = std::arch::is_x86_feature_detected!("avx2");
-        #[cfg(not(target_arch = "x86_64"))]
-        let avx2 = false;
+        let avx2 = Lanes::allowed(true, false).avx2;
         for g in sets.chunks(4) {
             let got = four([g[0], g[1], g[2], g[3]], &m, avx2);
             for (set, got) in g.iter().zip(got) {
@@ -581,14 +579,8 @@ mod tests {
             &[16, 17, 18, 19],
             &[5, 6],
         ];
-        #[cfg(target_arch = "x86_64")]
-        let (avx2, avx512) = (
-            std::arch::is_x86_feature_detected!("avx2"),
-            std::arch::is_x86_feature_detected!("avx512f"),
-        );
-        #[cfg(not(target_arch = "x86_64"))]
-        let (avx2, avx512) = (false, false);
-        for widths in [(false, false), (avx2, false), (avx2, avx512)] {
+        // Each width allowed in turn (`Lanes::allowed` keeps those this processor has).
+        for widths in [(false, false), (true, false), (true, true)] {
             let lanes = Lanes::allowed(widths.0, widths.1);
             for shift in 0..sets.len() {
                 let group: [&[u16]; 8] = core::array::from_fn(|k| sets[(k + shift) % sets.len()]);
@@ -609,7 +601,7 @@ mod tests {
                 }
             }
         }
-        if !avx512 {
+        if !Lanes::allowed(true, true).avx512 {
             eprintln!("no AVX-512F here: eight at once did not run (fours do)");
         }
     }

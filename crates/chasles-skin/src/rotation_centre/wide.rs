@@ -264,10 +264,8 @@ mod tests {
         let p8 = |k: usize| -> [f64; 8] {
             core::array::from_fn(|l| values[(k + 5 * l + 1) % values.len()])
         };
-        let have = (
-            std::arch::is_x86_feature_detected!("avx2"),
-            std::arch::is_x86_feature_detected!("avx512f"),
-        );
+        let all = super::super::Lanes::allowed(true, true);
+        let have = (all.avx2, all.avx512);
         for shift in 0..dets.len() {
             let det: [f64; 8] = core::array::from_fn(|l| dets[(l + shift) % dets.len()]);
             let (x, prior) = (
