@@ -14,6 +14,23 @@
 //! big meshes), an interleaved vertex buffer or split arrays (each vertex's own stores) —
 //! each kernel's loop compiled once per layout (`store_rows`, `Store`). Log, QLB/SBS and
 //! DIB are in the submodules; DIB ends with DQS's transformation (`transform`).
+//!
+//! What bounds DQS where the mesh is in the cache (a 2-core Xeon at 3.5 GHz, AVX-512's
+//! register build, four influences, 2026-12-04): its loop is 338 instructions a block of
+//! eight — about 130 scalar ones for the indices and the table's offsets, 87 vector
+//! multiply-adds, 60 shuffles (the input's, the blends' and the output's transposes) and
+//! the loads — and takes about 88 cycles a block in the second-level cache (2·10⁴
+//! vertices), an IPC of 3.8. Two changes that each took a tenth of one kind away moved it
+//! by less than the noise, so no one port or the front end bounds it alone (old and new
+//! binaries in turn, `chasles skin --bench` at 10⁵ vertices, one thread, six to eight runs):
+//! - each joint index read by its own 16-bit load, where the compiler loads the four in one
+//!   word and shifts them apart (338 → 305 instructions): 2.5 % faster in the
+//!   second-level cache, no change at 10⁵;
+//! - the input's registers loaded as two 16-byte halves (vertex l below, l + 4 above, the
+//!   upper by an insert from memory), so that 4×4 transposes within the halves take 12
+//!   shuffles where the 8×8 transpose took 22: DQS 0–3 % faster, but LBS, which shares
+//!   `load_head`, 4–5 % slower; with both changes for DQS alone, 271 → 281 in one run of
+//!   eight and 285 → 283 M vertices/s in the next of six.
 
 use super::dest::Dest;
 use super::lane::{rotate, transform, two_over_norm2};
