@@ -30,7 +30,12 @@
 //!   upper by an insert from memory), so that 4×4 transposes within the halves take 12
 //!   shuffles where the 8×8 transpose took 22: DQS 0–3 % faster, but LBS, which shares
 //!   `load_head`, 4–5 % slower; with both changes for DQS alone, 271 → 281 in one run of
-//!   eight and 285 → 283 M vertices/s in the next of six.
+//!   eight and 285 → 283 M vertices/s in the next of six;
+//! - two blocks a turn of the loop, their loads, blends, transforms and stores side by
+//!   side (in case one block's chain of dependent steps — index, offset, copy, blend,
+//!   transpose, norm, division, rotation — left the core idle): slower, 63 → 66 µs a pose
+//!   at 2·10⁴ vertices and 316–334 → 322–352 µs at 10⁵ (a scratch loop of the job alone,
+//!   three runs each).
 
 use super::dest::Dest;
 use super::lane::{rotate, transform, two_over_norm2};
