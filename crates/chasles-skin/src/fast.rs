@@ -387,9 +387,8 @@ pub fn set_avx512(allowed: bool) {
 
 /// Whether jobs on a rig of `k` influences run the AVX-512 code here (DIB sixteen vertices
 /// at a time, the other methods built with 32 registers, SBS's centres eight clusters at a
-/// time): the SIMD kernels run
-/// ([`uses_simd`]), the processor has AVX-512F and AVX-512VL, and [`set_avx512`] has not
-/// forbidden it.
+/// time): the SIMD kernels run ([`uses_simd`]), the processor has AVX-512F and AVX-512VL,
+/// and [`set_avx512`] has not forbidden it.
 pub fn uses_avx512(k: usize) -> bool {
     simd(k) && avx512()
 }

@@ -31,12 +31,13 @@
 //! 3·10⁵ clusters), eight in AVX-512F's, with the same operations in the same order, so
 //! the same numbers; the choice of the solution or the prior and the rounding to f32 run
 //! in the lanes too. On the synthetic rig of 10⁵ vertices (`synthetic::rig(100000, 54, 5)`:
-//! 85 582 clusters; a 2-core Intel Xeon, best of runs of 20 poses): 16.4 ns a cluster with four lanes and that choice made
-//! one lane at a time, 14.1–14.6 with eight lanes, 8.7–9.1 with eight and the choice in
-//! the lanes (13.9–15.1 with four); SBS's whole pose 2213 → 1610–1624 µs. Numbering the
-//! clusters by their joint count, so that the loops over the joints of four neighbours
-//! run alike, gained 4 % (16.4 → 15.7) and was not kept. The centres are written straight
-//! into the caller's table (`Clusters::centres_into`: the fast path's palette).
+//! 85 582 clusters; a 2-core Intel Xeon, best of runs of 20 poses): 16.4 ns a cluster with
+//! four lanes and that choice made one lane at a time, 14.1–14.6 with eight lanes, 8.7–9.1
+//! with eight and the choice in the lanes (13.9–15.1 with four); SBS's whole pose 2213 →
+//! 1610–1624 µs. Numbering the clusters by their joint count, so that the loops over the
+//! joints of four neighbours run alike, gained 4 % (16.4 → 15.7) and was not kept. The
+//! centres are written straight into the caller's table (`Clusters::centres_into`: the
+//! fast path's palette).
 //!
 //! Tried on that rig and not kept (old and new builds in turn, three runs each; the eight
 //! lanes are bound by their 512-bit ports, about 300 vector instructions for eight
@@ -449,6 +450,17 @@ mod tests {
         (d, bind)
     }
 
+    /// Asserts that `got` is the centre of `joints` solved alone, bit for bit (`what` says
+    /// where it came from).
+    fn assert_alone(got: Vec3<f32>, joints: &[u16], m: &Motions, what: &str) {
+        let want = rotation_centre(joints, m);
+        assert_eq!(
+            got.to_array().map(f32::to_bits),
+            want.to_array().map(f32::to_bits),
+            "{joints:?} {what}"
+        );
+    }
+
     /// Every motion starts a cache line, wherever the allocator puts the vector, so no
     /// 64-byte load of the eight-lane sums straddles two.
     #[test]
@@ -496,12 +508,8 @@ mod tests {
             for parallel in [false, true] {
                 let got = c.centres(&d, &bind, parallel);
                 for (i, got) in got.iter().enumerate() {
-                    let want = rotation_centre(c.joints(i), &m);
-                    assert_eq!(
-                        got.to_array().map(f32::to_bits),
-                        want.to_array().map(f32::to_bits),
-                        "n {n} cluster {i} parallel {parallel}"
-                    );
+                    let what = format!("n {n} cluster {i} parallel {parallel}");
+                    assert_alone(*got, c.joints(i), &m, &what);
                 }
             }
         }
@@ -536,12 +544,7 @@ mod tests {
         for g in sets.chunks(4) {
             let got = four([g[0], g[1], g[2], g[3]], &m, avx2);
             for (set, got) in g.iter().zip(got) {
-                let want = rotation_centre(set, &m);
-                assert_eq!(
-                    got.to_array().map(f32::to_bits),
-                    want.to_array().map(f32::to_bits),
-                    "{set:?}"
-                );
+                assert_alone(got, set, &m, "");
             }
         }
         if !avx2 {
@@ -590,14 +593,8 @@ mod tests {
                 };
                 assert!(lanes.avx512);
                 for (set, got) in group.iter().zip(got) {
-                    let want = rotation_centre(set, &m);
-                    assert_eq!(
-                        got.to_array().map(f32::to_bits),
-                        want.to_array().map(f32::to_bits),
-                        "{set:?} shift {shift} lanes ({}, {})",
-                        lanes.avx2,
-                        lanes.avx512
-                    );
+                    let what = format!("shift {shift} lanes ({}, {})", lanes.avx2, lanes.avx512);
+                    assert_alone(got, set, &m, &what);
                 }
             }
         }

@@ -2,10 +2,10 @@
 //! public job: DIB's sixteen-vertex kernel against its eight-vertex one, and every other
 //! method's kernels built with AVX-512F and VL's 32 registers (`avx2::registers`) against
 //! their AVX2 build, and SBS's centres solved eight clusters at a time against four. The
-//! same bits for every vertex, on the built-in characters (four and
-//! eight influences, one thread and all, packed, interleaved and split outputs), on a rig
-//! too small for a sign table, and on a mesh big enough to stream its output (which build
-//! ran is counted by a unit test, `avx2::registers`). One test in its own binary, since the switch is
+//! same bits for every vertex, on the built-in characters (four and eight influences, one
+//! thread and all, packed, interleaved and split outputs), on a rig too small for a sign
+//! table, and on a mesh big enough to stream its output (which build ran is counted by a
+//! unit test, `avx2::registers`). One test in its own binary, since the switch is
 //! process-wide.
 
 use chasles_skin::fast::{

@@ -20,9 +20,10 @@
 //! eight — about 130 scalar ones for the indices and the table's offsets, 87 vector
 //! multiply-adds, 60 shuffles (the input's, the blends' and the output's transposes) and
 //! the loads — and takes about 88 cycles a block in the second-level cache (2·10⁴
-//! vertices), an IPC of 3.8. Two changes that each took a tenth of one kind away moved it
-//! by less than the noise, so no one port or the front end bounds it alone (old and new
-//! binaries in turn, `chasles skin --bench` at 10⁵ vertices, one thread, six to eight runs):
+//! vertices), an IPC of 3.8. Three changes were measured and not kept. The first two each
+//! took a tenth of one kind of instruction away and moved it by less than the noise, so no
+//! one port or the front end bounds it alone (old and new binaries in turn, `chasles skin
+//! --bench` at 10⁵ vertices, one thread, six to eight runs):
 //! - each joint index read by its own 16-bit load, where the compiler loads the four in one
 //!   word and shifts them apart (338 → 305 instructions): 2.5 % faster in the
 //!   second-level cache, no change at 10⁵;

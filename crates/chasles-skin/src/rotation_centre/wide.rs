@@ -44,30 +44,51 @@ op!(W8, Sub, sub, _mm512_sub_pd);
 op!(W8, Mul, mul, _mm512_mul_pd);
 op!(W8, Div, div, _mm512_div_pd);
 
-impl Num for W {
-    #[inline(always)]
-    fn splat(x: f64) -> Self {
-        // SAFETY: as for the operators.
-        W(unsafe { _mm256_set1_pd(x) })
-    }
-    #[inline(always)]
-    fn at_least_one(self) -> Self {
-        // n ≥ 0, never NaN: the same as `f64::max(n, 1)`.
-        W(unsafe { _mm256_max_pd(self.0, _mm256_set1_pd(1.0)) })
-    }
+/// [`Num`] for a lane type: `splat` by `$set1`, `at_least_one` by `$max` with 1.
+macro_rules! num {
+    ($w:ident, $set1:ident, $max:ident) => {
+        impl Num for $w {
+            #[inline(always)]
+            fn splat(x: f64) -> Self {
+                // SAFETY: as for the operators.
+                $w(unsafe { $set1(x) })
+            }
+            #[inline(always)]
+            fn at_least_one(self) -> Self {
+                // n ≥ 0, never NaN: the same as `f64::max(n, 1)`.
+                // SAFETY: as for the operators.
+                $w(unsafe { $max(self.0, $set1(1.0)) })
+            }
+        }
+    };
 }
+num!(W, _mm256_set1_pd, _mm256_max_pd);
+num!(W8, _mm512_set1_pd, _mm512_max_pd);
 
-impl Num for W8 {
-    #[inline(always)]
-    fn splat(x: f64) -> Self {
-        // SAFETY: as for the operators.
-        W8(unsafe { _mm512_set1_pd(x) })
+/// Each of `N` clusters' sums over its joints of their motions' 24 fields, in `R` registers
+/// of `L` lanes (`L R = 24`): `add(a, m)` adds the `L` fields `m` of a motion to `a`. One
+/// cluster after the other: all four clusters' 24 accumulators at once spilled to the
+/// stack at every joint.
+#[inline(always)]
+fn sums<V: Copy, const N: usize, const R: usize, const L: usize>(
+    joints: [&[u16]; N],
+    motions: &Motions,
+    zero: V,
+    add: impl Fn(V, &[f64; L]) -> V,
+) -> [[V; R]; N] {
+    const { assert!(L * R == 24) };
+    let mut s = [[zero; R]; N];
+    for (s, joints) in s.iter_mut().zip(joints) {
+        let mut acc = [zero; R];
+        for j in joints {
+            let m: &Motion = &motions.0[usize::from(*j)].0;
+            for (a, m) in acc.iter_mut().zip(m.as_chunks::<L>().0) {
+                *a = add(*a, m);
+            }
+        }
+        *s = acc;
     }
-    #[inline(always)]
-    fn at_least_one(self) -> Self {
-        // As for `W`.
-        W8(unsafe { _mm512_max_pd(self.0, _mm512_set1_pd(1.0)) })
-    }
+    s
 }
 
 /// The centres of four clusters: each one's sums over its joints in six registers,
@@ -78,20 +99,10 @@ impl Num for W8 {
 #[target_feature(enable = "avx2")]
 pub(super) unsafe fn four(joints: [&[u16]; 4], motions: &Motions) -> [Vec3<f32>; 4] {
     chasles::frame::align_frame();
-    // Each cluster's sums in six registers, one cluster after the other (all four
-    // clusters' 24 accumulators at once spilled to the stack at every joint).
-    let mut s = [[_mm256_setzero_pd(); 6]; 4];
-    for (s, joints) in s.iter_mut().zip(joints) {
-        let mut acc = [_mm256_setzero_pd(); 6];
-        for j in joints {
-            let m: &Motion = &motions.0[usize::from(*j)].0;
-            for (r, a) in acc.iter_mut().enumerate() {
-                // SAFETY: fields 4r … 4r + 3 of the 24.
-                *a = _mm256_add_pd(*a, unsafe { _mm256_loadu_pd(m.as_ptr().add(4 * r)) });
-            }
-        }
-        *s = acc;
-    }
+    let s: [[__m256d; 6]; 4] = sums(joints, motions, _mm256_setzero_pd(), |a, m: &[f64; 4]| {
+        // SAFETY: `m` holds the four f64 loaded.
+        _mm256_add_pd(a, unsafe { _mm256_loadu_pd(m.as_ptr()) })
+    });
     let mut f = [W(_mm256_setzero_pd()); 24];
     for r in 0..6 {
         let t0 = _mm256_unpacklo_pd(s[0][r], s[1][r]);
@@ -183,18 +194,10 @@ fn transpose8(a: [__m512d; 8]) -> [__m512d; 8] {
 #[target_feature(enable = "avx512f")]
 pub(super) unsafe fn eight(joints: [&[u16]; 8], motions: &Motions) -> [Vec3<f32>; 8] {
     chasles::frame::align_frame();
-    let mut s = [[_mm512_setzero_pd(); 3]; 8];
-    for (s, joints) in s.iter_mut().zip(joints) {
-        let mut acc = [_mm512_setzero_pd(); 3];
-        for j in joints {
-            let m: &Motion = &motions.0[usize::from(*j)].0;
-            for (r, a) in acc.iter_mut().enumerate() {
-                // SAFETY: fields 8r … 8r + 7 of the 24.
-                *a = _mm512_add_pd(*a, unsafe { _mm512_loadu_pd(m.as_ptr().add(8 * r)) });
-            }
-        }
-        *s = acc;
-    }
+    let s: [[__m512d; 3]; 8] = sums(joints, motions, _mm512_setzero_pd(), |a, m: &[f64; 8]| {
+        // SAFETY: `m` holds the eight f64 loaded.
+        _mm512_add_pd(a, unsafe { _mm512_loadu_pd(m.as_ptr()) })
+    });
     let mut f = [W8(_mm512_setzero_pd()); 24];
     for r in 0..3 {
         let rows = transpose8(core::array::from_fn(|c| s[c][r]));
