@@ -19,6 +19,8 @@ use std::arch::x86_64::*;
 #[cfg(target_arch = "x86_64")]
 mod avx512;
 pub(super) mod dib;
+#[cfg(test)]
+pub(super) mod watch;
 mod wide;
 
 /// What the algebra needs of a number: ring operations, division, square root, constants,

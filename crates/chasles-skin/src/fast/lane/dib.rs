@@ -27,6 +27,22 @@
 //! block-mates (the kernel's tests shift every block and compare bits); the GPU shader
 //! takes ScLERP in closed form for such a vertex.
 //!
+//! **Subnormal numbers.** A lane of one influence never steps, but its block's passes
+//! compute its update all the same: the logarithm of `b̂* q̂` with `b̂ = q̂` to rounding,
+//! whose vector parts are of 1e-15 and dual ones of 1e-28 where cancellations leave that
+//! little (the Fox, RiggedFigure), and whose moments and exponential take products of
+//! those — subnormal numbers, for each of which an x86 core takes a microcode assist
+//! (Rust assumes flush-to-zero and denormals-are-zero are off, so the kernel cannot turn
+//! them on). Its update takes weight 0, which makes them exact zeros and changes no
+//! lane's numbers (the old and new kernels' outputs were compared bit for bit on the
+//! characters' clips and the synthetic meshes). Over the characters' clips at seven
+//! times each (best of 20 runs, one core, binaries in turn): the Fox 20.0–20.9 →
+//! 57.5–59.9 M vertices/s, RiggedFigure 38.0–40.3 → 46.5–48.0, CesiumMan and the synthetic
+//! mesh unchanged. A test-only lane type notes every operation that meets such a number
+//! (`watch`); lanes of more influences still meet a few where their logarithms have
+//! components of 1e-13 and less (0–400 lane operations a Fox pose): flushing the step's
+//! tiny components to zero took most of them away and measured no faster.
+//!
 //! No trigonometric calls. For `r̂ = b̂* q̂ᵢ` taken to `w ≥ 0`, with `r0 = (w, a)`,
 //! `rε = (wε, b)`, `n = ‖a‖`, `s = n²` (eq. 2 and the library's `DualQuat::log`):
 //!
@@ -272,6 +288,13 @@ pub(in crate::fast) fn dib<L: Lane, const K: usize>(
         count = count.add(L::select(zero.lt(w[k]), L::splat(1.0), zero));
     }
     let pair = count.lt(L::splat(2.5));
+    // The update's weights: 0 in a lane of one influence, which never steps (module
+    // docs, "Subnormal numbers").
+    let single = count.lt(L::splat(1.5));
+    let mut wu = [zero; K];
+    for k in 0..slots {
+        wu[k] = L::select(single, zero, w[k]);
+    }
     // Where a block's lanes all have two influences or fewer but some sit past slot 1 (a
     // hand-built layout), the loop still takes its second pass, which stops every lane at
     // once: it costs time, not bits. Capping by `count` instead made every block 4–6 %
@@ -280,7 +303,7 @@ pub(in crate::fast) fn dib<L: Lane, const K: usize>(
     let mut last = L::splat(f32::INFINITY);
     let mut active = L::splat(1.5).lt(count);
     for _ in 0..updates {
-        let (x, spread) = update(&b, q, w, slots);
+        let (x, spread) = update(&b, q, &wu, slots);
         let norm = dot(&x, &x).sqrt();
         active = L::and(active, keep_going(norm, last));
         if !L::any(active) {
@@ -339,294 +362,4 @@ fn update<L: Lane, const K: usize>(
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use chasles::{DualQuat, Quat, Vec3};
-
-    /// `Σ cₖ sᵏ` in f64: the value of a series' f32 coefficients.
-    fn sum64(c: &[f32], s: f64) -> f64 {
-        c.iter().rev().fold(0.0, |a, k| a * s + f64::from(*k))
-    }
-
-    /// The fitted `Q` and `G` are their closed forms on `[0, tan²(π/8)]` as
-    /// `scripts/fit_dib_log.py` documents (relative: 0.02 f32 ulp for Q, 0.4 for G with their
-    /// f32 coefficients; 0.5 and 1 ulp evaluated in f32), the exponential's Taylor series
-    /// theirs up to `s = (π/2)²`.
-    #[test]
-    fn the_series_are_the_closed_forms() {
-        let ulp = f64::from(f32::EPSILON);
-        // The closed forms at z; G near 0 by its series (its closed form cancels there).
-        let q_of = |z: f64| {
-            if z == 0.0 {
-                1.0
-            } else {
-                z.sqrt().atan() / z.sqrt()
-            }
-        };
-        let g_of = |z: f64| {
-            if z < 0.01 {
-                (0..30).rev().fold(0.0, |a, k| {
-                    let k = f64::from(k);
-                    a * -z + 2.0 * (k + 1.0) / (2.0 * k + 3.0)
-                })
-            } else {
-                let r = z.sqrt();
-                (r.atan() - r / (1.0 + z)) / (z * r)
-            }
-        };
-        let rel = |got: f64, want: f64| (got - want).abs() / want / ulp;
-        for i in 0..=1000 {
-            let f = f64::from(i) / 1000.0;
-            // Q and G up to tan²(π/8): exactly (their f32 coefficients), and in f32 at the
-            // f32 nearest z.
-            let z = f * (2f64.sqrt() - 1.0).powi(2);
-            assert!(rel(sum64(&Q, z), q_of(z)) <= 0.02, "Q({z})");
-            assert!(rel(sum64(&G, z), g_of(z)) <= 0.4, "G({z})");
-            let z32 = z as f32;
-            let (q32, g32) = (horner(&Q, z32), horner(&G, z32));
-            let z = f64::from(z32);
-            assert!(rel(f64::from(q32), q_of(z)) <= 0.5, "Q({z}) in f32: {q32}");
-            assert!(rel(f64::from(g32), g_of(z)) <= 1.0, "G({z}) in f32: {g32}");
-            // cos √s, sinc √s and its derivative up to s = (π/2)².
-            let x = f * std::f64::consts::FRAC_PI_2;
-            let s = x * x;
-            assert!((sum64(&COS, s) - x.cos()).abs() < 5e-8, "cos {x}");
-            if x > 0.1 {
-                assert!((sum64(&SINC, s) - x.sin() / x).abs() < 5e-8, "sinc {x}");
-                let d = (x.cos() - x.sin() / x) / (2.0 * s);
-                assert!((sum64(&D_SINC, s) - d).abs() < 5e-8, "d sinc {x}");
-            }
-        }
-    }
-
-    /// A unit dual quaternion turning by `angle` about a varying axis and moving by up to 2.
-    fn rigid(f: f32, angle: f32) -> DualQuat<f32> {
-        let axis = Vec3::new(1.0, 3.0 * f - 1.0, (7.0 * f).sin());
-        let q = Quat::from_axis_angle(axis, angle).unwrap();
-        let t = Vec3::new(2.0 * f, 1.0 - f, (3.0 * f).cos());
-        DualQuat::from_rotation_translation(q, t)
-    }
-
-    /// On one lane the series' logarithm and exponential are the library's `DualQuat::log`
-    /// and `exp` (eq. 2 and its inverse; the exponential up to its positive scalar factor,
-    /// which the normalization removes) at every angle of all three reduction rows, both
-    /// hemispheres, −0 included.
-    #[test]
-    fn the_lane_log_and_exp_are_the_librarys() {
-        for i in 0..=400 {
-            let f = i as f32 / 400.0;
-            // Half-angles 0 … π: w from 1 through 0 to −1.
-            let d = rigid(f, std::f32::consts::TAU * f);
-            let got = log(&d.to_array());
-            let want = if d.real.w < 0.0 { -d } else { d }
-                .log()
-                .unwrap()
-                .to_array();
-            for c in 0..8 {
-                let tol = 2e-6 * (1.0 + want[c].abs());
-                assert!((got[c] - want[c]).abs() < tol, "{f}: {got:?} vs {want:?}");
-            }
-            // The exponential of a convex blend's update: half-angles up to π/2.
-            let mut x = rigid(f, std::f32::consts::PI * f).log().unwrap().to_array();
-            x[0] = 0.0;
-            x[4] = 0.0;
-            let got = normalize(&exp(&x));
-            let want = DualQuat::from_array(x)
-                .exp()
-                .normalize()
-                .unwrap()
-                .to_array();
-            for c in 0..8 {
-                assert!((got[c] - want[c]).abs() < 2e-6, "{f}: {got:?} vs {want:?}");
-            }
-        }
-        // w = −0: the sign bit alone takes r̂ to −r̂ (the identity's antipode's log is 0).
-        let mut antipode = [0f32; 8];
-        antipode[0] = -1.0;
-        assert_eq!(log(&antipode), [0.0; 8]);
-        let mut half_turn = [0f32; 8];
-        (half_turn[0], half_turn[1]) = (-0.0, -1.0);
-        let l = log(&half_turn);
-        assert!((l[1] - std::f32::consts::FRAC_PI_2).abs() < 1e-6, "{l:?}");
-    }
-
-    /// The second-order step does what its derivation says: from the DLB start of random
-    /// blends of four joints (rotated by up to 60°, moved by up to 2), one step leaves a
-    /// residual `‖Σ wᵢ log(b̂* q̂ᵢ)‖` over 20× smaller on average than the paper's step does
-    /// (43× when written) — third order against first order times the spread² — and never
-    /// a larger one beyond f32's rounding.
-    #[test]
-    fn the_second_order_step_leaves_a_smaller_residual() {
-        let residual = |b: &[f32; 8], q: &[[f32; 8]; 4], w: &[f32; 4]| update(b, q, w, 4);
-        let norm = |x: &[f32; 8]| dot(x, x).sqrt();
-        let (mut plain, mut second) = (0f64, 0f64);
-        for i in 0..500 {
-            let f = i as f32 / 500.0;
-            let q = [0.13, 0.37, 0.61, 0.83]
-                .map(|g| rigid((f * 7.0 + g) % 1.0, 1.05 * ((f * 13.0 + g) % 1.0)).to_array());
-            let raw = [0.4, 0.3 * f + 0.05, 0.2, 0.1 + 0.2 * (1.0 - f)];
-            let (w, _, _) = convex(raw);
-            let qs: Vec<DualQuat<f32>> = q.iter().map(|a| DualQuat::from_array(*a)).collect();
-            let b = chasles::blend::dlb::dlb(&qs, &w).unwrap().to_array();
-            let (x, spread) = residual(&b, &q, &w);
-            let after = |d: [f32; 8]| norm(&residual(&normalize(&dqmul(&b, &exp(&d))), &q, &w).0);
-            let (p, s) = (after(x), after(spread.step(&x)));
-            // f32's rounding floor of the residual: about 1e-7.
-            assert!(s <= p.max(3e-7), "{i}: {s} against {p} (from {})", norm(&x));
-            plain += f64::from(p);
-            second += f64::from(s);
-        }
-        assert!(
-            second * 20.0 < plain,
-            "mean residual {second} against {plain}"
-        );
-    }
-
-    /// Lemma 3 on one lane: a blend of two joints (or one) takes a single update and no
-    /// pass to show it converged, and still ends at ScLERP — within 1e-5 (relative to
-    /// 1 + |x|) of the library's f64 `sclerp` at every relative angle up to 178°, moved by
-    /// up to 2, either hemisphere — and where
-    /// the pass that was left out would have stopped at once (its update is below the
-    /// precision). One joint gives the joint itself.
-    #[test]
-    fn two_joints_end_at_sclerp_after_one_update() {
-        // (f32's rounding along the chain of products, logarithm and exponential: 6.1e-6 at
-        // worst when written.)
-        for i in 0..=300 {
-            let f = i as f32 / 300.0;
-            let p = rigid(f, 2.0 * f - 1.0);
-            let rel = rigid((f * 7.0) % 1.0, 3.1 * f);
-            let mut qj = p * rel;
-            if i % 2 == 1 {
-                qj = -qj; // the other hemisphere: the same transformation
-            }
-            for t in [0.0f32, 0.1, 0.37, 0.5, 0.8] {
-                let (w, _, slots) = convex([1.0 - t, t, 0.0, 0.0]);
-                let identity = DualQuat::<f32>::identity().to_array();
-                let q = [p.to_array(), qj.to_array(), identity, identity];
-                let got = dib::<f32, 4>(&q, &w, slots);
-                let want = chasles::blend::sclerp::sclerp(
-                    p.cast::<f64>(),
-                    qj.cast::<f64>(),
-                    f64::from(w[1]),
-                )
-                .unwrap();
-                let want = if want.real.dot(DualQuat::from_array(got).real.cast()) < 0.0 {
-                    -want
-                } else {
-                    want
-                };
-                for (c, (g, x)) in got.iter().zip(want.to_array()).enumerate() {
-                    assert!(
-                        (f64::from(*g) - x).abs() < 1e-5 * (1.0 + x.abs()),
-                        "{i}, t = {t}, {c}: {got:?} against {want:?}"
-                    );
-                }
-                let (x, _) = update(&got, &q, &w, slots);
-                let norm = dot(&x, &x).sqrt();
-                assert!(norm < DIB_PRECISION, "{i}, t = {t}: {norm}");
-            }
-        }
-        let p = rigid(0.3, 1.2).to_array();
-        let (w, _, slots) = convex([1.0f32, 0.0, 0.0, 0.0]);
-        let identity = DualQuat::<f32>::identity().to_array();
-        let got = dib::<f32, 4>(&[p, identity, identity, identity], &w, slots);
-        for c in 0..8 {
-            assert!((got[c] - p[c]).abs() < 1e-6, "{got:?} against {p:?}");
-        }
-    }
-
-    /// The positive weights may sit in any slots (weights of 0 between them, the identity
-    /// in those slots, as the kernel puts it): on one lane DIB gives the same bits as with
-    /// them in the first slots, for every count from one to K (4 and 8), pairs beyond slot
-    /// 1 included (the counts that decide no update, one update, or the iteration).
-    #[test]
-    fn influences_in_any_slots_give_the_same_bits() {
-        fn check<const K: usize>() {
-            let identity = DualQuat::<f32>::identity().to_array();
-            for i in 0..400 {
-                let f = i as f32 / 400.0;
-                let count = 1 + i % K;
-                // `count` increasing slots out of K, by the bits of a mixed number.
-                let mut at: Vec<usize> = Vec::new();
-                let mut h = (i * 7919 + 13) % (1 << K);
-                for k in 0..K {
-                    if at.len() + (K - k) == count || (h & 1 == 1 && at.len() < count) {
-                        at.push(k);
-                    }
-                    h >>= 1;
-                }
-                assert_eq!(at.len(), count);
-                let joints: Vec<[f32; 8]> = (0..count)
-                    .map(|c| {
-                        rigid(
-                            (f * 5.0 + 0.17 * c as f32) % 1.0,
-                            1.4 * ((f + 0.3 * c as f32) % 1.0),
-                        )
-                        .to_array()
-                    })
-                    .collect();
-                let raw: Vec<f32> = (0..count)
-                    .map(|c| 0.2 + ((f * 11.0 + c as f32 * 0.37) % 1.0))
-                    .collect();
-                let lay = |slot: &dyn Fn(usize) -> usize| {
-                    let (mut q, mut w) = ([identity; K], [0f32; K]);
-                    for c in 0..count {
-                        (q[slot(c)], w[slot(c)]) = (joints[c], raw[c]);
-                    }
-                    let (w, _, slots) = convex(w);
-                    dib::<f32, K>(&q, &w, slots)
-                };
-                let (compact, scattered) = (lay(&|c| c), lay(&|c| at[c]));
-                assert_eq!(
-                    compact.map(f32::to_bits),
-                    scattered.map(f32::to_bits),
-                    "K = {K}, {i}: slots {at:?}: {compact:?} against {scattered:?}"
-                );
-            }
-        }
-        check::<4>();
-        check::<8>();
-    }
-
-    /// On one lane the branch-free DIB is the library's DIB: the same blend to within the
-    /// stopping rule's reach, on convex weights of two to four joints at every angle, and a
-    /// NaN joint with weight gives NaN (or stops at once) rather than a number.
-    #[test]
-    fn the_lane_dib_is_the_librarys() {
-        for i in 0..200 {
-            let f = i as f32 / 200.0;
-            let joints = [0.1, 0.4, 0.7, 0.9].map(|g| rigid((f + g) % 1.0, 2.8 * (f + g)));
-            let raw = [
-                0.5 * (1.0 - f),
-                0.3,
-                0.2 * f,
-                if i % 3 == 0 { 0.0 } else { 0.1 },
-            ];
-            let (w, used, slots) = convex(raw);
-            let q = std::array::from_fn(|k| {
-                if used[k] {
-                    joints[k].to_array()
-                } else {
-                    DualQuat::<f32>::identity().to_array()
-                }
-            });
-            let got = DualQuat::from_array(dib::<f32, 4>(&q, &w, slots));
-            let (qs, ws): (Vec<DualQuat<f64>>, Vec<f64>) = (0..4)
-                .filter(|&k| used[k])
-                .map(|k| (joints[k].cast::<f64>(), f64::from(w[k])))
-                .unzip();
-            let (want, _) = chasles::blend::dib::dib(&qs, &ws, 1e-12, 200).unwrap();
-            let p = Vec3::new(0.5f32, -1.0, 2.0);
-            let exact = want.transform_point(p.cast::<f64>());
-            let off = (got.transform_point(p).cast::<f64>() - exact).norm();
-            // The stopping rule's reach at a lever of ‖p‖ ≈ 2.3, and rounding.
-            let reach = 2.0 * f64::from(DIB_PRECISION) * (1.0 + 2.0 * 2.3) + 1e-5;
-            assert!(off <= reach, "{i}: {off}");
-        }
-        let mut q = [DualQuat::<f32>::identity().to_array(); 4];
-        q[1][2] = f32::NAN;
-        let (w, _, slots) = convex([0.5f32, 0.5, 0.0, 0.0]);
-        assert!(dib::<f32, 4>(&q, &w, slots).iter().all(|c| c.is_nan()));
-    }
-}
+mod tests;
