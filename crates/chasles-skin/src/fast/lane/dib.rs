@@ -29,9 +29,9 @@
 //!
 //! **Subnormal numbers.** A lane of one influence never steps, but its block's passes
 //! compute its update all the same: the logarithm of `b̂* q̂` with `b̂ = q̂` to rounding,
-//! whose vector parts are of 1e-15 and dual ones of 1e-28 where cancellations leave that
-//! little (the Fox, RiggedFigure), and whose moments and exponential take products of
-//! those — subnormal numbers, for each of which an x86 core takes a microcode assist
+//! a logarithm whose vector parts are of 1e-15 and dual ones of 1e-28 where cancellations
+//! leave that little (the Fox, RiggedFigure). The moments' and the exponential's
+//! products of those are subnormal numbers, for which an x86 core takes microcode assists
 //! (Rust assumes flush-to-zero and denormals-are-zero are off, so the kernel cannot turn
 //! them on). Its update takes weight 0, which makes them exact zeros and changes no
 //! lane's numbers (the old and new kernels' outputs were compared bit for bit on the

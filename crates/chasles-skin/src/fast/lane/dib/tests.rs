@@ -248,12 +248,12 @@ fn influences_in_any_slots_give_the_same_bits() {
     check::<8>();
 }
 
-/// A lane of one influence meets no subnormal number, whatever its block-mates do: on
-/// the built-in characters (each clip at seven times, blocks of sixteen as the
-/// sixteen-vertex kernel takes them, through to the transformation), no operation of
-/// such a lane has a subnormal operand or result (module docs, "Subnormal numbers":
-/// before its update took weight 0, the Fox's made thousands and skinned 2.9× slower;
-/// lanes of more influences may still make a few).
+/// A lane of one influence meets no subnormal number in its block's passes: on the
+/// built-in characters (each clip at seven times, blocks of sixteen as the sixteen-vertex
+/// kernel takes them, through to the transformation), no operation of such a lane has a
+/// subnormal operand or result or underflows (module docs, "Subnormal numbers": before
+/// its update took weight 0, the Fox's made thousands and skinned 2.9× slower over its
+/// clips; lanes of more influences may still make a few).
 #[test]
 fn lanes_of_one_influence_meet_no_subnormal_numbers() {
     use super::super::transform;
