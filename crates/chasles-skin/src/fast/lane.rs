@@ -65,8 +65,16 @@ pub(super) trait Lane: Copy {
     fn msub(self, b: Self, c: Self) -> Self;
     /// `c − self · b`.
     fn nmadd(self, b: Self, c: Self) -> Self;
-    /// `Σ cₖ sᵏ` by Horner's rule, `a ← a s + cₖ` from the top coefficient down.
-    fn horner<const N: usize>(c: &[f32; N], s: Self) -> Self;
+    /// `Σ cₖ sᵏ` by Horner's rule, `a ← a s + cₖ` from the top coefficient down (the SIMD
+    /// lanes override it with `target_feature` functions of their own).
+    #[inline(always)]
+    fn horner<const N: usize>(c: &[f32; N], s: Self) -> Self {
+        let mut a = Self::splat(c[N - 1]);
+        for k in (0..N - 1).rev() {
+            a = a.madd(s, Self::splat(c[k]));
+        }
+        a
+    }
 }
 
 impl Lane for f32 {
@@ -146,14 +154,6 @@ impl Lane for f32 {
     #[inline(always)]
     fn nmadd(self, b: Self, c: Self) -> Self {
         c - self * b
-    }
-    #[inline(always)]
-    fn horner<const N: usize>(c: &[f32; N], s: Self) -> Self {
-        let mut a = c[N - 1];
-        for k in (0..N - 1).rev() {
-            a = a.madd(s, c[k]);
-        }
-        a
     }
 }
 

@@ -288,12 +288,13 @@ pub(in crate::fast) fn dib<L: Lane, const K: usize>(
         count = count.add(L::select(zero.lt(w[k]), L::splat(1.0), zero));
     }
     let pair = count.lt(L::splat(2.5));
-    // The update's weights: 0 in a lane of one influence, which never steps (module
-    // docs, "Subnormal numbers").
-    let single = count.lt(L::splat(1.5));
+    // The lanes that step: two influences or more.
+    let mut active = L::splat(1.5).lt(count);
+    // The update's weights: 0 in a lane that never steps (module docs, "Subnormal
+    // numbers").
     let mut wu = [zero; K];
     for k in 0..slots {
-        wu[k] = L::select(single, zero, w[k]);
+        wu[k] = L::select(active, w[k], zero);
     }
     // Where a block's lanes all have two influences or fewer but some sit past slot 1 (a
     // hand-built layout), the loop still takes its second pass, which stops every lane at
@@ -301,7 +302,6 @@ pub(in crate::fast) fn dib<L: Lane, const K: usize>(
     // slower (2 influences 38.8 → 36.5 M vertices/s, 4 influences 16.7 → 16.1).
     let updates = if slots <= 2 { 1 } else { DIB_UPDATES };
     let mut last = L::splat(f32::INFINITY);
-    let mut active = L::splat(1.5).lt(count);
     for _ in 0..updates {
         let (x, spread) = update(&b, q, &wu, slots);
         let norm = dot(&x, &x).sqrt();
