@@ -1,34 +1,33 @@
 #!/usr/bin/env python3
-"""Refits the polynomial tables `Q` and `G` of DIB's lane logarithm,
+"""Refits the polynomial tables `H` and `H_S` of DIB's lane logarithm,
 crates/chasles-skin/src/fast/lane/dib.rs.
 
 What is fitted (each table the polynomial in z, constant term first, coefficients rounded to
-f32 as the kernels use them):
-  Q  Q(z) ~ atan(sqrt z)/sqrt z,                           0 <= z <= tan^2(pi/8), 6 terms;
-  G  G(z) ~ (atan(sqrt z) - sqrt z/(1 + z))/z^(3/2),       same z, 7 terms
-     (h = atan2(n, w)/n = Q(t^2)/w and dh/ds = -G(t^2)/(2 w^3) for t = n/w <= tan(pi/8):
-     the logarithm's reduced angle, and the derivative its dual part takes).
+f32 as the kernels use them), with z = tan^2(theta/2) for the rotation's half-angle
+theta = atan2(n, w) in [0, pi/2] of a unit quaternion (w, a), n = |a|, w >= 0:
+  H    h(z) = theta/n = (1 + z) atan(sqrt z)/sqrt z,                    0 <= z <= 1, 8 terms;
+  H_S  dh/ds at fixed w, s = n^2: (w - h)/(2 s)
+       = ((1 - z^2) - (1 + z)^3 atan(sqrt z)/sqrt z)/(8 z),             same z, 7 terms
+     (on the unit sphere w = (1 - z)/(1 + z), n = 2 sqrt z/(1 + z); the logarithm's vector
+     part is h a, and its dual part takes dh/ds).
+The kernels take z = s/(1 + w)^2: no square root, no reduction of the angle, one division.
 How: as scripts/fit_trig.py (whose helpers this uses) — plain least squares in the monomial
-basis at --nodes Chebyshev nodes of [0, tan^2(pi/8)], in 50-digit mpmath arithmetic: near
-minimax. They replace the Taylor series, Q's ten terms and G's eleven (exact to 1e-9 and
-4e-9 at z's top), with six and seven (exact to 6.1e-10 and 2.7e-10 before their
-coefficients are rounded to f32), as accurate where the kernels use them: with f32
-coefficients Q within 0.011 ulp (the Taylor table's 0.023) and G within 0.34 (0.32: mostly
-2/3 rounded to f32, which both share), and evaluated in f32 0.30 and 0.88 ulp (0.31 and
-0.88) — four multiply-adds fewer on each of the two chains of every logarithm.
+basis at --nodes Chebyshev nodes of [0, 1], in 50-digit mpmath arithmetic: near minimax.
+They replace `Q` and `G` in t^2, t = n/w reduced to t <= tan(pi/8) by three rows of
+formulas with a square root, ten selects and two more divisions.
 
-Errors are relative, in f32 ulp = 2^-23, of Q(z) and G(z) over a dense grid: exactly (50
+Errors are relative, in f32 ulp = 2^-23, of h(z) and dh/ds over a dense grid: exactly (50
 digits, the coefficients rounded to f32) and evaluated in f32 by Horner's rule (each
 operation rounded to f32; the kernels fuse each step into one multiply-add, which rounds
-once: emulated, 0.29 and 0.79 ulp, measured rather than bounded). G's true value near
-z = 0 comes from its own series (its closed form cancels there). The fits and Z_MAX rely on
-fit_trig's 50-digit mpmath precision (mp.mp.dps, set when it is imported).
+once: measured rather than bounded). H_S's true value near z = 0 comes from its own series
+(its closed form cancels there). The fits rely on fit_trig's 50-digit mpmath precision
+(mp.mp.dps, set when it is imported).
 
 Usage (needs mpmath: pip install mpmath):
   python3 scripts/fit_dib_log.py          print the refitted tables as Rust source, and errors
   python3 scripts/fit_dib_log.py --check  compare with dib.rs's tables; exit 1 unless they are
                                           the refit's f32 values and within the documented
-                                          error (Q 0.02 ulp exactly and 0.5 in f32, G 0.4
+                                          error (H 0.4 ulp exactly and 1 in f32, H_S 0.5
                                           and 1)
 """
 import pathlib
@@ -43,25 +42,37 @@ DIB_RS = (
     / "crates" / "chasles-skin" / "src" / "fast" / "lane" / "dib.rs"
 )
 EPS32 = 2.0**-23
-Z_MAX = (mp.sqrt(2) - 1) ** 2  # tan^2(pi/8): TAN_PI_8 in dib.rs, squared
+Z_MAX = mp.mpf(1)  # tan^2(pi/4): half-angles up to pi/2 (w >= 0)
 
 
-def q_true(z):
+def atan_over(z):
+    """atan(sqrt z)/sqrt z."""
     if z == 0:
         return mp.mpf(1)
     r = mp.sqrt(z)
     return mp.atan(r) / r
 
 
-def g_true(z):
+def h_true(z):
+    return (1 + z) * atan_over(z)
+
+
+def h_s_true(z):
     if z < mp.mpf("0.01"):
-        return mp.nsum(lambda k: (-1) ** k * 2 * (k + 1) / (2 * k + 3) * z**k, [0, mp.inf])
-    r = mp.sqrt(z)
-    return (mp.atan(r) - r / (1 + z)) / (z * r)
+        # atan(sqrt z)/sqrt z = sum (-z)^k/(2k+1); times (1 + z)^3, then the closed form's
+        # numerator over 8z term by term.
+        terms = 80
+        c = [mp.mpf(-1) ** k / (2 * k + 1) for k in range(terms)]
+        b = [sum(m * c[k - j] for j, m in enumerate([1, 3, 3, 1]) if k >= j) for k in range(terms)]
+        num = [-x for x in b]
+        num[0] += 1
+        num[2] -= 1
+        return mp.fsum(num[k + 1] * z**k for k in range(terms - 1)) / 8
+    return ((1 - z * z) - (1 + z) ** 3 * atan_over(z)) / (8 * z)
 
 
 # name: (terms, the function, the documented bounds in f32 ulp: exactly and in f32)
-TABLES = {"Q": (6, q_true, 0.02, 0.5), "G": (7, g_true, 0.4, 1.0)}
+TABLES = {"H": (8, h_true, 0.4, 1.0), "H_S": (7, h_s_true, 0.5, 1.0)}
 
 
 def errors(name, c, grid):
@@ -72,8 +83,9 @@ def errors(name, c, grid):
     for i in range(grid + 1):
         z = Z_MAX * i / grid
         want = true(z)
-        e_mp = max(e_mp, float(abs(horner(cm, z) - want) / want) / EPS32)
-        e_32 = max(e_32, float(abs(mp.mpf(horner32(c, f32(z))) - want) / want) / EPS32)
+        e_mp = max(e_mp, float(abs((horner(cm, z) - want) / want)) / EPS32)
+        want = true(mp.mpf(f32(z)))
+        e_32 = max(e_32, float(abs((mp.mpf(horner32(c, f32(z))) - want) / want)) / EPS32)
     return e_mp, e_32
 
 
@@ -88,9 +100,6 @@ def shortest(a):
 
 def current_tables():
     src = DIB_RS.read_text()
-    m = re.search(r"const TAN_PI_8: f32 = ([^;]+);", src)
-    if not m or f32(m.group(1).replace("_", "")) != f32(mp.sqrt(Z_MAX)):
-        sys.exit(f"{DIB_RS}: TAN_PI_8 is not tan(pi/8) in f32; update Z_MAX here")
     tables = {}
     for name, (terms, _, _, _) in TABLES.items():
         m = re.search(rf"const {name}: \[f32; (\d+)\] = \[([^\]]*)\];", src)

@@ -43,33 +43,51 @@
 //! components of 1e-13 and less (0–400 lane operations a Fox pose): flushing the step's
 //! tiny components to zero took most of them away and measured no faster.
 //!
-//! No trigonometric calls. For `r̂ = b̂* q̂ᵢ` taken to `w ≥ 0`, with `r0 = (w, a)`,
-//! `rε = (wε, b)`, `n = ‖a‖`, `s = n²` (eq. 2 and the library's `DualQuat::log`):
+//! No trigonometric calls, no square root and no reduction of the angle. For `r̂ = b̂* q̂ᵢ`
+//! taken to `w ≥ 0`, with `r0 = (w, a)`, `rε = (wε, b)`, `n = ‖a‖`, `s = n²` (eq. 2 and
+//! the library's `DualQuat::log`):
 //!
 //! ```text
 //! log r̂ = [½ ln‖r0‖², h a] + ε [r0·rε / ‖r0‖², h b + a (2 ∂h/∂s a·b − wε / ‖r0‖²)],
 //! h = atan2(n, w) / n
 //! ```
 //!
-//! The angle is reduced to `|t| ≤ tan(π/8)` and summed by a polynomial for
-//! `Q(z) = atan(√z)/√z = Σ (−1)ᵏ zᵏ/(2k+1)`, z = t² ≤ 0.172: six terms fitted near minimax on
-//! that interval (`scripts/fit_dib_log.py`, checked by CI), exact to 6e-10 where the
-//! Taylor series took ten to 1e-9:
+//! The angle `θ = atan2(n, w)` lies in [0, π/2], so `z = tan²(θ/2)` lies in [0, 1], and on
+//! the unit sphere `z = s/(1 + w)²`, `h` and `∂h/∂s` (at fixed w) are smooth in z:
 //!
 //! ```text
-//! n ≤ tan(π/8) w:   t = n/w,             h = Q(t²)/w,  ∂h/∂s = −G(t²)/(2w³)
-//! n ≥ w/tan(π/8):   t = w/n,             θ = π/2 − t Q(t²)
-//! between:          t = (n − w)/(n + w), θ = π/4 + t Q(t²)
+//! h     = (1 + z) atan(√z)/√z                           ≈ H(z)
+//! ∂h/∂s = (w − h)/(2s) = ((1 − z²) − (1 + z)³ atan(√z)/√z)/(8z) ≈ H_S(z)
 //! ```
 //!
-//! with `G(z) = Σ (−1)ᵏ 2(k+1)/(2k+3) zᵏ` (the library's series; fitted likewise, seven
-//! terms to 3e-10 where the series took eleven to 4e-9 — both fits as accurate as the
-//! series in f32, and four multiply-adds fewer on each of a logarithm's two longest chains:
-//! best of runs at 10⁵ vertices, one core, binaries in turn: 4 influences 28.2 → 29.6 M
-//! vertices/s on sixteen lanes and 21.2 → 22.6 on eight, CesiumMan 40.0 → 42.4 and
-//! 33.7 → 36.3) and, in the last two rows
-//! (n > 0.38 ‖r0‖, no cancellation), `h = θ/n`, `∂h/∂s = (w n/‖r0‖² − θ)/(2 n s)`. The
-//! exponential's `cos √s`, `sinc √s` and `d sinc √s / ds` are Taylor series in `s = ‖a‖²`
+//! with [`H`] and [`H_S`] polynomials of eight and seven terms fitted near minimax on
+//! [0, 1] (`scripts/fit_dib_log.py`, checked by CI: 0.30 and 0.40 f32 ulp with their f32
+//! coefficients, 0.75 and 0.81 evaluated in f32). A logarithm so takes two divisions
+//! (`1/(1 + w)`, which waits only for w, and `1/‖r0‖²`) and two Horner chains in z. It
+//! replaced a reduction of `t = n/w` to `|t| ≤ tan(π/8)` by three rows of formulas (`t`
+//! as `n/w`, `w/n` or `(n − w)/(n + w)`, polynomials for `atan(√z)/√z` and the library's
+//! derivative series in `t²`), which took a square root, four divisions and ten selects,
+//! all on the chain from the product `b̂* q̂ᵢ` to the logarithm. Over the characters' clips
+//! at seven times each and 10⁵ synthetic vertices of four influences (best of 20, one core,
+//! old and new binaries in turn four times, M vertices/s): sixteen lanes 36.5–37.6 →
+//! 41.3–44.9 on the synthetic mesh, the Fox 58.8–62.7 → 66.6–70.4, RiggedFigure
+//! 48.1–50.8 → 55.3–60.1, CesiumMan 48.9–51.7 → 57.5–61.5; eight lanes (AVX2 alone, three
+//! times) 22.8–23.6 → 28.9–32.1, 44.1–46.4 → 50.2–57.3, 31.7–32.7 → 39.9–42.1 and
+//! 35.1–39.1 → 44.0–48.5.
+//!
+//! The formula takes `‖r0‖` as 1, as the `½ ln‖r0‖²` shortcut below does (r̂ is a product
+//! of unit dual quaternions, unit to f32's rounding): over 40 000 random unit dual
+//! quaternions the logarithm's vector part is within 2.9e-7 of f64's, relatively (the
+//! reduction's 2.5e-7), and over as many blends of two to four joints DIB's results stand
+//! as far from f64's DIB as before (largest 6.05e-5, mean 4.56e-6: the stopping rule's
+//! reach). Tried and not kept: `‖r0‖` to first order in `z` and `h` (`(1 + ‖r0‖²)/2` for
+//! `‖r0‖`, two products by `(3 − ‖r0‖²)/2` and `(5 − 3‖r0‖²)/2`: 2.3e-7), 5–7 % slower
+//! with the chain it lengthens; Estrin's scheme for the two polynomials (four runs each in
+//! turn): the synthetic mesh 41.4–43.6 → 43.0–45.6, but the Fox 67.5–68.2 → 46.3–48.9, as
+//! `z⁴` underflows in a lane of one influence, whose `z` is about 1e-30 (see "Subnormal
+//! numbers" above), where Horner's rule only adds products to the coefficients.
+//!
+//! The exponential's `cos √s`, `sinc √s` and `d sinc √s / ds` are Taylor series in `s = ‖a‖²`
 //! for the step's `a`, truncated below 1e-8 at `s = (π/2)²` (a convex blend of half-angles
 //! in [0, π/2] stays in it; the second-order step can reach a little past it, where the
 //! neglected terms stay below 1e-7, and a step's error costs only speed: the stopping rule
@@ -86,29 +104,29 @@ use crate::skinning::{DIB_PRECISION, DIB_UPDATES};
 use chasles::blend::STALL_FACTOR;
 use second_order::Spread;
 
-/// `tan(π/8) = √2 − 1`: where the angle reductions change.
-const TAN_PI_8: f32 = 0.414_213_57;
-/// `Q(z) = atan(√z)/√z` on `0 ≤ z ≤ tan²(π/8)`, constant term first: fitted near minimax by
-/// `scripts/fit_dib_log.py` (exact to 6e-10; 0.011 f32 ulp with these f32 coefficients).
-pub(in crate::fast) const Q: [f32; 6] = [
+/// `h(z) = θ/n = (1 + z) atan(√z)/√z` on `0 ≤ z ≤ 1` (`z = tan²(θ/2)`), constant term
+/// first: fitted near minimax by `scripts/fit_dib_log.py` (0.30 f32 ulp with these f32
+/// coefficients, 0.75 evaluated in f32).
+pub(in crate::fast) const H: [f32; 8] = [
     1.0,
-    -0.33333308,
-    0.1999821,
-    -0.14239983,
-    0.10572814,
-    -0.060332417,
+    0.6666642,
+    -0.13327816,
+    0.056666043,
+    -0.029649405,
+    0.014868048,
+    -0.0054738363,
+    0.000999452,
 ];
-/// `G(z) = (atan √z − √z/(1+z))/z^{3/2}` on the same interval (the series
-/// `(−1)ᵏ 2(k+1)/(2k+3)`), fitted likewise: exact to 3e-10, 0.34 f32 ulp with these f32
-/// coefficients (most of it 2/3 rounded to f32, as in the series' table).
-pub(in crate::fast) const G: [f32; 7] = [
-    0.6666667,
-    -0.79999983,
-    0.85712785,
-    -0.8883507,
-    0.89979506,
-    -0.83857864,
-    0.52866524,
+/// `∂h/∂s = (w − h)/(2s) = ((1 − z²) − (1 + z)³ atan(√z)/√z)/(8z)` on the same interval,
+/// fitted likewise (0.40 f32 ulp, 0.81 evaluated in f32).
+pub(in crate::fast) const H_S: [f32; 7] = [
+    -0.33333334,
+    -0.40000036,
+    -0.057136584,
+    0.006308868,
+    -0.0016032052,
+    0.00043928064,
+    -7.2821495e-05,
 ];
 /// `cos √s = Σ (−1)ᵏ sᵏ/(2k)!`: next term below 7e-9 at `s = (π/2)²`.
 pub(in crate::fast) const COS: [f32; 7] = taylor(0);
@@ -153,34 +171,16 @@ pub(in crate::fast) fn normalize<L: Lane>(q: &[L; 8]) -> [L; 8] {
 /// `log r̂` of the module docs, for `r̂` or `−r̂`, whichever has `w ≥ 0`.
 #[inline(always)]
 pub(in crate::fast) fn log<L: Lane>(r: &[L; 8]) -> [L; 8] {
-    let zero = L::splat(0.0);
     let r = eight(|c| r[c].flip_by_sign_of(r[0]));
     let (w, wd) = (r[0], r[4]);
     let s = dot(&r[1..4], &r[1..4]);
     let ab = dot(&r[1..4], &r[5..8]);
     let n2 = w.madd(w, s);
     let inv_n2 = L::splat(1.0).div(n2);
-    let n = s.sqrt();
-    let near = n.le(L::splat(TAN_PI_8).mul(w));
-    let far = w.lt(L::splat(TAN_PI_8).mul(n));
-    let num = L::select(near, n, L::select(far, w, n.sub(w)));
-    let den = L::select(near, w, L::select(far, n, n.add(w)));
-    let t = num.div(den);
-    let z = t.mul(t);
-    let q = horner(&Q, z);
-    let offset = L::select(
-        near,
-        zero,
-        L::select(
-            far,
-            L::splat(std::f32::consts::FRAC_PI_2),
-            L::splat(std::f32::consts::FRAC_PI_4),
-        ),
-    );
-    let theta = t.neg_where(far).madd(q, offset);
-    let h = L::select(near, q, theta).div(L::select(near, w, n));
-    let h_s = L::select(near, zero.sub(horner(&G, z)), w.mul(n).msub(inv_n2, theta))
-        .div(L::select(near, w.add(w).mul(w.mul(w)), n.add(n).mul(s)));
+    let u = L::splat(1.0).div(L::splat(1.0).add(w));
+    let z = s.mul(u.mul(u));
+    let h = horner(&H, z);
+    let h_s = horner(&H_S, z);
     // ∂h = ∂h/∂s · 2 a·b − wε / ‖r0‖².
     let h_du = h_s.add(h_s).msub(ab, inv_n2.mul(wd));
     let ln = L::splat(0.5).mul(n2.sub(L::splat(1.0)));

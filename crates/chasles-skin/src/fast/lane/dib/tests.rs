@@ -10,45 +10,68 @@ fn sum64(c: &[f32], s: f64) -> f64 {
     c.iter().rev().fold(0.0, |a, k| a * s + f64::from(*k))
 }
 
-/// The fitted `Q` and `G` are their closed forms on `[0, tan²(π/8)]` as
-/// `scripts/fit_dib_log.py` documents (relative: 0.02 f32 ulp for Q, 0.4 for G with their
-/// f32 coefficients; 0.5 and 1 ulp evaluated in f32), the exponential's Taylor series
-/// theirs up to `s = (π/2)²`.
+/// The fitted `H` and `H_S` are their closed forms on `[0, 1]` as `scripts/fit_dib_log.py`
+/// documents (relative: 0.4 f32 ulp for H, 0.5 for H_S with their f32 coefficients; 1 ulp
+/// each evaluated in f32), and give the logarithm's `h = atan2(n, w)/n` and
+/// `∂h/∂s = (w − h)/(2s)` at `z = s/(1 + w)²` on the unit sphere; the exponential's Taylor
+/// series are theirs up to `s = (π/2)²`.
 #[test]
 fn the_series_are_the_closed_forms() {
     let ulp = f64::from(f32::EPSILON);
-    // The closed forms at z; G near 0 by its series (its closed form cancels there).
-    let q_of = |z: f64| {
+    // The closed forms at z; H_S near 0 by its series (its closed form cancels there):
+    // atan(√z)/√z = Σ (−z)ᵏ/(2k+1), times (1 + z)³, then the numerator over 8z term by term.
+    let atan_over = |z: f64| {
         if z == 0.0 {
             1.0
         } else {
             z.sqrt().atan() / z.sqrt()
         }
     };
-    let g_of = |z: f64| {
+    let h_of = |z: f64| (1.0 + z) * atan_over(z);
+    let h_s_of = |z: f64| {
         if z < 0.01 {
-            (0..30).rev().fold(0.0, |a, k| {
-                let k = f64::from(k);
-                a * -z + 2.0 * (k + 1.0) / (2.0 * k + 3.0)
-            })
+            let c = |k: i32| {
+                if k < 0 {
+                    0.0
+                } else {
+                    (-1f64).powi(k) / f64::from(2 * k + 1)
+                }
+            };
+            let cubed = |k: i32| c(k) + 3.0 * c(k - 1) + 3.0 * c(k - 2) + c(k - 3);
+            let num = |k: i32| -cubed(k) + if k == 2 { -1.0 } else { 0.0 };
+            (0..30).rev().fold(0.0, |a, k| a * z + num(k + 1)) / 8.0
         } else {
-            let r = z.sqrt();
-            (r.atan() - r / (1.0 + z)) / (z * r)
+            ((1.0 - z * z) - (1.0 + z).powi(3) * atan_over(z)) / (8.0 * z)
         }
     };
-    let rel = |got: f64, want: f64| (got - want).abs() / want / ulp;
+    let rel = |got: f64, want: f64| ((got - want) / want).abs() / ulp;
     for i in 0..=1000 {
         let f = f64::from(i) / 1000.0;
-        // Q and G up to tan²(π/8): exactly (their f32 coefficients), and in f32 at the
-        // f32 nearest z.
-        let z = f * (2f64.sqrt() - 1.0).powi(2);
-        assert!(rel(sum64(&Q, z), q_of(z)) <= 0.02, "Q({z})");
-        assert!(rel(sum64(&G, z), g_of(z)) <= 0.4, "G({z})");
+        // H and H_S up to z = 1: exactly (their f32 coefficients), and in f32 at the f32
+        // nearest z.
+        let z = f;
+        assert!(rel(sum64(&H, z), h_of(z)) <= 0.4, "H({z})");
+        assert!(rel(sum64(&H_S, z), h_s_of(z)) <= 0.5, "H_S({z})");
         let z32 = z as f32;
-        let (q32, g32) = (horner(&Q, z32), horner(&G, z32));
+        let (h32, h_s32) = (horner(&H, z32), horner(&H_S, z32));
         let z = f64::from(z32);
-        assert!(rel(f64::from(q32), q_of(z)) <= 0.5, "Q({z}) in f32: {q32}");
-        assert!(rel(f64::from(g32), g_of(z)) <= 1.0, "G({z}) in f32: {g32}");
+        assert!(rel(f64::from(h32), h_of(z)) <= 1.0, "H({z}) in f32: {h32}");
+        assert!(
+            rel(f64::from(h_s32), h_s_of(z)) <= 1.0,
+            "H_S({z}) in f32: {h_s32}"
+        );
+        // What they stand for: at the angle θ = f π/2 on the unit sphere, z = s/(1 + w)².
+        let theta = f * std::f64::consts::FRAC_PI_2;
+        let (w, n) = (theta.cos(), theta.sin());
+        let z = n * n / ((1.0 + w) * (1.0 + w));
+        if n > 0.0 {
+            let h = theta / n;
+            assert!((h_of(z) - h).abs() <= 1e-14 * h, "h at {theta}");
+            if theta > 0.1 {
+                let h_s = (w - h) / (2.0 * n * n);
+                assert!((h_s_of(z) - h_s).abs() <= 1e-12, "∂h/∂s at {theta}");
+            }
+        }
         // cos √s, sinc √s and its derivative up to s = (π/2)².
         let x = f * std::f64::consts::FRAC_PI_2;
         let s = x * x;
@@ -71,7 +94,7 @@ fn rigid(f: f32, angle: f32) -> DualQuat<f32> {
 
 /// On one lane the series' logarithm and exponential are the library's `DualQuat::log`
 /// and `exp` (eq. 2 and its inverse; the exponential up to its positive scalar factor,
-/// which the normalization removes) at every angle of all three reduction rows, both
+/// which the normalization removes) at every angle from 0 to a half-turn, both
 /// hemispheres, −0 included.
 #[test]
 fn the_lane_log_and_exp_are_the_librarys() {
