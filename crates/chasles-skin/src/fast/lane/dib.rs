@@ -43,46 +43,51 @@
 //! components of 1e-13 and less (0–400 lane operations a Fox pose): flushing the step's
 //! tiny components to zero took most of them away and measured no faster.
 //!
-//! No trigonometric calls, no square root and no reduction of the angle. For `r̂ = b̂* q̂ᵢ`
-//! taken to `w ≥ 0`, with `r0 = (w, a)`, `rε = (wε, b)`, `n = ‖a‖`, `s = n²` (eq. 2 and
-//! the library's `DualQuat::log`):
+//! No trigonometric calls, no square root and no reduction of the angle: one division. For
+//! `r̂ = b̂* q̂ᵢ` taken to `w ≥ 0`, with `r0 = (w, a)`, `rε = (wε, b)`, `n = ‖a‖`, `s = n²`
+//! (eq. 2 and the library's `DualQuat::log`):
 //!
 //! ```text
 //! log r̂ = [½ ln‖r0‖², h a] + ε [r0·rε / ‖r0‖², h b + a (2 ∂h/∂s a·b − wε / ‖r0‖²)],
 //! h = atan2(n, w) / n
 //! ```
 //!
-//! The angle `θ = atan2(n, w)` lies in [0, π/2], so `z = tan²(θ/2)` lies in [0, 1], and on
-//! the unit sphere `z = s/(1 + w)²`, `h` and `∂h/∂s` (at fixed w) are smooth in z:
+//! On the unit sphere, with `θ = atan2(n, w)` in [0, π/2] and `v = 1 − w = 1 − cos θ` in
+//! [0, 1], `h` and `∂h/∂s` (at fixed w) are smooth in v (their singularity is at v = 2):
 //!
 //! ```text
-//! h     = (1 + z) atan(√z)/√z                           ≈ H(z)
-//! ∂h/∂s = (w − h)/(2s) = ((1 − z²) − (1 + z)³ atan(√z)/√z)/(8z) ≈ H_S(z)
+//! h     = θ / sin θ = acos(1 − v)/√(v (2 − v))   ≈ H(v)
+//! ∂h/∂s = (w − h)/(2s) = ((1 − v) − h)/(2v (2 − v)) ≈ H_S(v)
 //! ```
 //!
-//! with [`H`] and [`H_S`] polynomials of eight and seven terms fitted near minimax on
-//! [0, 1] (`scripts/fit_dib_log.py`, checked by CI: 0.30 and 0.40 f32 ulp with their f32
-//! coefficients, 0.75 and 0.81 evaluated in f32). A logarithm so takes two divisions
-//! (`1/(1 + w)`, which waits only for w, and `1/‖r0‖²`) and two Horner chains in z. It
-//! replaced a reduction of `t = n/w` to `|t| ≤ tan(π/8)` by three rows of formulas (`t`
+//! with [`H`] and [`H_S`] polynomials of ten and eleven terms fitted near minimax on
+//! [0, 1] (`scripts/fit_dib_log.py`, checked by CI: 0.22 and 0.25 f32 ulp with their f32
+//! coefficients, 0.74 and 0.91 evaluated in f32). Where v loses relative precision (small
+//! angles, `1 − w` of rounded numbers) the polynomials stay near their constant terms, so h
+//! keeps f32's precision. A logarithm's chain from the product `b̂* q̂ᵢ` to `h` is one
+//! subtraction and Horner's rule; the one division left, `1/‖r0‖²`, is off it.
+//!
+//! This replaced a reduction of `t = n/w` to `|t| ≤ tan(π/8)` by three rows of formulas (`t`
 //! as `n/w`, `w/n` or `(n − w)/(n + w)`, polynomials for `atan(√z)/√z` and the library's
-//! derivative series in `t²`), which took a square root, four divisions and ten selects,
-//! all on the chain from the product `b̂* q̂ᵢ` to the logarithm. Over the characters' clips
-//! at seven times each and 10⁵ synthetic vertices of four influences (best of 20, one core,
-//! old and new binaries in turn four times, M vertices/s): sixteen lanes 36.5–37.6 →
-//! 41.3–44.9 on the synthetic mesh, the Fox 58.8–62.7 → 66.6–70.4, RiggedFigure
-//! 48.1–50.8 → 55.3–60.1, CesiumMan 48.9–51.7 → 57.5–61.5; eight lanes (AVX2 alone, three
-//! times) 22.8–23.6 → 28.9–32.1, 44.1–46.4 → 50.2–57.3, 31.7–32.7 → 39.9–42.1 and
-//! 35.1–39.1 → 44.0–48.5.
+//! derivative series in `t²`), which took a square root, four divisions and ten selects on
+//! that chain. Over the characters' clips at seven times each and 10⁵ synthetic vertices of
+//! four influences (best of 20, one core, old and new binaries in turn four times, M
+//! vertices/s): sixteen lanes 34.9–36.7 → 42.9–44.7 on the synthetic mesh, the Fox
+//! 59.1–60.9 → 68.5–70.5, RiggedFigure 46.9–48.2 → 58.6–58.8, CesiumMan 47.2–50.4 →
+//! 58.9–61.4; eight lanes (AVX2 alone, three times) 23.2–24.6 → 29.4–30.5, 44.6–47.2 →
+//! 54.6–55.3, 31.8–35.3 → 41.4–44.5 and 35.7–38.1 → 43.2–46.1. A first version took
+//! `z = tan²(θ/2) = s/(1 + w)²` and polynomials of eight and seven terms in z (`h = (1 + z)
+//! atan(√z)/√z`): its division `1/(1 + w)` sat on the chain, and v measured 1–4 % faster
+//! (four runs each in turn).
 //!
 //! The formula takes `‖r0‖` as 1, as the `½ ln‖r0‖²` shortcut below does (r̂ is a product
 //! of unit dual quaternions, unit to f32's rounding): over 40 000 random unit dual
-//! quaternions the logarithm's vector part is within 2.9e-7 of f64's, relatively (the
-//! reduction's 2.5e-7), and over as many blends of two to four joints DIB's results stand
-//! as far from f64's DIB as before (largest 6.05e-5, mean 4.56e-6: the stopping rule's
-//! reach). Tried and not kept: `‖r0‖` to first order in `z` and `h` (`(1 + ‖r0‖²)/2` for
-//! `‖r0‖`, two products by `(3 − ‖r0‖²)/2` and `(5 − 3‖r0‖²)/2`: 2.3e-7), 5–7 % slower
-//! with the chain it lengthens; Estrin's scheme for the two polynomials (four runs each in
+//! quaternions the logarithm's vector part is within 2.1e-7 of f64's, relatively (the
+//! reduction's 2.5e-7, z's 2.9e-7), and over as many blends of two to four joints DIB's
+//! results stand as far from f64's DIB as before (largest 6.04e-5, mean 4.56e-6: the
+//! stopping rule's reach). Tried on z and not kept: `‖r0‖` to first order (`(1 + ‖r0‖²)/2`
+//! for `‖r0‖`, products by `(3 − ‖r0‖²)/2` and `(5 − 3‖r0‖²)/2`: 2.3e-7), 5–7 % slower with
+//! the chain it lengthens; Estrin's scheme for the two polynomials (four runs each in
 //! turn): the synthetic mesh 41.4–43.6 → 43.0–45.6, but the Fox 67.5–68.2 → 46.3–48.9, as
 //! `z⁴` underflows in a lane of one influence, whose `z` is about 1e-30 (see "Subnormal
 //! numbers" above), where Horner's rule only adds products to the coefficients.
@@ -104,29 +109,35 @@ use crate::skinning::{DIB_PRECISION, DIB_UPDATES};
 use chasles::blend::STALL_FACTOR;
 use second_order::Spread;
 
-/// `h(z) = θ/n = (1 + z) atan(√z)/√z` on `0 ≤ z ≤ 1` (`z = tan²(θ/2)`), constant term
-/// first: fitted near minimax by `scripts/fit_dib_log.py` (0.30 f32 ulp with these f32
-/// coefficients, 0.75 evaluated in f32).
-pub(in crate::fast) const H: [f32; 8] = [
+/// `h(v) = θ/n = acos(1 − v)/√(v (2 − v))` on `0 ≤ v ≤ 1` (`v = 1 − w = 1 − cos θ`),
+/// constant term first: fitted near minimax by `scripts/fit_dib_log.py` (0.22 f32 ulp with
+/// these f32 coefficients, 0.74 evaluated in f32).
+pub(in crate::fast) const H: [f32; 10] = [
     1.0,
-    0.6666642,
-    -0.13327816,
-    0.056666043,
-    -0.029649405,
-    0.014868048,
-    -0.0054738363,
-    0.000999452,
+    0.33333573,
+    0.13325739,
+    0.05807404,
+    0.01965973,
+    0.031536825,
+    -0.036094006,
+    0.053518295,
+    -0.03396176,
+    0.011470096,
 ];
-/// `∂h/∂s = (w − h)/(2s) = ((1 − z²) − (1 + z)³ atan(√z)/√z)/(8z)` on the same interval,
-/// fitted likewise (0.40 f32 ulp, 0.81 evaluated in f32).
-pub(in crate::fast) const H_S: [f32; 7] = [
+/// `∂h/∂s = (w − h)/(2s) = ((1 − v) − h)/(2v (2 − v))` on the same interval, fitted likewise
+/// (0.25 f32 ulp, 0.91 evaluated in f32).
+pub(in crate::fast) const H_S: [f32; 11] = [
     -0.33333334,
-    -0.40000036,
-    -0.057136584,
-    0.006308868,
-    -0.0016032052,
-    0.00043928064,
-    -7.2821495e-05,
+    -0.19999798,
+    -0.11436395,
+    -0.06231956,
+    -0.043566186,
+    0.02059792,
+    -0.11560331,
+    0.17268972,
+    -0.18701775,
+    0.10726626,
+    -0.029749975,
 ];
 /// `cos √s = Σ (−1)ᵏ sᵏ/(2k)!`: next term below 7e-9 at `s = (π/2)²`.
 pub(in crate::fast) const COS: [f32; 7] = taylor(0);
@@ -177,10 +188,9 @@ pub(in crate::fast) fn log<L: Lane>(r: &[L; 8]) -> [L; 8] {
     let ab = dot(&r[1..4], &r[5..8]);
     let n2 = w.madd(w, s);
     let inv_n2 = L::splat(1.0).div(n2);
-    let u = L::splat(1.0).div(L::splat(1.0).add(w));
-    let z = s.mul(u.mul(u));
-    let h = horner(&H, z);
-    let h_s = horner(&H_S, z);
+    let v = L::splat(1.0).sub(w);
+    let h = horner(&H, v);
+    let h_s = horner(&H_S, v);
     // ∂h = ∂h/∂s · 2 a·b − wε / ‖r0‖².
     let h_du = h_s.add(h_s).msub(ab, inv_n2.mul(wd));
     let ln = L::splat(0.5).mul(n2.sub(L::splat(1.0)));
