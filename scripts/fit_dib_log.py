@@ -10,8 +10,8 @@ theta = atan2(n, w) in [0, pi/2] of a unit quaternion (w, a), n = |a| = sin(thet
        = ((1 - v) - h(v))/(2 v (2 - v)),                        same v, 11 terms
      (the logarithm's vector part is h a, and its dual part takes dh/ds). Both are smooth
      on [0, 1] (their singularity is at v = 2, w = -1).
-The kernels take v = 1 - w: no square root, no division, no reduction of the angle; the
-logarithm's chain from w to h is the subtraction and Horner's rule.
+The kernels take v = 1 - w: no square root, no reduction of the angle and no division on
+the logarithm's chain from w to h, which is the subtraction and Horner's rule.
 How: as scripts/fit_trig.py (whose helpers this uses) — plain least squares in the monomial
 basis at --nodes Chebyshev nodes of [0, 1], in 50-digit mpmath arithmetic: near minimax.
 They replace `Q` and `G` in t^2, t = n/w reduced to t <= tan(pi/8) by three rows of
@@ -21,7 +21,7 @@ Errors are relative, in f32 ulp = 2^-23, of h and dh/ds over a dense grid: exact
 digits, the coefficients rounded to f32) and evaluated in f32 by Horner's rule (each
 operation rounded to f32; the kernels fuse each step into one multiply-add, which rounds
 once: measured rather than bounded). Near v = 0 H_S's closed form cancels, so it is taken
-at three times the working precision there (and as its limit -1/3 at 0). The fits rely on
+at three times the working precision (and as its limit -1/3 at 0). The fits rely on
 fit_trig's 50-digit mpmath precision (mp.mp.dps, set when it is imported).
 
 Usage (needs mpmath: pip install mpmath):

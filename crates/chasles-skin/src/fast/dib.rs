@@ -62,8 +62,8 @@ impl<const K: usize> Kernel<K> for DibKernel {
     }
 }
 
-/// DIB skinning into `out` with the joints' unit dual quaternions, on all threads when
-/// `parallel`. A vertex whose blend fails (non-finite joints) gets NaN; joints a vertex
+/// DIB skinning into `out` with the joints' unit dual quaternions (one off unit length is
+/// normalized first), on all threads when `parallel`. A vertex whose blend fails (non-finite joints) gets NaN; joints a vertex
 /// gives weight 0 do not touch it.
 pub fn dib<const K: usize>(
     rig: &FastRig<K>,
@@ -71,14 +71,92 @@ pub fn dib<const K: usize>(
     out: &mut [Out],
     parallel: bool,
 ) -> Result<()> {
-    run::<K, DibKernel>(rig, &super::arrays8(d), out.into(), parallel)
+    let joints: Vec<[f32; 8]> = d
+        .iter()
+        .map(|d| bytemuck::cast(super::palette::dib_unit(d)))
+        .collect();
+    run::<K, DibKernel>(rig, &joints, out.into(), parallel)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::cylinder::{pose, twisted_cylinder, Motion};
-    use crate::{joint_transforms, skin_joints, Method};
+    use crate::{joint_transforms, skin_joints, JointTransforms, Method};
+    use chasles::DualQuat;
+
+    /// Joints off unit length (a `JointTransforms` or a palette made by hand) skin as the
+    /// unit ones do, on every path into the kernels: the SIMD kernels' logarithm takes
+    /// `‖b̂* q̂ᵢ‖` as 1 (`lane::dib`), so they are normalized first; unit joints are taken
+    /// bit for bit as they are.
+    #[test]
+    fn joints_off_unit_length_skin_as_unit_ones() {
+        use crate::fast::{Joints, Output, Palette, SkinningJob};
+        let rig = crate::synthetic::rig(1000, 54, 7);
+        let jt = crate::synthetic::joints(54, 7);
+        let n = rig.vertices().len();
+        let skin = |d: &[DualQuat<f32>]| {
+            let mut out = vec![[0f32; 6]; n];
+            dib(&rig, d, &mut out, false).unwrap();
+            out
+        };
+        let by_palette = |d: &[DualQuat<f32>]| {
+            let joints = d.iter().map(super::super::palette::unit).collect();
+            let palette = Palette::from_joints(&rig, Joints::Dib(joints)).unwrap();
+            let mut out = vec![[0f32; 6]; n];
+            SkinningJob {
+                rig: &rig,
+                palette: &palette,
+                output: Output::Packed(&mut out),
+                parallel: false,
+            }
+            .run()
+            .unwrap();
+            out
+        };
+        let by_transforms = |d: &[DualQuat<f32>]| {
+            let jt = JointTransforms {
+                dual_quats: d.to_vec(),
+                ..jt.clone()
+            };
+            let palette = Palette::from_joint_transforms(Method::Dib, &rig, &jt, false).unwrap();
+            let mut out = vec![[0f32; 6]; n];
+            SkinningJob {
+                rig: &rig,
+                palette: &palette,
+                output: Output::Packed(&mut out),
+                parallel: false,
+            }
+            .run()
+            .unwrap();
+            out
+        };
+        let want = skin(&jt.dual_quats);
+        assert_eq!(by_palette(&jt.dual_quats), want, "unit joints as they are");
+        assert_eq!(
+            by_transforms(&jt.dual_quats),
+            want,
+            "unit joints as they are"
+        );
+        for scale in [2.0f32, 0.5, 1.01] {
+            let d: Vec<DualQuat<f32>> = jt.dual_quats.iter().map(|d| *d * scale).collect();
+            for (path, got) in [
+                ("fast::dib", skin(&d)),
+                ("Palette::from_joints", by_palette(&d)),
+                ("Palette::from_joint_transforms", by_transforms(&d)),
+            ] {
+                for (v, (g, w)) in got.iter().zip(&want).enumerate() {
+                    for c in 0..6 {
+                        let tol = 1e-4 * (1.0 + w[c].abs());
+                        assert!(
+                            (g[c] - w[c]).abs() <= tol,
+                            "{path}, scale {scale}, vertex {v}: {g:?} against {w:?}"
+                        );
+                    }
+                }
+            }
+        }
+    }
 
     /// The scalar kernel (the fast path without AVX2, and the last few vertices of a chunk)
     /// is the reference path bit for bit: the same calls on the same numbers in order.

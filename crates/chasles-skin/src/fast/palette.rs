@@ -169,7 +169,9 @@ impl Palette {
 
     /// A palette from joint data made elsewhere (an engine's own matrices or dual
     /// quaternions): checked against `rig`'s joint count (and, for SBS, its cluster count).
-    pub fn from_joints<const K: usize>(rig: &FastRig<K>, joints: Joints) -> Result<Self> {
+    /// DIB's joints off unit length by more than rounding are normalized, as
+    /// [`Palette::update`] does (its SIMD kernels' logarithm takes them as unit).
+    pub fn from_joints<const K: usize>(rig: &FastRig<K>, mut joints: Joints) -> Result<Self> {
         check(rig, joints.len())?;
         // The range every path keeps finite (crate::reach), on the data as laid out.
         let laid_out = |what: &str, floats: &[f32], per: usize, linear: &[usize]| {
@@ -210,6 +212,11 @@ impl Palette {
                     std::mem::size_of::<RotationCentre>() / 4,
                     &[],
                 )?;
+            }
+        }
+        if let Joints::Dib(j) = &mut joints {
+            for x in j.iter_mut() {
+                *x = dib_unit(&DualQuat::from_array(bytemuck::cast(*x)));
             }
         }
         if let Joints::Sbs { centres, .. } = &joints {
@@ -321,7 +328,8 @@ impl Palette {
         let n = matrices.len();
         match &mut self.joints {
             Joints::Lbs(a) => refill(a, matrices.iter().map(affine)),
-            Joints::Dqs(d) | Joints::Dib(d) => refill(d, (0..n).map(|i| unit(&dual(i)))),
+            Joints::Dqs(d) => refill(d, (0..n).map(|i| unit(&dual(i)))),
+            Joints::Dib(d) => refill(d, (0..n).map(|i| dib_unit(&dual(i)))),
             Joints::Log(t) => {
                 t.clear();
                 for m in matrices {
@@ -377,6 +385,24 @@ pub(crate) fn affine(m: &Mat4<f32>) -> Affine3x4 {
 /// A dual quaternion as DQS's and DIB's joint.
 pub(crate) fn unit(d: &DualQuat<f32>) -> UnitDualQuat {
     bytemuck::cast(d.to_array())
+}
+
+/// How far from 1 the squared length of a joint's rotation part may be for DIB to take it
+/// as it is: a few times f32's rounding of a normalized quaternion.
+const DIB_UNIT_SLACK: f32 = 1e-6;
+
+/// A dual quaternion as DIB's joint, of unit length as the SIMD kernels' logarithm needs it
+/// (`fast::lane::dib`: it takes ‖b̂* q̂ᵢ‖ as 1). A joint off unit length by more than
+/// rounding — a `JointTransforms` made by hand — is normalized (DIB blends rigid motions,
+/// whatever their scale); a unit one, as `joint_transforms` makes it, is kept bit for bit,
+/// and one that cannot be normalized (zero, non-finite) as it is, for the kernels to
+/// refuse.
+pub(crate) fn dib_unit(d: &DualQuat<f32>) -> UnitDualQuat {
+    if (d.real.norm_squared() - 1.0).abs() <= DIB_UNIT_SLACK {
+        unit(d)
+    } else {
+        unit(&d.normalize().unwrap_or(*d))
+    }
 }
 
 /// A joint's rigid motion `d` and bind origin `c` as QLB's and SBS's joint.

@@ -61,11 +61,12 @@
 //! ```
 //!
 //! with [`H`] and [`H_S`] polynomials of ten and eleven terms fitted near minimax on
-//! [0, 1] (`scripts/fit_dib_log.py`, checked by CI: 0.22 and 0.25 f32 ulp with their f32
-//! coefficients, 0.74 and 0.91 evaluated in f32). Where v loses relative precision (small
-//! angles, `1 − w` of rounded numbers) the polynomials stay near their constant terms, so h
-//! keeps f32's precision. A logarithm's chain from the product `b̂* q̂ᵢ` to `h` is one
-//! subtraction and Horner's rule; the one division left, `1/‖r0‖²`, is off it.
+//! [0, 1] (`scripts/fit_dib_log.py`: 0.22 and 0.25 f32 ulp with their f32 coefficients,
+//! 0.74 and 0.91 evaluated in f32; CI checks the bounds 0.3 and 1). Where v loses relative
+//! precision (small angles, `1 − w` of rounded numbers) the polynomials stay near their
+//! constant terms, so h keeps f32's precision. A logarithm's chain from the product
+//! `b̂* q̂ᵢ` to `h` is one subtraction and Horner's rule; the one division left, `1/‖r0‖²`,
+//! is off it.
 //!
 //! This replaced a reduction of `t = n/w` to `|t| ≤ tan(π/8)` by three rows of formulas (`t`
 //! as `n/w`, `w/n` or `(n − w)/(n + w)`, polynomials for `atan(√z)/√z` and the library's
@@ -80,14 +81,20 @@
 //! atan(√z)/√z`): its division `1/(1 + w)` sat on the chain, and v measured 1–4 % faster
 //! (four runs each in turn).
 //!
-//! The formula takes `‖r0‖` as 1, as the `½ ln‖r0‖²` shortcut below does (r̂ is a product
-//! of unit dual quaternions, unit to f32's rounding): over 40 000 random unit dual
-//! quaternions the logarithm's vector part is within 2.1e-7 of f64's, relatively (the
-//! reduction's 2.5e-7, z's 2.9e-7), and over as many blends of two to four joints DIB's
-//! results stand as far from f64's DIB as before (largest 6.04e-5, mean 4.56e-6: the
-//! stopping rule's reach). Tried on z and not kept: `‖r0‖` to first order (`(1 + ‖r0‖²)/2`
-//! for `‖r0‖`, products by `(3 − ‖r0‖²)/2` and `(5 − 3‖r0‖²)/2`: 2.3e-7), 5–7 % slower with
-//! the chain it lengthens; Estrin's scheme for the two polynomials (four runs each in
+//! The formula takes `‖r0‖` as 1 — to first order, where the `½ ln‖r0‖²` shortcut below
+//! is off only to second: with `‖r0‖ = 1 + δ`, h is off by about δ relatively and `∂h/∂s`
+//! by about 3δ. δ is a few 1e-7 for the products of unit dual quaternions the kernels take
+//! logarithms of (joints off unit length are normalized before: `palette::dib_unit`). Over
+//! 20 000 such products in f32 (`the_lane_log_of_products_is_f64s`) the logarithm's vector
+//! parts are within 2.3e-7 (rotation) and 1.9e-7 (dual part) of f64's logarithm of the same
+//! product, relatively; the reduction's were within 2.3e-7 and 2.0e-7. Over 40 000 blends
+//! of two to four joints (a scratch comparison) DIB's results stand as far from f64's DIB
+//! as before (largest 6.04e-5, mean 4.56e-6: the stopping rule's reach).
+//!
+//! Tried on z and not kept: the norm to first order (`(1 + ‖r0‖²)/2` for `‖r0‖` in z,
+//! products of h and `∂h/∂s` by `(3 − ‖r0‖²)/2` and `(5 − 3‖r0‖²)/2`; on single unit dual
+//! quaternions the logarithm's error 2.9e-7 → 2.3e-7), 5–7 % slower with the chain it
+//! lengthens; Estrin's scheme for the two polynomials (four runs each in
 //! turn): the synthetic mesh 41.4–43.6 → 43.0–45.6, but the Fox 67.5–68.2 → 46.3–48.9, as
 //! `z⁴` underflows in a lane of one influence, whose `z` is about 1e-30 (see "Subnormal
 //! numbers" above), where Horner's rule only adds products to the coefficients.

@@ -1,11 +1,12 @@
 //! `N` values of a lane type side by side as one lane type, each operation applied to the
 //! `N` in turn: `N` independent dependency chains interleaved instruction by instruction,
 //! for code that would otherwise run them one after the other. DIB's SIMD kernel
-//! (`lane::dib`) takes its influences' logarithms two at a time this way: each logarithm is
-//! a chain of a square root, divisions and two series, which the processor did not overlap
-//! across influences far enough on its own. Best of runs at 10⁵ vertices on one core
+//! (`lane::dib`) takes its influences' logarithms two at a time this way: each logarithm was
+//! then a chain of a square root, divisions and two series, which the processor did not
+//! overlap across influences far enough on its own. Best of runs at 10⁵ vertices on one core
 //! (`examples/best_of`): 18.0–18.3 M vertices/s one at a time, 20.3 two at a time, 18.4–19.0
-//! four at a time (more registers spilled).
+//! four at a time (more registers spilled). (The chain is now a subtraction and Horner's rule
+//! after the product: `lane::dib`'s module docs.)
 
 // By index throughout: zipped iterators over several arrays compiled to slower code in
 // these kernels (see `avx2`), and `array::map` to calls in DIB's (`try_map`).
