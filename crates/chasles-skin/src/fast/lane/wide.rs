@@ -5,8 +5,13 @@
 //! then a chain of a square root, divisions and two series, which the processor did not
 //! overlap across influences far enough on its own. Best of runs at 10⁵ vertices on one core
 //! (`examples/best_of`): 18.0–18.3 M vertices/s one at a time, 20.3 two at a time, 18.4–19.0
-//! four at a time (more registers spilled). (The chain is now a subtraction and Horner's rule
-//! after the product: `lane::dib`'s module docs.)
+//! four at a time (more registers spilled). The chain is now a subtraction and Horner's rule
+//! after the product (`lane::dib`'s module docs); measured again then (over the characters'
+//! clips at seven times and 10⁵ synthetic vertices of four influences, best of 20, one
+//! core, six runs each in turn, M vertices/s), one at a time against two: the synthetic mesh
+//! 44.8–46.7 against 45.6–47.6, but the Fox 74.5–76.3 against 71.7–73.1, RiggedFigure
+//! 61.7–63.3 against 60.2–62.8 and CesiumMan 64.5–66.8 against 63.1–64.6. Two stay, for the
+//! meshes of three and four influences a vertex that DIB's iteration is slowest on.
 
 // By index throughout: zipped iterators over several arrays compiled to slower code in
 // these kernels (see `avx2`), and `array::map` to calls in DIB's (`try_map`).
