@@ -100,9 +100,7 @@ mod tests {
             dib(&rig, d, &mut out, false).unwrap();
             out
         };
-        let by_palette = |d: &[DualQuat<f32>]| {
-            let joints = d.iter().map(super::super::palette::unit).collect();
-            let palette = Palette::from_joints(&rig, Joints::Dib(joints)).unwrap();
+        let job = |palette: Palette| {
             let mut out = vec![[0f32; 6]; n];
             SkinningJob {
                 rig: &rig,
@@ -114,22 +112,16 @@ mod tests {
             .unwrap();
             out
         };
+        let by_palette = |d: &[DualQuat<f32>]| {
+            let joints = d.iter().map(super::super::palette::unit).collect();
+            job(Palette::from_joints(&rig, Joints::Dib(joints)).unwrap())
+        };
         let by_transforms = |d: &[DualQuat<f32>]| {
             let jt = JointTransforms {
                 dual_quats: d.to_vec(),
                 ..jt.clone()
             };
-            let palette = Palette::from_joint_transforms(Method::Dib, &rig, &jt, false).unwrap();
-            let mut out = vec![[0f32; 6]; n];
-            SkinningJob {
-                rig: &rig,
-                palette: &palette,
-                output: Output::Packed(&mut out),
-                parallel: false,
-            }
-            .run()
-            .unwrap();
-            out
+            job(Palette::from_joint_transforms(Method::Dib, &rig, &jt, false).unwrap())
         };
         let want = skin(&jt.dual_quats);
         assert_eq!(by_palette(&jt.dual_quats), want, "unit joints as they are");
