@@ -172,6 +172,49 @@ fn the_lane_log_of_products_is_f64s() {
     assert!(worst_dual <= 4e-7, "{worst_dual}");
 }
 
+/// After an update, `b̂ exp(δ̂)` is renormalized by one Newton step for `1/‖q0‖` from 1
+/// ([`renormalize`]): the exponential's series are unit to within 1e-4 for every step the
+/// second-order rule can make (`‖δ‖ ≤ (π/2)(1 + (π/2)²/3) < 2.9`), and from there the
+/// Newton step gives `normalize`'s result to f32's rounding.
+#[test]
+fn renormalizing_after_an_update_is_normalizing() {
+    let mut s = 0x0DDB_1A5E_5BAD_5EEDu64;
+    let mut next = move || {
+        s ^= s << 13;
+        s ^= s >> 7;
+        s ^= s << 17;
+        (s >> 40) as f32 / (1u64 << 24) as f32
+    };
+    let mut worst = (0f32, 0f32);
+    for i in 0..20000 {
+        let axis = Vec3::new(next() - 0.5, next() - 0.5, next() - 0.5);
+        let q = Quat::from_axis_angle(axis, 7.0 * next()).unwrap();
+        let t = Vec3::new(next() - 0.5, next() - 0.5, next() - 0.5) * 8.0;
+        let b = DualQuat::from_rotation_translation(q, t).to_array();
+        // Steps up to 2.9 long, the largest most often.
+        let length = 2.9 * if i % 2 == 0 { 1.0 } else { next() };
+        let dir = Vec3::new(next() - 0.5, next() - 0.5, next() - 0.5);
+        let a = dir.normalize().unwrap() * length;
+        let d = Vec3::new(next() - 0.5, next() - 0.5, next() - 0.5) * 4.0;
+        let step = [0.0, a.x, a.y, a.z, 0.0, d.x, d.y, d.z];
+        let e = exp(&step);
+        worst.0 = worst.0.max((dot(&e[..4], &e[..4]) - 1.0).abs());
+        let p = dqmul(&b, &e);
+        let (got, want) = (renormalize(&p), normalize(&p));
+        for c in 0..8 {
+            worst.1 = worst
+                .1
+                .max((got[c] - want[c]).abs() / (1.0 + want[c].abs()));
+        }
+    }
+    assert!(
+        worst.0 < 1e-4,
+        "the exponential's norm is off by {}",
+        worst.0
+    );
+    assert!(worst.1 < 5e-7, "renormalized off by {}", worst.1);
+}
+
 /// The second-order step does what its derivation says: from the DLB start of random
 /// blends of four joints (rotated by up to 60°, moved by up to 2), one step leaves a
 /// residual `‖Σ wᵢ log(b̂* q̂ᵢ)‖` over 20× smaller on average than the paper's step does
