@@ -190,16 +190,7 @@ fn eight<L>(f: impl Fn(usize) -> L) -> [L; 8] {
 /// to it), as `DualQuat::normalize`.
 #[inline(always)]
 pub(in crate::fast) fn normalize<L: Lane>(q: &[L; 8]) -> [L; 8] {
-    let inv = L::splat(1.0).div(dot(&q[..4], &q[..4]).sqrt());
-    let u = eight(|c| q[c].mul(inv));
-    let along = dot(&u[..4], &u[4..]);
-    eight(|c| {
-        if c < 4 {
-            u[c]
-        } else {
-            u[c - 4].nmadd(along, u[c])
-        }
-    })
+    unit_by(q, L::splat(1.0).div(dot(&q[..4], &q[..4]).sqrt()))
 }
 
 /// [`normalize`] for a `q` whose real part is unit to within about 1e-4, as `b̂ exp(δ̂)`
@@ -208,7 +199,12 @@ pub(in crate::fast) fn normalize<L: Lane>(q: &[L; 8]) -> [L; 8] {
 /// division.
 #[inline(always)]
 pub(in crate::fast) fn renormalize<L: Lane>(q: &[L; 8]) -> [L; 8] {
-    let inv = dot(&q[..4], &q[..4]).nmadd(L::splat(0.5), L::splat(1.5));
+    unit_by(q, dot(&q[..4], &q[..4]).nmadd(L::splat(0.5), L::splat(1.5)))
+}
+
+/// `q` times `inv` (`1/‖q0‖`), its dual part then made orthogonal to its real part.
+#[inline(always)]
+fn unit_by<L: Lane>(q: &[L; 8], inv: L) -> [L; 8] {
     let u = eight(|c| q[c].mul(inv));
     let along = dot(&u[..4], &u[4..]);
     eight(|c| {

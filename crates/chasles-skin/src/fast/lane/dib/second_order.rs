@@ -122,15 +122,10 @@ fn zero_minus<L: Lane>(v: L) -> L {
 mod tests {
     use super::*;
 
-    /// A xorshift generator from `seed`: uniform numbers in [−0.5, 0.5).
+    /// The lane DIB tests' generator from `seed`, shifted: uniform numbers in [−0.5, 0.5).
     fn uniform(seed: u64) -> impl FnMut() -> f32 {
-        let mut s = seed;
-        move || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            (s >> 40) as f32 / (1u64 << 24) as f32 - 0.5
-        }
+        let mut next = super::super::tests::uniform(seed);
+        move || next() - 0.5
     }
 
     /// `x̂ − ⅓ Σ wᵢ x̂ᵢ × (x̂ᵢ × x̂)` in f64, by the double cross product of dual vectors

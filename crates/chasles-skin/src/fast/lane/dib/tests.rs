@@ -129,6 +129,17 @@ fn the_lane_log_and_exp_are_the_librarys() {
     assert!((l[1] - std::f32::consts::FRAC_PI_2).abs() < 1e-6, "{l:?}");
 }
 
+/// A xorshift generator from `seed`: uniform numbers in [0, 1).
+pub(super) fn uniform(seed: u64) -> impl FnMut() -> f32 {
+    let mut s = seed;
+    move || {
+        s ^= s << 13;
+        s ^= s >> 7;
+        s ^= s << 17;
+        (s >> 40) as f32 / (1u64 << 24) as f32
+    }
+}
+
 /// The logarithm of what the kernels take it of — the products `b̂* q̂ᵢ` of two unit dual
 /// quaternions in f32, by the lanes' own product, unit only to rounding — is f64's
 /// logarithm of the same product: the vector parts within 4e-7 relatively (the formula
@@ -136,13 +147,7 @@ fn the_lane_log_and_exp_are_the_librarys() {
 /// of every angle and moves of up to 4.
 #[test]
 fn the_lane_log_of_products_is_f64s() {
-    let mut s = 0x1234_5678_9abc_def1u64;
-    let mut next = move || {
-        s ^= s << 13;
-        s ^= s >> 7;
-        s ^= s << 17;
-        (s >> 40) as f32 / (1u64 << 24) as f32
-    };
+    let mut next = uniform(0x1234_5678_9abc_def1);
     let mut unit = || {
         let axis = Vec3::new(next() - 0.5, next() - 0.5, next() - 0.5);
         let q = Quat::from_axis_angle(axis, 7.0 * next()).unwrap();
@@ -178,13 +183,7 @@ fn the_lane_log_of_products_is_f64s() {
 /// Newton step gives `normalize`'s result to f32's rounding.
 #[test]
 fn renormalizing_after_an_update_is_normalizing() {
-    let mut s = 0x0DDB_1A5E_5BAD_5EEDu64;
-    let mut next = move || {
-        s ^= s << 13;
-        s ^= s >> 7;
-        s ^= s << 17;
-        (s >> 40) as f32 / (1u64 << 24) as f32
-    };
+    let mut next = uniform(0x0DDB_1A5E_5BAD_5EED);
     let mut worst = (0f32, 0f32);
     for i in 0..20000 {
         let axis = Vec3::new(next() - 0.5, next() - 0.5, next() - 0.5);
