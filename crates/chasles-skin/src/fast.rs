@@ -197,12 +197,16 @@ pub fn matrices12(jt: &JointTransforms) -> Vec<[f32; 12]> {
 
 /// Joint dual quaternions as 8 floats `[w, x, y, z, wε, xε, yε, zε]`.
 pub fn dual_quats8(jt: &JointTransforms) -> Vec<[f32; 8]> {
-    arrays8(&jt.dual_quats)
+    arrays8(&jt.dual_quats, palette::unit)
 }
 
-/// Dual quaternions as 8 floats each, as the kernels read them.
-fn arrays8(d: &[DualQuat<f32>]) -> Vec<[f32; 8]> {
-    d.iter().map(|d| bytemuck::cast(palette::unit(d))).collect()
+/// Dual quaternions as 8 floats each, as the kernels read them, each made a joint by
+/// `joint` (`palette::unit`, or `palette::dib_unit` for DIB).
+fn arrays8(
+    d: &[DualQuat<f32>],
+    joint: fn(&DualQuat<f32>) -> palette::UnitDualQuat,
+) -> Vec<[f32; 8]> {
+    d.iter().map(|d| bytemuck::cast(joint(d))).collect()
 }
 
 #[inline(always)]

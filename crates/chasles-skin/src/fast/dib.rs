@@ -63,18 +63,15 @@ impl<const K: usize> Kernel<K> for DibKernel {
 }
 
 /// DIB skinning into `out` with the joints' unit dual quaternions (one off unit length is
-/// normalized first), on all threads when `parallel`. A vertex whose blend fails (non-finite joints) gets NaN; joints a vertex
-/// gives weight 0 do not touch it.
+/// normalized first), on all threads when `parallel`. A vertex whose blend fails
+/// (non-finite joints) gets NaN; joints a vertex gives weight 0 do not touch it.
 pub fn dib<const K: usize>(
     rig: &FastRig<K>,
     d: &[DualQuat<f32>],
     out: &mut [Out],
     parallel: bool,
 ) -> Result<()> {
-    let joints: Vec<[f32; 8]> = d
-        .iter()
-        .map(|d| bytemuck::cast(super::palette::dib_unit(d)))
-        .collect();
+    let joints = super::arrays8(d, super::palette::dib_unit);
     run::<K, DibKernel>(rig, &joints, out.into(), parallel)
 }
 

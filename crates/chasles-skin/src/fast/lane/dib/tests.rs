@@ -140,6 +140,19 @@ pub(super) fn uniform(seed: u64) -> impl FnMut() -> f32 {
     }
 }
 
+/// A vector of `next`'s numbers, each shifted to [−0.5, 0.5).
+fn centred(next: &mut impl FnMut() -> f32) -> Vec3<f32> {
+    Vec3::new(next() - 0.5, next() - 0.5, next() - 0.5)
+}
+
+/// A random unit dual quaternion from `next`: turned by up to 7 rad about any axis, moved
+/// by up to 4 along each axis.
+fn random_rigid(next: &mut impl FnMut() -> f32) -> [f32; 8] {
+    let axis = centred(next);
+    let q = Quat::from_axis_angle(axis, 7.0 * next()).unwrap();
+    DualQuat::from_rotation_translation(q, centred(next) * 8.0).to_array()
+}
+
 /// The logarithm of what the kernels take it of — the products `b̂* q̂ᵢ` of two unit dual
 /// quaternions in f32, by the lanes' own product, unit only to rounding — is f64's
 /// logarithm of the same product: the vector parts within 4e-7 relatively (the formula
@@ -148,15 +161,9 @@ pub(super) fn uniform(seed: u64) -> impl FnMut() -> f32 {
 #[test]
 fn the_lane_log_of_products_is_f64s() {
     let mut next = uniform(0x1234_5678_9abc_def1);
-    let mut unit = || {
-        let axis = Vec3::new(next() - 0.5, next() - 0.5, next() - 0.5);
-        let q = Quat::from_axis_angle(axis, 7.0 * next()).unwrap();
-        let t = Vec3::new(next() - 0.5, next() - 0.5, next() - 0.5) * 8.0;
-        DualQuat::from_rotation_translation(q, t).to_array()
-    };
     let (mut worst_real, mut worst_dual) = (0f64, 0f64);
     for _ in 0..20000 {
-        let (b, q) = (unit(), unit());
+        let (b, q) = (random_rigid(&mut next), random_rigid(&mut next));
         let conj = std::array::from_fn(|c| if c % 4 == 0 { b[c] } else { -b[c] });
         let r = dqmul(&conj, &q);
         let got = log(&r);
@@ -186,15 +193,11 @@ fn renormalizing_after_an_update_is_normalizing() {
     let mut next = uniform(0x0DDB_1A5E_5BAD_5EED);
     let mut worst = (0f32, 0f32);
     for i in 0..20000 {
-        let axis = Vec3::new(next() - 0.5, next() - 0.5, next() - 0.5);
-        let q = Quat::from_axis_angle(axis, 7.0 * next()).unwrap();
-        let t = Vec3::new(next() - 0.5, next() - 0.5, next() - 0.5) * 8.0;
-        let b = DualQuat::from_rotation_translation(q, t).to_array();
+        let b = random_rigid(&mut next);
         // Steps up to 2.9 long, the largest most often.
         let length = 2.9 * if i % 2 == 0 { 1.0 } else { next() };
-        let dir = Vec3::new(next() - 0.5, next() - 0.5, next() - 0.5);
-        let a = dir.normalize().unwrap() * length;
-        let d = Vec3::new(next() - 0.5, next() - 0.5, next() - 0.5) * 4.0;
+        let a = centred(&mut next).normalize().unwrap() * length;
+        let d = centred(&mut next) * 4.0;
         let step = [0.0, a.x, a.y, a.z, 0.0, d.x, d.y, d.z];
         let e = exp(&step);
         worst.0 = worst.0.max((dot(&e[..4], &e[..4]) - 1.0).abs());
