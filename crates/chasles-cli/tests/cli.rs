@@ -1688,8 +1688,9 @@ fn skin_bench_measures_a_rig_of_ones_own_in_its_clip() {
         .filter(|l| l.starts_with("| 370 (RiggedFigure.glb) | 1 |"))
         .map(|l| l.split('|').map(str::trim).collect())
         .collect();
-    // Six methods, five baselines (four influences at most), the copy and the traffic.
-    assert_eq!(rows.len(), 13, "{out}");
+    // Six methods, DIB again on the mesh grouped by influence count, five baselines (four
+    // influences at most), the copy and the traffic.
+    assert_eq!(rows.len(), 14, "{out}");
     let rate = |name: &str| -> f64 {
         let r = rows
             .iter()
@@ -1698,10 +1699,17 @@ fn skin_bench_measures_a_rig_of_ones_own_in_its_clip() {
         r[4].parse().unwrap()
     };
     assert!(
-        rate("dib") > 0.0 && rate("glam dqs (Vec4, careful)") > 0.0,
+        rate("dib") > 0.0
+            && rate("dib, vertices grouped by influence count") > 0.0
+            && rate("glam dqs (Vec4, careful)") > 0.0,
         "{out}"
     );
     assert!(out.contains("× DIB") && out.contains("SBS solved"), "{out}");
+    assert!(
+        out.contains("1 thread(s): with its vertices grouped by influence count")
+            && out.contains("and DQS is "),
+        "{out}"
+    );
     // Sizes are the synthetic meshes'; rounds are counted.
     for (args, says) in [
         (

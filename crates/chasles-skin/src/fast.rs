@@ -88,7 +88,9 @@ pub use skinner::{skin_pose, Skinner};
 pub use traffic::traffic;
 
 /// A rig laid out for the fast path. Its joint indices are checked on construction (the
-/// SIMD kernels rely on it), so the fields are private.
+/// SIMD kernels rely on it), so the fields are private. Its vertices are the rig's, in the
+/// rig's order: for DIB, lay out a rig reordered by [`crate::vertex_order`] (vertices of
+/// like influence counts side by side, 1.2–1.3× as fast on the built-in characters).
 #[derive(Debug, Clone)]
 pub struct FastRig<const K: usize> {
     vertices: Vec<Vertex<K>>,

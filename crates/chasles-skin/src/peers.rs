@@ -22,7 +22,7 @@ use glam::{Mat3A, Vec3A, Vec4};
 mod rounds;
 pub use rounds::{
     cache_notes, last_level_cache, markdown, measure, measure_rig, repeats, Load, Role, Row,
-    Spread, Table, SYNTHETIC, TRAFFIC,
+    Spread, Table, GROUPED_DIB, SYNTHETIC, TRAFFIC,
 };
 
 /// Every baseline's joints for one pose.

@@ -35,6 +35,27 @@
 //! - Leaving the moments out of the pass that shows convergence (taking the logarithms
 //!   again with them where a lane goes on): four influences 3 % faster, one and two 5–8 %
 //!   slower, the characters unchanged.
+//!
+//! Where the time goes (2026-12-05, a 2-core Intel Xeon with AVX-512F, best of 20 runs
+//! over 10⁵ synthetic vertices of four influences, one core, M vertices/s). The processor
+//! retires 1.9–2.0 independent 512-bit multiply-adds a cycle (as many as 256-bit ones) at
+//! 3.6–3.8 GHz (a scratch loop of twelve independent chains, clocked by one chain of
+//! 4-cycle multiply-adds). In the compiled kernel (`objdump` of `dib_blocks`) a pair of
+//! influences — the products `b̂* q̂ᵢ`, two logarithms, the update's and the moments' sums
+//! — is a loop body of 379 instructions: 244 of them 512-bit arithmetic, 18 logic, 74
+//! moves to and from the stack and 25 broadcasts of the series' coefficients; the step,
+//! exponential, product and Newton step are 217 more (169 arithmetic). A block of sixteen
+//! vertices of four influences runs that body four times (the update and the pass that
+//! shows it converged), about 1500 arithmetic instructions with the start and the
+//! transform: some 750 cycles at two a cycle, 75–80 M vertices/s, where it runs at 44–49 —
+//! the ports about 60 % busy. Not the polynomials' chain: splitting each Horner sum in two
+//! halves joined by `v⁵` (20 cycles of latency instead of 36, and no subnormal power:
+//! `|v| ≥ 2⁻²⁴` where it is not 0) measured 44.2–47.6 against 44.9–47.6, three runs each
+//! in turn. What an algorithm could save: leaving the convergence pass out altogether (a
+//! bound, not a kernel: it breaks the stopping rule) gave 58.8–65.6 against 43.7–46.7,
+//! still 4.7–5.9× DQS's time at 10⁵ vertices, where DQS skins 310–345 M vertices/s from
+//! the cache; on the characters 1.1–1.25×. Grouping a mesh's vertices by influence count
+//! ([`crate::vertex_order`]) makes the characters 1.16–1.31× as fast and keeps the rule.
 
 use super::avx2::dib::{joints, weights};
 use super::avx2::{eight, load_head, store_rows, Store};

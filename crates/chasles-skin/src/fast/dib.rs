@@ -11,7 +11,10 @@
 //! — and no pass to show it converged). Elsewhere, and for the last few
 //! vertices, each vertex's influences are gathered on the stack and blended by the library's
 //! allocation-free [`dib_convex`]: the same calls in the same order as the reference path
-//! ([`crate::skinning`]), so equal numbers (a test checks it on every model and clip).
+//! ([`crate::skinning`]), so equal numbers (a test checks it on every model and clip). A block
+//! pays for the iteration wherever one of its vertices has three influences or more, so a
+//! mesh whose vertices of like counts sit side by side ([`crate::vertex_order`]) skins
+//! faster, to the same bits.
 
 use super::{out_of, run, FastRig, Kernel, Out, Vertex};
 use crate::error::Result;

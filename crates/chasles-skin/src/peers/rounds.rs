@@ -16,8 +16,9 @@
 //! traffic bound: on a 2-core Intel Xeon reporting 480 MiB of L3 (2026-12-04) it ran at
 //! 233 M vertices/s at 10⁶ vertices on one thread, below the DQS (255) whose loads and
 //! stores it is, where a loop that ran it after LBS gave 380–395. Shuffled, a kernel
-//! follows the copy in about one round in as many as there are other kernels (13 in the
-//! synthetic table, 7 on a rig of more than four influences), which the medians leave out.
+//! follows the copy in about one round in as many as there are other kernels (12 in the
+//! synthetic table, 13 on a rig of up to four influences, 8 on one of more: a rig's table
+//! also times DIB on its mesh grouped by influence count), which the medians leave out.
 
 use super::{copy_bound, run, Joints, BASELINES};
 use crate::error::Result;
@@ -66,7 +67,13 @@ pub enum Role {
     Bound,
     /// The fast paths' loads and stores alone ([`crate::fast::traffic`]).
     Traffic,
+    /// One of our fast paths on a rig's mesh with its vertices grouped by influence count
+    /// ([`crate::vertex_order`]; [`measure_rig`] times DIB so: [`GROUPED_DIB`]).
+    Grouped(Method),
 }
+
+/// The row name of DIB on a rig's mesh grouped by influence count ([`measure_rig`]).
+pub const GROUPED_DIB: &str = "dib, vertices grouped by influence count";
 
 /// One kernel's figures over the rounds.
 #[derive(Debug, Clone)]
@@ -141,7 +148,9 @@ pub fn measure(n: usize, threads: usize, rounds: usize) -> Result<Table> {
 
 /// [`measure`] on a rig of one's own in the pose `jt` (a character mid-clip, say): every
 /// method's fast path, and, where no vertex has more than four influences, the baselines
-/// (which are written for four). Each timed sample skins the mesh as many times as make
+/// (which are written for four); and DIB again on the mesh with its vertices grouped by
+/// influence count ([`GROUPED_DIB`]: [`crate::vertex_order`], the same results in another
+/// order). Each timed sample skins the mesh as many times as make
 /// `min_vertices` vertices or more (a character of a few thousand vertices takes
 /// microseconds, too short to time alone), and every rate counts them all; the copy bound
 /// copies the same bytes as often. An error where the mesh has no vertex (nothing to
@@ -162,20 +171,25 @@ pub fn measure_rig(
         });
     }
     let reps = repeats(n, min_vertices);
+    let grouped = rig.reordered(&crate::vertex_order::by_influence_count(rig)?)?;
     if rig.influences.max_per_vertex() <= 4 {
-        let fast = FastRig::<4>::new(rig)?;
+        let (fast, grouped) = (FastRig::<4>::new(rig)?, FastRig::<4>::new(&grouped)?);
         on_threads(threads, |parallel| {
-            let mesh = Mesh::four(&rig.name, &fast, jt, reps);
+            let mesh = Mesh {
+                grouped: Some(&grouped),
+                ..Mesh::four(&rig.name, &fast, jt, reps)
+            };
             measure_on(mesh, parallel, rounds, threads.max(1))
         })
     } else {
-        let fast = FastRig::<8>::new(rig)?;
+        let (fast, grouped) = (FastRig::<8>::new(rig)?, FastRig::<8>::new(&grouped)?);
         on_threads(threads, |parallel| {
             let mesh = Mesh {
                 name: &rig.name,
                 rig: &fast,
                 jt,
                 baselines: None,
+                grouped: Some(&grouped),
                 reps,
             };
             measure_on(mesh, parallel, rounds, threads.max(1))
@@ -203,12 +217,14 @@ fn on_threads<R: Send>(threads: usize, f: impl FnOnce(bool) -> Result<R> + Send)
 }
 
 /// What one table times: a laid-out mesh, its pose, the vertices the baselines read (four
-/// influences; `None` where the layout has more) and how often a sample skins the mesh.
+/// influences; `None` where the layout has more), the mesh grouped by influence count for
+/// DIB (a rig's) and how often a sample skins the mesh.
 struct Mesh<'a, const K: usize> {
     name: &'a str,
     rig: &'a FastRig<K>,
     jt: &'a JointTransforms,
     baselines: Option<&'a [Vertex<4>]>,
+    grouped: Option<&'a FastRig<K>>,
     reps: usize,
 }
 
@@ -220,6 +236,7 @@ impl<'a> Mesh<'a, 4> {
             rig,
             jt,
             baselines: Some(rig.vertices()),
+            grouped: None,
             reps,
         }
     }
@@ -262,6 +279,7 @@ fn measure_on<const K: usize>(
         jt,
         reps,
         baselines,
+        grouped,
         ..
     } = mesh;
     let n = rig.vertices().len();
@@ -278,6 +296,10 @@ fn measure_on<const K: usize>(
     for m in Method::ALL {
         let f: Run = Box::new(move |o| skin_pose(rig, jt, m, o, parallel));
         kernels.push((m.name().into(), Role::Ours(m), f));
+    }
+    if let Some(g) = grouped {
+        let f: Run = Box::new(move |o| skin_pose(g, jt, Method::Dib, o, parallel));
+        kernels.push((GROUPED_DIB.into(), Role::Grouped(Method::Dib), f));
     }
     for (name, f) in baselines.map_or(&[][..], |_| &BASELINES[..]) {
         let (pj, v) = (&pj, baselines.unwrap_or_default());

@@ -1,0 +1,156 @@
+//! A vertex order for DIB's SIMD blocks (Kavan et al. 2006, §4, the box "DIB", and §6:
+//! its cost in skinning). The fast path skins vertices in blocks of eight or sixteen, one
+//! vertex a lane (`fast::lane::dib`), and a block pays for DIB's iteration — an update and
+//! the pass of logarithms that shows it converged — wherever one of its lanes has three
+//! influences or more; a block whose lanes all have one or two makes one update (Lemma 3)
+//! and no second pass. On a character the vertices of few and many influences are mixed
+//! along the mesh, so many blocks iterate for one or two of their lanes.
+//!
+//! [`by_influence_count`] gives the order that sorts the vertices by their influence count
+//! (one, two, three or more) within each window of [`WINDOW`] vertices, so that a
+//! window's vertices of three or more sit side by side; windows alternate between rising
+//! and falling counts, so that neighbouring windows meet with like vertices and a block
+//! that starts off a window's edge (the job's chunks after the first may start up to seven
+//! vertices past a multiple of 4096) straddles no extra change of kind. [`Rig::reordered`]
+//! applies it (positions, normals, influences, the triangles renumbered). Each vertex's
+//! result does not depend on its block-mates (the kernels' tests shift every block and
+//! compare bits), so a reordered rig skins every vertex to the same bits, in the new order
+//! — the order is a choice to make once, when an asset is built, like an order for a GPU's
+//! vertex cache; windows keep neighbours near each other.
+//!
+//! Measured (2026-12-05, a 2-core Intel Xeon with AVX-512F, one core; blocks of sixteen
+//! that iterate, before → after). Best of 20 runs over the characters' clips at seven
+//! times each, three runs, M vertices/s and DQS's speed over DIB's: the Fox 26 → 5 of 108
+//! blocks, DIB 72.9–75.4 → 95.6–99.7 (4.25–4.27× → 3.21–3.27×); RiggedFigure 22 → 13 of
+//! 24, 61.9–63.4 → 71.8–73.6 (4.13–4.26× → 3.56–3.59×); CesiumMan 145 → 77 of 205,
+//! 64.1–65.6 → 74.8–78.3 (4.93–5.18× → 4.23–4.34×). `chasles skin --rig
+//! crates/chasles-models/gltf/<model>.glb --bench --bench-threads 1 --bench-rounds 21`,
+//! which times DIB on the grouped mesh beside the rest (medians, two runs): the Fox 1.30–1.31×
+//! as fast (DQS over DIB 4.4× → 3.4×), RiggedFigure 1.17× (3.9–4.0× → 3.3–3.4×), CesiumMan
+//! 1.16–1.19× (5.0–5.1× → 4.3×). Sorted within windows of 64 vertices (rising in every
+//! window, a scratch run) the Fox kept about half the gain (69.5 → 81.6) and CesiumMan
+//! two thirds (58.6 → 67.7); windows of 1024 or the whole mesh gained as much as 256.
+//! Sorted over the whole mesh CesiumMan still has 72 blocks that iterate (its vertices of
+//! three influences or more fill them), so it cannot go much further. The other methods' kernels take every vertex alike, whatever
+//! its count, and are unchanged. Sorting at run time instead, a window at a time inside the
+//! kernel, cost more than it saved (`fast::avx512`'s module docs).
+
+use crate::error::{Result, SkinError};
+use crate::rig::{Influences, Mesh, Rig};
+use std::cmp::Reverse;
+
+/// The vertices sorted together by [`by_influence_count`]: sixteen blocks of sixteen.
+pub const WINDOW: usize = 256;
+
+/// The order that groups the vertices of `rig` by influence count (module docs): `order[i]`
+/// is the index of the vertex that comes i-th. Within each window of [`WINDOW`] vertices
+/// the vertices are sorted by how many positive weights they have (1, 2, then 3 or more
+/// together), rising in even windows and falling in odd ones, and otherwise keep their
+/// order; every vertex stays in its window. An error where the rig's public fields were
+/// changed into an inconsistent rig ([`Rig::validate`]).
+pub fn by_influence_count(rig: &Rig) -> Result<Vec<u32>> {
+    rig.validate()?;
+    let influences = &rig.influences;
+    let kind = |v: u32| {
+        influences
+            .of(v as usize)
+            .filter(|&(_, w)| w > 0.0)
+            .count()
+            .min(3)
+    };
+    let mut order: Vec<u32> = (0..influences.vertices() as u32).collect();
+    for (i, window) in order.chunks_mut(WINDOW).enumerate() {
+        if i % 2 == 0 {
+            window.sort_by_key(|&v| kind(v));
+        } else {
+            window.sort_by_key(|&v| Reverse(kind(v)));
+        }
+    }
+    Ok(order)
+}
+
+/// The inverse of the vertex order `order` of a mesh of `vertices` vertices:
+/// `inverse[order[i]] = i`, the new index of each old vertex (what a triangle's corners
+/// become). An error unless `order` names each of the `vertices` vertices once.
+pub fn inverse(order: &[u32], vertices: usize) -> Result<Vec<u32>> {
+    if order.len() != vertices {
+        return Err(SkinError::Count {
+            rig: "the vertex order".into(),
+            what: "vertices",
+            expected: vertices,
+            got: order.len(),
+        });
+    }
+    let mut inverse = vec![u32::MAX; vertices];
+    for (i, &v) in order.iter().enumerate() {
+        let slot = inverse.get_mut(v as usize).ok_or(SkinError::OutOfRange {
+            rig: "the vertex order".into(),
+            what: format!("vertex at position {i}"),
+            index: v as usize,
+            count: vertices,
+        })?;
+        if *slot != u32::MAX {
+            return Err(SkinError::Parameter {
+                what: "the vertex order",
+                value: format!("names vertex {v} at positions {} and {i}:", *slot),
+                reason: "must name each vertex once",
+            });
+        }
+        *slot = i as u32;
+    }
+    Ok(inverse)
+}
+
+impl Rig {
+    /// This rig with its vertices in `order` (`order[i]` is the vertex that becomes vertex
+    /// i, as [`by_influence_count`] gives it): positions, normals and influences moved, the
+    /// triangles' corners renumbered, the skeleton and clips as they are. Skinning it gives
+    /// each vertex the same result, bit for bit, at its new index. An error unless `order`
+    /// names each vertex once ([`inverse`]), or where the rig's public fields were changed
+    /// into an inconsistent rig ([`Rig::validate`]).
+    pub fn reordered(&self, order: &[u32]) -> Result<Rig> {
+        self.validate()?;
+        let n = self.mesh.positions.len();
+        let new_of = inverse(order, n)?;
+        let moved = |v: &[chasles::Vec3<f32>]| order.iter().map(|&o| v[o as usize]).collect();
+        let triangles = self
+            .mesh
+            .triangles
+            .iter()
+            .map(|t| t.map(|c| new_of[c as usize]))
+            .collect();
+        let mut influences = Influences {
+            start: Vec::with_capacity(n + 1),
+            joints: Vec::with_capacity(self.influences.joints.len()),
+            weights: Vec::with_capacity(self.influences.weights.len()),
+        };
+        influences.start.push(0);
+        for &o in order {
+            let row = self.influences.start[o as usize] as usize
+                ..self.influences.start[o as usize + 1] as usize;
+            influences
+                .joints
+                .extend_from_slice(&self.influences.joints[row.clone()]);
+            influences
+                .weights
+                .extend_from_slice(&self.influences.weights[row]);
+            influences.start.push(influences.joints.len() as u32);
+        }
+        Rig::new(
+            self.name.clone(),
+            Mesh {
+                positions: moved(&self.mesh.positions),
+                normals: moved(&self.mesh.normals),
+                triangles,
+            },
+            self.nodes.clone(),
+            self.joints.clone(),
+            self.inverse_bind.clone(),
+            influences,
+            self.animations.clone(),
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests;
