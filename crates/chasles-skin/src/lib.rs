@@ -10,8 +10,9 @@
 //! * [`fast`] — the fast path: a rig laid out once ([`fast::FastRig`], 4 or 8 influences),
 //!   a per-method [`fast::Palette`] of `#[repr(C)]` joint types for each pose, and one
 //!   [`fast::SkinningJob`] into the caller's buffers (packed, interleaved, split), AVX2+FMA
-//!   kernels chosen at run time with a portable fallback, all cores; [`vertex_order`]
-//!   groups a mesh's vertices by influence count for DIB's SIMD blocks;
+//!   kernels chosen at run time with a portable fallback, all cores (DIB's on a copy of
+//!   the vertices grouped by influence count where that gains; [`vertex_order`] gives
+//!   that order to apply to an asset once);
 //! * `gpu` (feature `gpu`) — WGSL compute shaders for LBS, DQS and DIB through wgpu, taking
 //!   the same palette and output; their per-vertex math ([`shader`]) is shared with the
 //!   browser viewer's vertex shaders.

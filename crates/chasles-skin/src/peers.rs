@@ -22,7 +22,7 @@ use glam::{Mat3A, Vec3A, Vec4};
 mod rounds;
 pub use rounds::{
     cache_notes, last_level_cache, markdown, measure, measure_rig, repeats, Load, Role, Row,
-    Spread, Table, GROUPED_DIB, SYNTHETIC, TRAFFIC,
+    Spread, Table, SYNTHETIC, TRAFFIC, UNGROUPED_DIB,
 };
 
 /// Every baseline's joints for one pose.

@@ -9,31 +9,33 @@
 //! [`by_influence_count`] gives the order that sorts the vertices by their influence count
 //! (one, two, three or more) within each window of [`WINDOW`] vertices, so that a
 //! window's vertices of three or more sit side by side; windows alternate between rising
-//! and falling counts, so that neighbouring windows meet with like vertices and a block
-//! that starts off a window's edge (the job's chunks after the first may start up to seven
-//! vertices past a multiple of 4096) straddles no extra change of kind. [`Rig::reordered`]
-//! applies it (positions, normals, influences, the triangles renumbered). Each vertex's
-//! result does not depend on its block-mates (the kernels' tests shift every block and
-//! compare bits), so a reordered rig skins every vertex to the same bits, in the new order
-//! — the order is a choice to make once, when an asset is built, like an order for a GPU's
-//! vertex cache; windows keep neighbours near each other.
+//! and falling counts, so that neighbouring windows meet with like vertices (which matters
+//! where blocks start off a window's edge: in a job of 2¹⁸ vertices or more into a packed
+//! output, whose chunks after the first start up to seven vertices past a multiple of
+//! 4096). [`Rig::reordered`] applies it (positions, normals, influences, the triangles
+//! renumbered). Each vertex's result does not depend on its block-mates (the kernels'
+//! tests shift every block and compare bits), so a reordered rig skins every vertex to the
+//! same bits, in the new order.
+//!
+//! The fast path makes the same order itself, for DIB alone, on a rig where it gains
+//! (`fast::grouped`: a copy of the vertices in this order, each job's results put back in
+//! the rig's order through a stage on the stack). Applying the order to an asset once,
+//! when it is built (like an order for a GPU's vertex cache; the windows keep neighbours
+//! near each other), saves that copy and the stage.
 //!
 //! Measured (2026-12-05, a 2-core Intel Xeon with AVX-512F, one core; blocks of sixteen
-//! that iterate, before → after). Best of 20 runs over the characters' clips at seven
-//! times each, three runs, M vertices/s and DQS's speed over DIB's: the Fox 26 → 5 of 108
-//! blocks, DIB 72.9–75.4 → 95.6–99.7 (4.25–4.27× → 3.21–3.27×); RiggedFigure 22 → 13 of
-//! 24, 61.9–63.4 → 71.8–73.6 (4.13–4.26× → 3.56–3.59×); CesiumMan 145 → 77 of 205,
-//! 64.1–65.6 → 74.8–78.3 (4.93–5.18× → 4.23–4.34×). `chasles skin --rig
-//! crates/chasles-models/gltf/<model>.glb --bench --bench-threads 1 --bench-rounds 21`,
-//! which times DIB on the grouped mesh beside the rest (medians, two runs): the Fox 1.30–1.31×
-//! as fast (DQS over DIB 4.4× → 3.4×), RiggedFigure 1.17× (3.9–4.0× → 3.3–3.4×), CesiumMan
-//! 1.16–1.19× (5.0–5.1× → 4.3×). Sorted within windows of 64 vertices (rising in every
-//! window, a scratch run) the Fox kept about half the gain (69.5 → 81.6) and CesiumMan
-//! two thirds (58.6 → 67.7); windows of 1024 or the whole mesh gained as much as 256.
-//! Sorted over the whole mesh CesiumMan still has 72 blocks that iterate (its vertices of
-//! three influences or more fill them), so it cannot go much further. The other methods' kernels take every vertex alike, whatever
-//! its count, and are unchanged. Sorting at run time instead, a window at a time inside the
-//! kernel, cost more than it saved (`fast::avx512`'s module docs).
+//! that iterate, before → after: the Fox 26 → 5 of 108, RiggedFigure 22 → 13 of 24,
+//! CesiumMan 145 → 77 of 205). `cargo run --release -p chasles-skin --example
+//! dib_grouping` (best of 20 runs over the characters' clips, two rounds, M vertices/s),
+//! DIB in the rig's order (the fast path's grouping turned off) → grouped by the fast path
+//! → on the reordered rig: the Fox 73.7–75.7 → 88.9–91.1 → 99.3–99.4; RiggedFigure
+//! 62.0–63.6 → 67.1–69.0 → 71.8; CesiumMan 65.3–66.1 → 72.7–73.0 → 78.3. Sorted within windows of 64 vertices (rising in every window, a scratch
+//! run) the Fox kept about half the gain (69.5 → 81.6, against 88.7 with 256) and
+//! CesiumMan two thirds (58.6 → 67.7, against 74.7); windows of 1024 or the whole mesh
+//! gained as much as 256. Sorted over the whole mesh CesiumMan still has 72 blocks that
+//! iterate (its vertices of three influences or more fill them), so it cannot go much
+//! further. The other methods' kernels take every vertex alike, whatever its count, and
+//! are unchanged.
 
 use crate::error::{Result, SkinError};
 use crate::rig::{Influences, Mesh, Rig};
@@ -51,14 +53,18 @@ pub const WINDOW: usize = 256;
 pub fn by_influence_count(rig: &Rig) -> Result<Vec<u32>> {
     rig.validate()?;
     let influences = &rig.influences;
-    let kind = |v: u32| {
-        influences
-            .of(v as usize)
-            .filter(|&(_, w)| w > 0.0)
-            .count()
-            .min(3)
-    };
-    let mut order: Vec<u32> = (0..influences.vertices() as u32).collect();
+    Ok(by_kind(influences.vertices(), |v| {
+        influences.of(v).filter(|&(_, w)| w > 0.0).count()
+    }))
+}
+
+/// The order of [`by_influence_count`] for `n` vertices (at most `u32::MAX`: a rig's, whose
+/// influence rows are indexed by u32, or a fast layout's that `fast` checked) with
+/// `count(v)` influences of positive weight each (counts of 3 and more alike).
+pub(crate) fn by_kind(n: usize, count: impl Fn(usize) -> usize) -> Vec<u32> {
+    debug_assert!(n <= u32::MAX as usize, "vertices are named by u32 indices");
+    let kind = |v: u32| count(v as usize).min(3);
+    let mut order: Vec<u32> = (0..n as u32).collect();
     for (i, window) in order.chunks_mut(WINDOW).enumerate() {
         if i % 2 == 0 {
             window.sort_by_key(|&v| kind(v));
@@ -66,13 +72,20 @@ pub fn by_influence_count(rig: &Rig) -> Result<Vec<u32>> {
             window.sort_by_key(|&v| Reverse(kind(v)));
         }
     }
-    Ok(order)
+    order
 }
 
 /// The inverse of the vertex order `order` of a mesh of `vertices` vertices:
 /// `inverse[order[i]] = i`, the new index of each old vertex (what a triangle's corners
 /// become). An error unless `order` names each of the `vertices` vertices once.
 pub fn inverse(order: &[u32], vertices: usize) -> Result<Vec<u32>> {
+    if vertices > u32::MAX as usize {
+        return Err(SkinError::Parameter {
+            what: "the vertex order",
+            value: format!("of {vertices} vertices"),
+            reason: "must have at most 2^32 - 1 (they are named by u32 indices)",
+        });
+    }
     if order.len() != vertices {
         return Err(SkinError::Count {
             rig: "the vertex order".into(),
@@ -85,7 +98,7 @@ pub fn inverse(order: &[u32], vertices: usize) -> Result<Vec<u32>> {
     for (i, &v) in order.iter().enumerate() {
         let slot = inverse.get_mut(v as usize).ok_or(SkinError::OutOfRange {
             rig: "the vertex order".into(),
-            what: format!("vertex at position {i}"),
+            what: format!("entry {i} names vertex"),
             index: v as usize,
             count: vertices,
         })?;

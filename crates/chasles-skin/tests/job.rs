@@ -177,7 +177,10 @@ fn a_job_and_a_palette_update_allocate_nothing() {
     let n = f.vertices().len();
     let matrices = skinning_matrices(&rig, &pose).unwrap();
     let later = skinning_matrices(&rig, &Pose::animated(&rig, 0, 1.1).unwrap()).unwrap();
-    let _ = f.clusters(); // made once per rig, on first use
+    // Made once per rig, on first use or ahead: SBS's clusters, DIB's grouped vertices
+    // (CesiumMan's are grouped).
+    let _ = f.clusters();
+    assert!(f.groups_dib() || !chasles_skin::fast::uses_simd(4));
     let (mut packed, mut inter) = (vec![[0f32; 6]; n], vec![0f32; n * 10]);
     let (mut p, mut nr) = (vec![[0f32; 3]; n], vec![[0f32; 3]; n]);
     for method in Method::ALL {

@@ -153,9 +153,9 @@ fn spread_rig(vertices: usize, influences: usize) -> (chasles_skin::Rig, JointTr
     (rig, jt)
 }
 
-/// `measure_rig` on rigs of one's own: with four influences every method, DIB on the mesh
-/// grouped by influence count, the five baselines, the copy of 72 bytes a vertex and the
-/// traffic bound; with five to eight (the 8-slot layout) every method, grouped DIB, the
+/// `measure_rig` on rigs of one's own: with four influences every method, DIB with its
+/// grouping turned off, the five baselines, the copy of 72 bytes a vertex and the
+/// traffic bound; with five to eight (the 8-slot layout) every method, ungrouped DIB, the
 /// copy of the 96 bytes such a vertex moves and the traffic bound, no baseline (they are
 /// written for four); each sample repeated to
 /// `min_vertices`. A rig of more than eight influences, or of no vertex, is an error naming
@@ -173,10 +173,10 @@ fn measure_rig_times_up_to_eight_influences_and_names_what_it_cannot() {
         assert_eq!((t.vertices, t.repeats, t.rows.len()), (37, 28, rows));
         assert_eq!(t.mesh, format!("spread{influences}"));
         assert!(t.rows.iter().any(|r| r.name == copy), "{:?}", t.rows);
-        let grouped = t.rows.iter().find(|r| r.name == peers::GROUPED_DIB);
+        let ungrouped = t.rows.iter().find(|r| r.name == peers::UNGROUPED_DIB);
         assert_eq!(
-            grouped.map(|r| r.role),
-            Some(peers::Role::Grouped(chasles_skin::Method::Dib))
+            ungrouped.map(|r| r.role),
+            Some(peers::Role::Ungrouped(chasles_skin::Method::Dib))
         );
         // Each bound's share of itself is 1, and (one round) the traffic's share of the copy
         // is the inverse of the copy's share of the traffic: each column over its own bound.

@@ -24,7 +24,9 @@
 //!   vertex's own stores — made blocks of two 23 % slower and of four 16 % slower (63 → 49,
 //!   29.9 → 25.2 M vertices/s), so that the alternating 2/4 mix gained nothing (29.8 both)
 //!   and CesiumMan and the Fox lost 3–4 %: the indexed loads and stores, and the vertex
-//!   pointers spilled with them, cost more than the iterating blocks saved.
+//!   pointers spilled with them, cost more than the iterating blocks saved. The order is
+//!   now made once a rig, and the kernel runs on a grouped copy of the vertices
+//!   (`fast::grouped`).
 //! - Where one half of a block needs the iteration and the other not, the halves by the
 //!   eight-vertex kernel: no faster (a block of sixteen iterates 1.4× as fast a vertex as
 //!   one of eight, so one iterating half and one of pairs cost as much as sixteen).
@@ -55,7 +57,8 @@
 //! bound, not a kernel: it breaks the stopping rule) gave 58.8–65.6 against 43.7–46.7,
 //! still 4.7–5.9× DQS's time at 10⁵ vertices, where DQS skins 310–345 M vertices/s from
 //! the cache; on the characters 1.1–1.25×. Grouping a mesh's vertices by influence count
-//! ([`crate::vertex_order`]) makes the characters 1.16–1.31× as fast and keeps the rule.
+//! (`fast::grouped`, [`crate::vertex_order`]) makes the characters faster and keeps the
+//! rule.
 
 use super::avx2::dib::{joints, weights};
 use super::avx2::{eight, load_head, store_rows, Store};

@@ -12,9 +12,11 @@
 //! vertices, each vertex's influences are gathered on the stack and blended by the library's
 //! allocation-free [`dib_convex`]: the same calls in the same order as the reference path
 //! ([`crate::skinning`]), so equal numbers (a test checks it on every model and clip). A block
-//! pays for the iteration wherever one of its vertices has three influences or more, so a
-//! mesh whose vertices of like counts sit side by side ([`crate::vertex_order`]) skins
-//! faster, to the same bits.
+//! pays for the iteration wherever one of its vertices has three influences or more, so on
+//! a rig whose vertices of many influences are strewn along the mesh the SIMD kernels run
+//! on a copy of the vertices grouped by influence count, made by the first job, to the
+//! same bits in the rig's order (`grouped`; a rig reordered once by
+//! [`crate::vertex_order`] needs no copy).
 
 use super::{out_of, run, FastRig, Kernel, Out, Vertex};
 use crate::error::Result;
@@ -51,6 +53,7 @@ impl<const K: usize> Kernel<K> for DibKernel {
     fn table(_: &[[f32; 8]], _: usize) {}
     #[cfg(target_arch = "x86_64")]
     const AVX2: Option<super::SimdKernel<K, [f32; 8], ()>> = Some(super::avx2::dib::dib::<K>);
+    const GROUPED: bool = true;
     #[inline(always)]
     fn vertex(v: &Vertex<K>, joints: &[[f32; 8]]) -> Out {
         let (q, w, n) = gather(v, joints);

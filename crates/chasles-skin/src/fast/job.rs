@@ -242,11 +242,35 @@ pub(super) fn for_chunks<const K: usize>(
     parallel: bool,
     chunk: impl Fn(usize, Dest<'_>, &[Vertex<K>]) + Sync,
 ) {
+    let shift = out.shift(vertices.len());
+    chunks_from(shift, out, vertices, parallel, chunk);
+}
+
+/// [`for_chunks`] on the grid that starts at 0 (never streamed): every chunk but the last
+/// is [`CHUNK`] long and starts at a multiple of it (so of any of its divisors: the windows
+/// of `crate::vertex_order`, which `super::grouped` skins one at a time).
+pub(super) fn for_chunks_unshifted<const K: usize>(
+    out: Output<'_>,
+    vertices: &[Vertex<K>],
+    parallel: bool,
+    chunk: impl Fn(usize, Dest<'_>, &[Vertex<K>]) + Sync,
+) {
+    chunks_from(0, out, vertices, parallel, chunk);
+}
+
+/// [`for_chunks`] on the grid that starts at `shift`.
+fn chunks_from<const K: usize>(
+    shift: usize,
+    out: Output<'_>,
+    vertices: &[Vertex<K>],
+    parallel: bool,
+    chunk: impl Fn(usize, Dest<'_>, &[Vertex<K>]) + Sync,
+) {
     let n = vertices.len();
     if n == 0 {
         return;
     }
-    let grid = Grid::new(n, out.shift(n));
+    let grid = Grid::new(n, shift);
     let each = |p: Piece<'_, K>| {
         let (mut out, mut vertices) = (p.out, p.vertices);
         for c in p.from..p.to {
@@ -273,7 +297,10 @@ pub(super) fn for_chunks<const K: usize>(
 /// One pose skinned into the caller's buffers: `rig` (laid out once), `palette` (made for
 /// this pose, any method, for this rig: a palette is checked against the rig's joint and
 /// cluster counts, not against which rig made it), `output`; on all threads when `parallel`.
-/// On one thread it allocates nothing; on all, only what rayon's scheduler does. A parallel
+/// On one thread it allocates nothing; on all, only what rayon's scheduler does (the rig's
+/// caches aside, each made once by the first job that needs it, or ahead by its call: SBS's
+/// clusters, [`FastRig::clusters`], and DIB's grouped vertices, [`FastRig::groups_dib`]).
+/// A parallel
 /// job called from a thread outside rayon's pool (a program's main thread) waits while the
 /// pool takes it up, which on a 2-core machine cost 16–55 µs a pose more than from inside
 /// (`rayon::ThreadPool::install` around a frame's work; the module docs' figures).

@@ -18,7 +18,7 @@
 //! stores it is, where a loop that ran it after LBS gave 380–395. Shuffled, a kernel
 //! follows the copy in about one round in as many as there are other kernels (12 in the
 //! synthetic table, 13 on a rig of up to four influences, 8 on one of more: a rig's table
-//! also times DIB on its mesh grouped by influence count), which the medians leave out.
+//! also times DIB with its grouping turned off), which the medians leave out.
 
 use super::{copy_bound, run, Joints, BASELINES};
 use crate::error::Result;
@@ -67,18 +67,19 @@ pub enum Role {
     Bound,
     /// The fast paths' loads and stores alone ([`crate::fast::traffic`]).
     Traffic,
-    /// One of our fast paths on a rig's mesh with its vertices grouped by influence count
-    /// ([`crate::vertex_order`]; [`measure_rig`] times DIB so: [`GROUPED_DIB`]).
-    Grouped(Method),
+    /// One of our fast paths with DIB's grouping of the vertices by influence count turned
+    /// off ([`FastRig::without_dib_grouping`]; [`measure_rig`] times DIB so:
+    /// [`UNGROUPED_DIB`]).
+    Ungrouped(Method),
 }
 
-/// The row name of DIB on a rig's mesh grouped by influence count ([`measure_rig`]).
-pub const GROUPED_DIB: &str = "dib, vertices grouped by influence count";
+/// The row name of DIB in the rig's vertex order, its grouping turned off ([`measure_rig`]).
+pub const UNGROUPED_DIB: &str = "dib, in the rig's order (not grouped)";
 
 /// One kernel's figures over the rounds.
 #[derive(Debug, Clone)]
 pub struct Row {
-    /// Its name (a method's, a baseline's, the copy's or the traffic's).
+    /// Its name (a method's, a baseline's, the copy's, the traffic's, or [`UNGROUPED_DIB`]).
     pub name: String,
     /// What it is.
     pub role: Role,
@@ -111,7 +112,8 @@ pub struct Table {
     /// The bytes a skinned vertex moves (its vertex read, its position and normal written:
     /// 72 with four influences, 96 with eight), the copy's.
     pub moved: usize,
-    /// Every kernel: our methods, the baselines, the copy, the traffic.
+    /// Every kernel: our methods (on a rig, DIB also ungrouped), the baselines, the copy, the
+    /// traffic.
     pub rows: Vec<Row>,
 }
 
@@ -148,9 +150,9 @@ pub fn measure(n: usize, threads: usize, rounds: usize) -> Result<Table> {
 
 /// [`measure`] on a rig of one's own in the pose `jt` (a character mid-clip, say): every
 /// method's fast path, and, where no vertex has more than four influences, the baselines
-/// (which are written for four); and DIB again on the mesh with its vertices grouped by
-/// influence count ([`GROUPED_DIB`]: [`crate::vertex_order`], the same results in another
-/// order). Each timed sample skins the mesh as many times as make
+/// (which are written for four); and DIB again with its grouping of the vertices by
+/// influence count turned off ([`UNGROUPED_DIB`]: the same results, in the rig's order
+/// alone; [`FastRig`]). Each timed sample skins the mesh as many times as make
 /// `min_vertices` vertices or more (a character of a few thousand vertices takes
 /// microseconds, too short to time alone), and every rate counts them all; the copy bound
 /// copies the same bytes as often. An error where the mesh has no vertex (nothing to
@@ -171,25 +173,26 @@ pub fn measure_rig(
         });
     }
     let reps = repeats(n, min_vertices);
-    let grouped = rig.reordered(&crate::vertex_order::by_influence_count(rig)?)?;
     if rig.influences.max_per_vertex() <= 4 {
-        let (fast, grouped) = (FastRig::<4>::new(rig)?, FastRig::<4>::new(&grouped)?);
+        let fast = FastRig::<4>::new(rig)?;
+        let ungrouped = fast.clone().without_dib_grouping();
         on_threads(threads, |parallel| {
             let mesh = Mesh {
-                grouped: Some(&grouped),
+                ungrouped: Some(&ungrouped),
                 ..Mesh::four(&rig.name, &fast, jt, reps)
             };
             measure_on(mesh, parallel, rounds, threads.max(1))
         })
     } else {
-        let (fast, grouped) = (FastRig::<8>::new(rig)?, FastRig::<8>::new(&grouped)?);
+        let fast = FastRig::<8>::new(rig)?;
+        let ungrouped = fast.clone().without_dib_grouping();
         on_threads(threads, |parallel| {
             let mesh = Mesh {
                 name: &rig.name,
                 rig: &fast,
                 jt,
                 baselines: None,
-                grouped: Some(&grouped),
+                ungrouped: Some(&ungrouped),
                 reps,
             };
             measure_on(mesh, parallel, rounds, threads.max(1))
@@ -217,14 +220,14 @@ fn on_threads<R: Send>(threads: usize, f: impl FnOnce(bool) -> Result<R> + Send)
 }
 
 /// What one table times: a laid-out mesh, its pose, the vertices the baselines read (four
-/// influences; `None` where the layout has more), the mesh grouped by influence count for
-/// DIB (a rig's) and how often a sample skins the mesh.
+/// influences; `None` where the layout has more), the layout with DIB's grouping turned
+/// off (a rig's) and how often a sample skins the mesh.
 struct Mesh<'a, const K: usize> {
     name: &'a str,
     rig: &'a FastRig<K>,
     jt: &'a JointTransforms,
     baselines: Option<&'a [Vertex<4>]>,
-    grouped: Option<&'a FastRig<K>>,
+    ungrouped: Option<&'a FastRig<K>>,
     reps: usize,
 }
 
@@ -236,7 +239,7 @@ impl<'a> Mesh<'a, 4> {
             rig,
             jt,
             baselines: Some(rig.vertices()),
-            grouped: None,
+            ungrouped: None,
             reps,
         }
     }
@@ -279,7 +282,7 @@ fn measure_on<const K: usize>(
         jt,
         reps,
         baselines,
-        grouped,
+        ungrouped,
         ..
     } = mesh;
     let n = rig.vertices().len();
@@ -297,9 +300,9 @@ fn measure_on<const K: usize>(
         let f: Run = Box::new(move |o| skin_pose(rig, jt, m, o, parallel));
         kernels.push((m.name().into(), Role::Ours(m), f));
     }
-    if let Some(g) = grouped {
-        let f: Run = Box::new(move |o| skin_pose(g, jt, Method::Dib, o, parallel));
-        kernels.push((GROUPED_DIB.into(), Role::Grouped(Method::Dib), f));
+    if let Some(u) = ungrouped {
+        let f: Run = Box::new(move |o| skin_pose(u, jt, Method::Dib, o, parallel));
+        kernels.push((UNGROUPED_DIB.into(), Role::Ungrouped(Method::Dib), f));
     }
     for (name, f) in baselines.map_or(&[][..], |_| &BASELINES[..]) {
         let (pj, v) = (&pj, baselines.unwrap_or_default());

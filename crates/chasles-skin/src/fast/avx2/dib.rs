@@ -7,12 +7,14 @@
 //! sixteen go through the sixteen-vertex kernel (`fast::avx512`, the same lane algebra on
 //! `__m512`, the same bits) and only a last block of eight through this one.
 //!
-//! The blocks take the vertices side by side. Taking each window's vertices ordered by
-//! influence count was tried (a block costs what its costliest lane needs; fully sorted
-//! rigs skin 1.13–1.27× faster, the upper bound) and not kept: a per-call counting sort
-//! (the counters in one register), gathers by index and scattered stores cost 12–15 % a
-//! vertex on sorted input, and on the rigs in their own order CesiumMan got slower and the
-//! Fox at most 5–8 % faster, inside the machine's noise (2026-12-03, best of 30 runs each).
+//! The blocks take the vertices side by side. A block costs what its costliest lane needs,
+//! so on rigs whose vertices of many influences are strewn along the mesh the job runs
+//! DIB on a copy of the vertices grouped by influence count, made once a rig
+//! (`fast::grouped`). Sorting each window by count inside the kernel instead, every call,
+//! was tried and not kept: a per-call counting sort (the counters in one register),
+//! gathers by index and scattered stores cost 12–15 % a vertex on sorted input, and on
+//! the rigs in their own order CesiumMan got slower and the Fox at most 5–8 % faster,
+//! inside the machine's noise (2026-12-03, best of 30 runs each).
 
 use super::super::dest::Dest;
 use super::super::lane::dib::{convex, dib as blend};

@@ -1,0 +1,274 @@
+//! DIB's SIMD kernels over a rig's vertices grouped by influence count (Kavan et al. 2006,
+//! §4, the box "DIB"; §6, its cost in skinning), without changing the rig's order. A block
+//! of eight or sixteen vertices pays for DIB's iteration — the update and the pass of
+//! logarithms that shows it converged — wherever one of its vertices has three influences
+//! or more (`lane::dib`), and on a character such vertices are strewn along the mesh. On a
+//! rig where grouping would leave at most three quarters of the blocks of sixteen
+//! iterating ([`Groups::of`]; the Fox 26 → 5 of 108, RiggedFigure 22 → 13 of 24,
+//! CesiumMan 145 → 77 of 205; none on the synthetic meshes, whose vertices all have four),
+//! the first DIB job lays out a copy of the vertices in `crate::vertex_order`'s order
+//! (sorted by count within windows of 256) and every DIB job after runs the kernels on it,
+//! a window at a time into a stage on the stack, whose vertices then go to their own
+//! places in the caller's output. The kernels give every vertex the same bits whatever its
+//! block-mates (their tests shift every block and compare), so the output is the
+//! ungrouped kernels', bit for bit (tested on every layout).
+//!
+//! What it costs: the copy (a `Vertex<K>` and a `u32` a vertex, only on rigs that gain)
+//! and, each job, one more write of each vertex's output from the stage; the output is
+//! never streamed (the job streams only meshes of 2¹⁸ vertices or more into a packed
+//! output). Measured (2026-12-05, a 2-core Intel Xeon with AVX-512F, one core; `cargo run
+//! --release -p chasles-skin --example dib_grouping`: best of 20 runs over the characters'
+//! clips, two rounds, M vertices/s), DIB in the rig's order (grouping off,
+//! [`super::FastRig::without_dib_grouping`]) → grouped here → on a rig reordered once
+//! (`crate::vertex_order`, no stage): the Fox 73.7–75.7 → 88.9–91.1 → 99.3–99.4,
+//! RiggedFigure 62.0–63.6 → 67.1–69.0 → 71.8, CesiumMan 65.3–66.1 → 72.7–73.0 → 78.3:
+//! the stage, its put-back and a kernel call a window cost 4–12 % of the reordered rig's
+//! speed. A first version, whose `Dest::put` read each vertex back through a copy on the
+//! stack, ran slower than the ungrouped kernel.
+
+use super::dest::Dest;
+use super::job::for_chunks_unshifted;
+use super::{Kernel, Output, Vertex, CHUNK};
+use crate::vertex_order::{by_kind, WINDOW};
+
+/// Vertices skinned into the stage at a time: one window of the order, which the order
+/// maps onto itself (four windows at a time, a stage of 24 KB instead of 6, measured no
+/// faster).
+const SPAN: usize = WINDOW;
+
+// Every chunk of the unshifted grid starts at a span's start.
+const _: () = assert!(CHUNK.is_multiple_of(SPAN) && SPAN.is_multiple_of(WINDOW));
+
+/// A rig's vertices in `crate::vertex_order`'s order: `vertices[i]` is the rig's vertex
+/// `order[i]`.
+#[derive(Debug, Clone)]
+pub(super) struct Groups<const K: usize> {
+    vertices: Vec<Vertex<K>>,
+    order: Vec<u32>,
+}
+
+/// Blocks of sixteen that hold a vertex of three influences or more.
+fn iterating<const K: usize>(vertices: impl ExactSizeIterator<Item = Vertex<K>>) -> usize {
+    let mut blocks = 0;
+    let mut any = false;
+    for (i, v) in vertices.enumerate() {
+        any |= count(&v) >= 3;
+        if i % 16 == 15 {
+            blocks += usize::from(any);
+            any = false;
+        }
+    }
+    blocks + usize::from(any)
+}
+
+/// A vertex's influences of positive weight.
+fn count<const K: usize>(v: &Vertex<K>) -> usize {
+    v.w.iter().filter(|&&w| w > 0.0).count()
+}
+
+impl<const K: usize> Groups<K> {
+    /// The grouped copy of `vertices`, where grouping leaves at most three quarters of the
+    /// blocks of sixteen that iterate (module docs); `None` where it would gain less.
+    pub(super) fn of(vertices: &[Vertex<K>]) -> Option<Self> {
+        if vertices.len() > u32::MAX as usize {
+            return None;
+        }
+        let before = iterating(vertices.iter().copied());
+        let order = by_kind(vertices.len(), |v| count(&vertices[v]));
+        let after = iterating(order.iter().map(|&o| vertices[o as usize]));
+        if before == 0 || 4 * after > 3 * before {
+            return None;
+        }
+        Some(Groups {
+            vertices: order.iter().map(|&o| vertices[o as usize]).collect(),
+            order,
+        })
+    }
+}
+
+/// DIB's SIMD kernel `F` on the grouped vertices `g` into `out` (the caller checked the
+/// sizes, the joints and that the SIMD kernels run): on the grid that starts at 0, each
+/// chunk a window at a time (the last window with the 1–7 vertices after it, so that every
+/// window of a mesh of eight or more goes through the SIMD kernel, as every chunk does
+/// ungrouped), into a stage whose vertices are then put where the rig has them.
+pub(super) fn run<const K: usize, F: Kernel<K>>(
+    g: &Groups<K>,
+    joints: &[F::Joint],
+    table: &F::Table,
+    out: Output<'_>,
+    parallel: bool,
+) {
+    for_chunks_unshifted(out, &g.vertices, parallel, |first, mut o, v| {
+        let mut stage = [[0f32; 6]; SPAN + 7];
+        let mut s = 0;
+        while s < v.len() {
+            let e = if v.len() - s < SPAN + 8 {
+                v.len()
+            } else {
+                s + SPAN
+            };
+            let stage = &mut stage[..e - s];
+            F::chunk(Dest::packed(stage), &v[s..e], joints, table, true, false);
+            for (i, r) in stage.iter().enumerate() {
+                // Windows start at multiples of WINDOW, and the order moves a vertex only
+                // within its window: `order` maps this window onto itself.
+                o.put(g.order[first + s + i] as usize - first, *r);
+            }
+            s = e;
+        }
+    });
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fast::avx2::dib::tests::{joints, with_counts};
+    use crate::fast::{dib, simd, FastRig, Output, Palette, SkinningJob};
+    use crate::synthetic;
+
+    /// `rig` with DIB's grouping made (`true`) or refused (`false`) before any job.
+    fn grouping<const K: usize>(rig: &FastRig<K>, on: bool) -> FastRig<K> {
+        let r = FastRig::from_vertices(rig.vertices().to_vec(), rig.centres().to_vec()).unwrap();
+        r.dib_groups
+            .set(if on { Groups::of(r.vertices()) } else { None })
+            .unwrap();
+        r
+    }
+
+    /// DIB by the job into each layout (packed, interleaved of 8 floats, split), on one
+    /// thread and on all: each as the packed output it gives (the interleaved buffer's
+    /// other floats are checked untouched).
+    fn outputs<const K: usize>(rig: &FastRig<K>, d: &[[f32; 8]]) -> Vec<Vec<[u32; 6]>> {
+        let n = rig.vertices().len();
+        let palette = Palette::from_joints(
+            rig,
+            crate::fast::Joints::Dib(d.iter().map(|q| bytemuck::cast(*q)).collect()),
+        )
+        .unwrap();
+        let job = |output: Output<'_>, parallel: bool| {
+            SkinningJob {
+                rig,
+                palette: &palette,
+                output,
+                parallel,
+            }
+            .run()
+            .unwrap()
+        };
+        let bits = |o: &[[f32; 6]]| o.iter().map(|o| o.map(f32::to_bits)).collect::<Vec<_>>();
+        let mut all = Vec::new();
+        for parallel in [false, true] {
+            let mut packed = vec![[f32::NAN; 6]; n];
+            job(Output::Packed(&mut packed), parallel);
+            all.push(bits(&packed));
+            let mut data = vec![7.5f32; 8 * n];
+            job(
+                Output::Interleaved {
+                    data: &mut data,
+                    stride: 8,
+                },
+                parallel,
+            );
+            assert!(data.chunks(8).all(|v| v[6] == 7.5 && v[7] == 7.5));
+            let inter: Vec<[f32; 6]> = data
+                .chunks(8)
+                .map(|v| std::array::from_fn(|c| v[c]))
+                .collect();
+            all.push(bits(&inter));
+            let (mut p, mut nr) = (vec![[f32::NAN; 3]; n], vec![[f32::NAN; 3]; n]);
+            job(
+                Output::Split {
+                    positions: &mut p,
+                    normals: &mut nr,
+                },
+                parallel,
+            );
+            let split: Vec<[f32; 6]> = p
+                .iter()
+                .zip(&nr)
+                .map(|(p, n)| [p[0], p[1], p[2], n[0], n[1], n[2]])
+                .collect();
+            all.push(bits(&split));
+        }
+        all
+    }
+
+    /// Grouped and ungrouped, DIB gives every vertex the same bits in every layout, on one
+    /// thread and on all: mixed influence counts (1–K in every block, 2 and 4 in turn, runs
+    /// of one kind) at meshes of every awkward size (under a block, a window and a window
+    /// and its last few, a chunk and its last few, two chunks), at every angle.
+    #[test]
+    fn grouped_dib_is_the_ungrouped_bit_for_bit() {
+        if !simd(4) {
+            eprintln!("no AVX2+FMA here: the grouping is not used");
+            return;
+        }
+        fn check<const K: usize>(n: usize, count: fn(usize) -> usize, gains: bool) {
+            let rig = with_counts(&synthetic::rig_with::<K>(n, 54, 11), count);
+            let (on, off) = (grouping(&rig, true), grouping(&rig, false));
+            if n >= 64 {
+                assert_eq!(on.dib_groups().is_some(), gains, "n = {n}");
+            }
+            let every = joints(54);
+            let mid = crate::fast::dual_quats8(&synthetic::joints(54, 3));
+            for d in [&every, &mid] {
+                let (a, b) = (outputs(&on, d), outputs(&off, d));
+                for (layout, (a, b)) in a.iter().zip(&b).enumerate() {
+                    for v in 0..n {
+                        assert_eq!(a[v], b[v], "K = {K}, n = {n}, output {layout}, vertex {v}");
+                    }
+                }
+                // And the free function.
+                let dq: Vec<_> = d
+                    .iter()
+                    .map(|q| chasles::DualQuat::from_array(*q))
+                    .collect();
+                let (mut x, mut y) = (vec![[0f32; 6]; n], vec![[0f32; 6]; n]);
+                dib(&on, &dq, &mut x, false).unwrap();
+                dib(&off, &dq, &mut y, false).unwrap();
+                assert_eq!(x, y, "K = {K}, n = {n}");
+            }
+        }
+        let mixed: fn(usize) -> usize = |i| 1 + (i * 7919) % 4;
+        let turns: fn(usize) -> usize = |i| if i % 2 == 0 { 2 } else { 4 };
+        let runs: fn(usize) -> usize = |i| if (i / 40) % 3 == 0 { 4 } else { 1 + i % 2 };
+        for n in [5, 8, 61, 255, 256, 263, 264, 300, 4096 + 7, 2 * 4096 + 300] {
+            // Runs of 40 of one kind are grouped enough already: the grouping is not made.
+            for (count, gains) in [(mixed, true), (turns, true), (runs, false)] {
+                check::<4>(n, count, gains);
+            }
+        }
+        check::<8>(4096 + 77, mixed, true);
+    }
+
+    /// The grouping is made where it gains and only there: on the characters (blocks of
+    /// sixteen that iterate: the Fox 26 → 5, RiggedFigure 22 → 13, CesiumMan 145 → 77) and
+    /// not on the synthetic mesh, whose vertices all have four influences, nor on a rig of
+    /// one or two influences a vertex (no block iterates).
+    #[test]
+    fn groups_are_made_where_they_gain() {
+        for (m, before, after) in [
+            (chasles_models::FOX, 26, 5),
+            (chasles_models::RIGGED_FIGURE, 22, 13),
+            (chasles_models::CESIUM_MAN, 145, 77),
+        ] {
+            let rig = crate::gltf_load::load_slice(m.bytes, m.file).unwrap();
+            let fast = FastRig::<4>::new(&rig).unwrap();
+            let g = Groups::of(fast.vertices()).expect("the characters gain");
+            assert_eq!(
+                iterating(fast.vertices().iter().copied()),
+                before,
+                "{}",
+                rig.name
+            );
+            assert_eq!(iterating(g.vertices.iter().copied()), after, "{}", rig.name);
+            for (i, &o) in g.order.iter().enumerate() {
+                assert_eq!(g.vertices[i], fast.vertices()[o as usize]);
+            }
+        }
+        assert!(Groups::of(synthetic::rig(5000, 54, 7).vertices()).is_none());
+        let two = with_counts(&synthetic::rig(5000, 54, 7), |i| 1 + i % 2);
+        assert!(Groups::of(two.vertices()).is_none());
+        assert!(Groups::<4>::of(&[]).is_none());
+    }
+}
