@@ -32,11 +32,18 @@
 //! by an unnormalized quaternion, DQS's transformation, products, Horner's rule, Log's
 //! exponential, and DIB whole (`lane::dib`: normalization, the branch-free logarithm and
 //! exponential by series, the stopping rule, the iteration) — is written once in `lane`,
-//! generic over the lane type (`f32`, `__m256`, and `__m512` for DIB). What stays kernel-specific is the data
-//! movement (loads, blends, transposes, stores); Log's AVX2 kernel writes the exponential's
-//! steps out in its own order with the algebra's parts (the generic one inlined there
-//! measured 6 % slower). The scalar DIB kernel runs the library's `dib_convex` instead of
-//! `lane::dib` on `f32`, so that it equals the reference path bit for bit.
+//! generic over the lane type (`f32`, `__m256`, and `__m512` for DIB). What stays
+//! kernel-specific is the data movement (loads, blends, transposes, stores); Log's AVX2
+//! kernel writes the exponential's steps out in its own order with the algebra's parts
+//! (the generic one inlined there measured 6 % slower). The scalar DIB kernel runs the
+//! library's `dib_convex` instead of `lane::dib` on `f32`, so that it equals the reference
+//! path bit for bit.
+//!
+//! This file runs past 500 lines because it holds what every kernel module relies on
+//! together: the layout ([`FastRig`], [`Vertex`], checked once), the switches that choose
+//! the SIMD code, the `Kernel` trait with its chunk cover, and each method's entry point;
+//! the kernels' safety contract (joint indices checked at layout, sizes checked per job) is
+//! stated and kept in one place.
 
 use crate::error::{same_count, Result, SkinError, FAST_RIG};
 use crate::pose::JointTransforms;
@@ -93,7 +100,7 @@ pub use traffic::traffic;
 /// rig's order. Where DIB's SIMD kernels would iterate in far fewer blocks with the
 /// vertices grouped by influence count, the first DIB job makes a grouped copy of them and
 /// every DIB job runs on it, giving every vertex the same bits in the rig's order (module
-/// `grouped`: the built-in characters 1.15–1.3× as fast);
+/// `grouped`: the built-in characters 1.06–1.24× as fast);
 /// [`FastRig::without_dib_grouping`] forgoes the copy, and a rig reordered once by
 /// [`crate::vertex_order`] needs none.
 #[derive(Debug, Clone)]
@@ -109,7 +116,8 @@ pub struct FastRig<const K: usize> {
 }
 
 /// Two layouts are equal when their vertices and joint origins are: the clusters and DIB's
-/// groups are caches.
+/// groups are caches (and whether DIB groups at all, [`FastRig::without_dib_grouping`], a
+/// choice of speed: the results are the same).
 impl<const K: usize> PartialEq for FastRig<K> {
     fn eq(&self, other: &Self) -> bool {
         self.vertices == other.vertices && self.centres == other.centres

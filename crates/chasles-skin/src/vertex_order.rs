@@ -29,13 +29,13 @@
 //! dib_grouping` (best of 20 runs over the characters' clips, two rounds, M vertices/s),
 //! DIB in the rig's order (the fast path's grouping turned off) → grouped by the fast path
 //! → on the reordered rig: the Fox 73.7–75.7 → 88.9–91.1 → 99.3–99.4; RiggedFigure
-//! 62.0–63.6 → 67.1–69.0 → 71.8; CesiumMan 65.3–66.1 → 72.7–73.0 → 78.3. Sorted within windows of 64 vertices (rising in every window, a scratch
-//! run) the Fox kept about half the gain (69.5 → 81.6, against 88.7 with 256) and
-//! CesiumMan two thirds (58.6 → 67.7, against 74.7); windows of 1024 or the whole mesh
-//! gained as much as 256. Sorted over the whole mesh CesiumMan still has 72 blocks that
-//! iterate (its vertices of three influences or more fill them), so it cannot go much
-//! further. The other methods' kernels take every vertex alike, whatever its count, and
-//! are unchanged.
+//! 62.0–63.6 → 67.1–69.0 → 71.8; CesiumMan 65.3–66.1 → 72.7–73.0 → 78.3. Sorted within
+//! windows of 64 vertices (rising in every window, a scratch run) the Fox kept about half
+//! the gain (69.5 → 81.6, against 88.7 with 256) and CesiumMan two thirds (58.6 → 67.7,
+//! against 74.7); windows of 1024 or the whole mesh gained as much as 256. Sorted over
+//! the whole mesh CesiumMan still has 72 blocks that iterate (its vertices of three
+//! influences or more fill them), so it cannot go much further. The other methods'
+//! kernels take every vertex alike, whatever its count, and are unchanged.
 
 use crate::error::{Result, SkinError};
 use crate::rig::{Influences, Mesh, Rig};

@@ -7,7 +7,8 @@
 //! iterating ([`Groups::of`]; the Fox 26 → 5 of 108, RiggedFigure 22 → 13 of 24,
 //! CesiumMan 145 → 77 of 205; none on the synthetic meshes, whose vertices all have four),
 //! the first DIB job lays out a copy of the vertices in `crate::vertex_order`'s order
-//! (sorted by count within windows of 256) and every DIB job after runs the kernels on it,
+//! (sorted by count within windows of 256) and every DIB job, that one included, runs the
+//! kernels on it,
 //! a window at a time into a stage on the stack, whose vertices then go to their own
 //! places in the caller's output. The kernels give every vertex the same bits whatever its
 //! block-mates (their tests shift every block and compare), so the output is the
@@ -16,14 +17,19 @@
 //! What it costs: the copy (a `Vertex<K>` and a `u32` a vertex, only on rigs that gain)
 //! and, each job, one more write of each vertex's output from the stage; the output is
 //! never streamed (the job streams only meshes of 2¹⁸ vertices or more into a packed
-//! output). Measured (2026-12-05, a 2-core Intel Xeon with AVX-512F, one core; `cargo run
+//! output). On synthetic meshes whose influence counts are mixed in every block (2 and 4 in
+//! turn, or 1–4), best of 5 runs, two rounds, M vertices/s, grouped against ungrouped: at
+//! 10⁵ vertices 53.3–56.7 against 44.5–46.4 on one thread and 97.7–103.8 against 83.4–86.0
+//! on two (one round's 53.5 and 43.3 aside); at 10⁶, where the ungrouped output is
+//! streamed, 46.3–47.6 against 44.1–44.8 and 96.5–99.7 against 84.1–89.6 (a scratch loop,
+//! 2026-12-05). Measured (2026-12-05, a 2-core Intel Xeon with AVX-512F, one core; `cargo run
 //! --release -p chasles-skin --example dib_grouping`: best of 20 runs over the characters'
 //! clips, two rounds, M vertices/s), DIB in the rig's order (grouping off,
 //! [`super::FastRig::without_dib_grouping`]) → grouped here → on a rig reordered once
 //! (`crate::vertex_order`, no stage): the Fox 73.7–75.7 → 88.9–91.1 → 99.3–99.4,
-//! RiggedFigure 62.0–63.6 → 67.1–69.0 → 71.8, CesiumMan 65.3–66.1 → 72.7–73.0 → 78.3:
-//! the stage, its put-back and a kernel call a window cost 4–12 % of the reordered rig's
-//! speed. A first version, whose `Dest::put` read each vertex back through a copy on the
+//! RiggedFigure 62.0–63.6 → 67.1–69.0 → 71.8, CesiumMan 65.3–66.1 → 72.7–73.0 →
+//! 78.3: the stage, its put-back and a kernel call a window take 4–11 % off the reordered
+//! rig's speed. A first version, whose `Dest::put` read each vertex back through a copy on the
 //! stack, ran slower than the ungrouped kernel.
 
 use super::dest::Dest;
@@ -98,6 +104,9 @@ pub(super) fn run<const K: usize, F: Kernel<K>>(
     out: Output<'_>,
     parallel: bool,
 ) {
+    // What lets `F::chunk` take the SIMD kernel (its safety rests on it).
+    let simd = super::simd(K);
+    debug_assert!(simd, "the grouping is for the SIMD kernels");
     for_chunks_unshifted(out, &g.vertices, parallel, |first, mut o, v| {
         let mut stage = [[0f32; 6]; SPAN + 7];
         let mut s = 0;
@@ -108,7 +117,7 @@ pub(super) fn run<const K: usize, F: Kernel<K>>(
                 s + SPAN
             };
             let stage = &mut stage[..e - s];
-            F::chunk(Dest::packed(stage), &v[s..e], joints, table, true, false);
+            F::chunk(Dest::packed(stage), &v[s..e], joints, table, simd, false);
             for (i, r) in stage.iter().enumerate() {
                 // Windows start at multiples of WINDOW, and the order moves a vertex only
                 // within its window: `order` maps this window onto itself.
@@ -119,7 +128,7 @@ pub(super) fn run<const K: usize, F: Kernel<K>>(
     });
 }
 
-#[cfg(test)]
+#[cfg(all(test, target_arch = "x86_64"))]
 mod tests {
     use super::*;
     use crate::fast::avx2::dib::tests::{joints, with_counts};
@@ -232,13 +241,58 @@ mod tests {
         let mixed: fn(usize) -> usize = |i| 1 + (i * 7919) % 4;
         let turns: fn(usize) -> usize = |i| if i % 2 == 0 { 2 } else { 4 };
         let runs: fn(usize) -> usize = |i| if (i / 40) % 3 == 0 { 4 } else { 1 + i % 2 };
-        for n in [5, 8, 61, 255, 256, 263, 264, 300, 4096 + 7, 2 * 4096 + 300] {
+        // (2·4096 + 5: a last window merged with the vertices after it in a chunk that does
+        // not start at 0.)
+        for n in [
+            5,
+            8,
+            61,
+            255,
+            256,
+            263,
+            264,
+            300,
+            4096 + 7,
+            2 * 4096 + 5,
+            2 * 4096 + 300,
+        ] {
             // Runs of 40 of one kind are grouped enough already: the grouping is not made.
             for (count, gains) in [(mixed, true), (turns, true), (runs, false)] {
                 check::<4>(n, count, gains);
             }
         }
         check::<8>(4096 + 77, mixed, true);
+    }
+
+    /// The grid the grouped path runs on starts its chunks at multiples of 4096 (so at
+    /// windows' starts) even where the job's own grid would shift them to align a streamed
+    /// output: a mesh of 2¹⁸ vertices and more into a packed output at every offset.
+    #[test]
+    fn the_unshifted_grid_starts_every_chunk_at_a_window() {
+        let one = synthetic::rig(8, 4, 1).vertices()[0];
+        let n = (1 << 18) + 100;
+        let vertices = vec![one; n];
+        let mut out = vec![[0f32; 6]; n + 8];
+        for offset in 0..8 {
+            let firsts = std::sync::Mutex::new(Vec::new());
+            let output = Output::Packed(&mut out[offset..offset + n]);
+            for_chunks_unshifted(output, &vertices, true, |first, o, v| {
+                assert_eq!(o.len(), v.len());
+                firsts.lock().unwrap().push((first, v.len()));
+            });
+            let mut firsts = firsts.into_inner().unwrap();
+            firsts.sort_unstable();
+            let mut next = 0;
+            for (first, len) in firsts {
+                assert_eq!(first, next, "offset {offset}: the chunks tile the mesh");
+                assert!(
+                    first.is_multiple_of(CHUNK),
+                    "offset {offset}: chunk at {first}"
+                );
+                next = first + len;
+            }
+            assert_eq!(next, n);
+        }
     }
 
     /// The grouping is made where it gains and only there: on the characters (blocks of

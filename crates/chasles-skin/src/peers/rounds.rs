@@ -112,6 +112,9 @@ pub struct Table {
     /// The bytes a skinned vertex moves (its vertex read, its position and normal written:
     /// 72 with four influences, 96 with eight), the copy's.
     pub moved: usize,
+    /// Whether DIB's fast path ran on the vertices grouped by influence count
+    /// ([`FastRig::groups_dib`]: the SIMD kernels run and grouping gains on this mesh).
+    pub dib_grouped: bool,
     /// Every kernel: our methods (on a rig, DIB also ungrouped), the baselines, the copy, the
     /// traffic.
     pub rows: Vec<Row>,
@@ -370,6 +373,7 @@ fn measure_on<const K: usize>(
         rounds: rounds.max(1),
         repeats: reps,
         moved,
+        dib_grouped: rig.groups_dib(),
         rows,
     })
 }
@@ -534,6 +538,7 @@ mod tests {
             rounds: 1,
             repeats: 1,
             moved: 72,
+            dib_grouped: false,
             rows: vec![],
         };
         assert!(t.fits_in(72_000_000) && t.fits_in(480 << 20));
