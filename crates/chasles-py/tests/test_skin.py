@@ -245,3 +245,61 @@ def test_bad_skinning_inputs_raise(cesium, tmp_path, rng):
         bad_m = eye.copy()
         bad_m[1, 0, 3] = np.nan
         chasles.skin(p, n, [[0], [1]], [[1.0], [1.0]], bad_m)
+
+
+@pytest.mark.parametrize("name", ["Fox", "CesiumMan", "RiggedFigure"])
+def test_a_rig_reordered_by_influence_count_skins_to_the_same_bits(name):
+    rig = chasles.Rig.model(name)
+    n = rig.vertex_count
+    order = rig.vertex_order()
+    assert order.dtype == np.int64 and order.shape == (n,)
+    assert np.array_equal(np.sort(order), np.arange(n))
+    # Every vertex stays in its window of 256; within it the influence counts (1, 2, then
+    # 3 or more) rise in even windows and fall in odd ones.
+    j, w = rig.influences()
+    kind = np.minimum((w > 0).sum(axis=1), 3)
+    for start in range(0, n, 256):
+        win = order[start : start + 256]
+        assert np.all(win // 256 == start // 256)
+        step = np.diff(kind[win])
+        assert np.all(step >= 0) if (start // 256) % 2 == 0 else np.all(step <= 0)
+    grouped = rig.reordered(order)
+    assert np.array_equal(grouped.positions, rig.positions[order])
+    assert np.array_equal(grouped.normals, rig.normals[order])
+    gj, gw = grouped.influences()
+    assert np.array_equal(gw, w[order]) and np.array_equal(gj, j[order])
+    # The triangles name the same points.
+    assert np.array_equal(grouped.positions[grouped.triangles], rig.positions[rig.triangles])
+    # Skinned by every method, each vertex gets the same bits at its new index; a uint32
+    # order (as the Rust API gives it) is taken alike.
+    again = rig.reordered(order.astype(np.uint32))
+    for method in SKIN_METHODS:
+        p, nr = rig.skin(method=method, time=0.4)
+        for r in (grouped, again):
+            q, qn = r.skin(method=method, time=0.4)
+            assert np.array_equal(q, p[order]) and np.array_equal(qn, nr[order]), method
+    # A reordered rig pickles as any rig.
+    back = pickle.loads(pickle.dumps(grouped))
+    assert np.array_equal(back.positions, grouped.positions)
+
+
+def test_bad_vertex_orders_raise():
+    rig = chasles.Rig.model("Fox")
+    n = rig.vertex_count
+    order = rig.vertex_order()
+    with pytest.raises(ValueError, match=f"{n - 1} vertices, expected {n}"):
+        rig.reordered(order[:-1])
+    bad = order.copy()
+    bad[3] = -1
+    with pytest.raises(ValueError, match="entry 3 is -1, not a vertex index"):
+        rig.reordered(bad)
+    bad[3] = n
+    with pytest.raises(ValueError, match=f"entry 3 names vertex {n} out of range"):
+        rig.reordered(bad)
+    bad[3] = bad[4]
+    with pytest.raises(ValueError, match="at positions 3 and 4"):
+        rig.reordered(bad)
+    with pytest.raises(ValueError, match=r"order must have shape \(V,\)"):
+        rig.reordered(order.reshape(-1, 2))
+    with pytest.raises(ValueError, match="order: cannot be read as an array of int64"):
+        rig.reordered(["a", "b"])
