@@ -166,4 +166,4 @@ impl Rig {
 }
 
 #[cfg(test)]
-mod tests;
+pub(crate) mod tests;

@@ -301,11 +301,7 @@ mod tests {
     /// one or two influences a vertex (no block iterates).
     #[test]
     fn groups_are_made_where_they_gain() {
-        for (m, before, after) in [
-            (chasles_models::FOX, 26, 5),
-            (chasles_models::RIGGED_FIGURE, 22, 13),
-            (chasles_models::CESIUM_MAN, 145, 77),
-        ] {
+        for (m, before, after) in crate::vertex_order::tests::ITERATING_BLOCKS {
             let rig = crate::gltf_load::load_slice(m.bytes, m.file).unwrap();
             let fast = FastRig::<4>::new(&rig).unwrap();
             let g = Groups::of(fast.vertices()).expect("the characters gain");
