@@ -18,10 +18,11 @@
 //! same bits, in the new order.
 //!
 //! The fast path makes the same order itself, for DIB alone, on a rig where it gains
-//! (`fast::grouped`: a copy of the vertices in this order, each job's results put back in
-//! the rig's order through a stage on the stack). Applying the order to an asset once,
-//! when it is built (like an order for a GPU's vertex cache; the windows keep neighbours
-//! near each other), saves that copy and the stage.
+//! (`fast::grouped`: a copy of the vertices in this order, each vertex's result stored
+//! straight to its place in the rig's order). Applying the order to an asset once, when it
+//! is built (like an order for a GPU's vertex cache; the windows keep neighbours near each
+//! other), saves that copy and the scattered stores (1–4 % of DIB's time on the
+//! characters).
 //!
 //! Measured (2026-12-05, a 2-core Intel Xeon with AVX-512F, one core; blocks of sixteen
 //! that iterate, before → after: the Fox 26 → 5 of 108, RiggedFigure 22 → 13 of 24,

@@ -3,7 +3,8 @@
 //! kernels store each block of eight vertices straight into an interleaved vertex buffer
 //! or into split position and normal arrays as they do into the packed one — no stage on
 //! the stack and no copy after it (Kavan et al. 2006, §6: the skinned vertices go to the
-//! buffer that draws them). Hand-written: it is a view of the caller's slices with the
+//! buffer that draws them) — and, scattered ([`Dest::scattered`]), each vertex to the slot
+//! an order names (DIB's grouped path). Hand-written: it is a view of the caller's slices with the
 //! kernels' store patterns in mind, which no crate models.
 
 use super::Out;
@@ -19,6 +20,10 @@ pub(super) enum Layout {
     Interleaved,
     /// Positions and normals in two arrays of 3 floats a vertex.
     Split,
+    /// Any of the three, each vertex written to the slot an order names
+    /// ([`Dest::scattered`]): DIB's grouped path (`super::grouped`) writes a grouped copy's
+    /// results straight to their places in the rig's order.
+    Scattered,
 }
 
 /// A mutable view of `len` vertices' outputs: vertex i's position at `pos + i·stride`,
@@ -32,6 +37,9 @@ pub(super) struct Dest<'a> {
     stride: usize,
     len: usize,
     layout: Layout,
+    /// [`Layout::Scattered`]: vertex i goes to slot `order[i] − base`; null otherwise.
+    order: *const u32,
+    base: usize,
     _out: PhantomData<&'a mut [f32]>,
 }
 
@@ -45,6 +53,8 @@ impl<'a> Dest<'a> {
             stride: 6,
             len: o.len(),
             layout: Layout::Packed,
+            order: std::ptr::null(),
+            base: 0,
             _out: PhantomData,
         }
     }
@@ -67,6 +77,8 @@ impl<'a> Dest<'a> {
             stride,
             len: data.len() / stride,
             layout: Layout::Interleaved,
+            order: std::ptr::null(),
+            base: 0,
             _out: PhantomData,
         }
     }
@@ -79,7 +91,30 @@ impl<'a> Dest<'a> {
             stride: 3,
             len: positions.len().min(normals.len()),
             layout: Layout::Split,
+            order: std::ptr::null(),
+            base: 0,
             _out: PhantomData,
+        }
+    }
+
+    /// This packed, interleaved or split view with its vertex i written to slot
+    /// `order[i] − base`: `order.len()` vertices.
+    ///
+    /// # Safety
+    /// `self` is not scattered already, and every `order[i] − base` lies in `0..self.len()`
+    /// (a wrong order must not write outside the caller's buffers; only such a check makes
+    /// the view's writes, unchecked by then, sound).
+    pub(super) unsafe fn scattered(self, order: &'a [u32], base: usize) -> Self {
+        debug_assert!(self.layout != Layout::Scattered);
+        debug_assert!(order
+            .iter()
+            .all(|&o| (o as usize).checked_sub(base).is_some_and(|s| s < self.len)));
+        Dest {
+            len: order.len(),
+            layout: Layout::Scattered,
+            order: order.as_ptr(),
+            base,
+            ..self
         }
     }
 
@@ -101,27 +136,40 @@ impl<'a> Dest<'a> {
     /// Vertices `from..to` of it, borrowed.
     pub(super) fn range(&mut self, from: usize, to: usize) -> Dest<'_> {
         assert!(from <= to && to <= self.len, "{from}..{to} of {}", self.len);
+        if self.layout == Layout::Scattered {
+            // The slots stay where they are; the order moves on.
+            return Dest {
+                order: self.order.wrapping_add(from),
+                len: to - from,
+                ..*self
+            };
+        }
         Dest {
             pos: self.pos.wrapping_add(from * self.stride),
             nrm: self.nrm.wrapping_add(from * self.stride),
-            stride: self.stride,
             len: to - from,
-            layout: self.layout,
-            _out: PhantomData,
+            ..*self
         }
     }
 
     /// Writes vertex `i`'s position and normal (`o[0..3]`, `o[3..6]`), as values: copied
     /// from a pointer into `o`, each vertex went through a copy on the stack whose 12-byte
     /// halves were read back across the copy's two stores, which stalls each read (DIB's
-    /// grouped path, `super::grouped`, spent a third of its time putting its stage out).
+    /// grouped path, `super::grouped`, spent a third of its time putting its stage out). A
+    /// scattered view writes it to its slot. Panics past the end, out of line.
     #[inline(always)]
     pub(super) fn put(&mut self, i: usize, o: Out) {
-        assert!(i < self.len, "vertex {i} of {}", self.len);
+        if i >= self.len {
+            past_the_end(i, self.len);
+        }
         // SAFETY: vertex i < len of a Dest made from slices that hold it (see the type);
         // the writes are unaligned (an interleaved buffer's floats are only 4-byte aligned).
         unsafe {
-            let (p, n) = self.at(i);
+            let (p, n) = if self.layout == Layout::Scattered {
+                self.slot(i)
+            } else {
+                self.at(i)
+            };
             if self.layout == Layout::Packed {
                 // The normal follows the position: one write of six floats.
                 p.cast::<Out>().write_unaligned(o);
@@ -142,10 +190,34 @@ impl<'a> Dest<'a> {
         unsafe { (self.pos.add(i * self.stride), self.nrm.add(i * self.stride)) }
     }
 
+    /// Vertex `i`'s position and normal pointers in a scattered view: those of slot
+    /// `order[i] − base`.
+    ///
+    /// # Safety
+    /// `i < len`, the view scattered.
+    #[inline(always)]
+    pub(super) unsafe fn slot(&self, i: usize) -> (*mut f32, *mut f32) {
+        debug_assert!(i < self.len && self.layout == Layout::Scattered);
+        // SAFETY: `order` holds `len` entries, each naming a slot of the buffers
+        // (`scattered`'s contract).
+        unsafe {
+            let s = (*self.order.add(i) as usize - self.base) * self.stride;
+            (self.pos.add(s), self.nrm.add(s))
+        }
+    }
+
     /// The address of vertex 0's position (alignment checks for streaming).
     pub(super) fn addr(&self) -> usize {
         self.pos as usize
     }
+}
+
+/// The panic of a write past a [`Dest`]'s end, out of line: its message's arguments are
+/// made here, not spilled to the stack on every [`Dest::put`].
+#[cold]
+#[inline(never)]
+fn past_the_end(i: usize, len: usize) -> ! {
+    panic!("vertex {i} of {len}")
 }
 
 #[cfg(test)]
@@ -180,6 +252,34 @@ mod tests {
             (p[0], n[0], p[1], n[1]),
             ([1.0, 2.0, 3.0], [4.0, 5.0, 6.0], [0.0; 3], [0.0; 3])
         );
+    }
+
+    #[test]
+    fn a_scattered_view_puts_each_vertex_in_its_slot() {
+        let o = |k: f32| [k, k + 0.1, k + 0.2, k + 0.3, k + 0.4, k + 0.5];
+        // Slots 10..14 of the caller's numbering: vertex i of the view goes to order[i] − 10.
+        let order = [12u32, 10, 13, 11];
+        let mut packed = vec![[0f32; 6]; 4];
+        // SAFETY: every order[i] − 10 is below 4.
+        let mut d = unsafe { Dest::packed(&mut packed).scattered(&order, 10) };
+        assert_eq!((d.len(), d.layout()), (4, Layout::Scattered));
+        for i in 0..4 {
+            d.put(i, o(i as f32));
+        }
+        assert_eq!(packed, [o(1.0), o(3.0), o(0.0), o(2.0)]);
+        // A range moves along the order, not the slots.
+        let mut inter = vec![-1f32; 4 * 8];
+        // SAFETY: as above.
+        let mut d = unsafe { Dest::interleaved(&mut inter, 8).scattered(&order, 10) };
+        d.range(2, 4).put(1, o(7.0));
+        let mut want = vec![-1f32; 32];
+        want[8..14].copy_from_slice(&o(7.0));
+        assert_eq!(inter, want);
+        let (mut p, mut n) = (vec![[0f32; 3]; 4], vec![[0f32; 3]; 4]);
+        // SAFETY: as above.
+        unsafe { Dest::split(&mut p, &mut n).scattered(&order, 10) }.put(0, o(5.0));
+        assert_eq!((p[2], n[2]), ([5.0, 5.1, 5.2], [5.3, 5.4, 5.5]));
+        assert_eq!(p.iter().filter(|p| **p == [0.0; 3]).count(), 3);
     }
 
     #[test]

@@ -8,42 +8,42 @@
 //! CesiumMan 145 → 77 of 205; none on the synthetic meshes, whose vertices all have four),
 //! the first DIB job lays out a copy of the vertices in `crate::vertex_order`'s order
 //! (sorted by count within windows of 256) and every DIB job, that one included, runs the
-//! kernels on it,
-//! a window at a time into a stage on the stack, whose vertices then go to their own
-//! places in the caller's output. The kernels give every vertex the same bits whatever its
-//! block-mates (their tests shift every block and compare), so the output is the
-//! ungrouped kernels', bit for bit (tested on every layout).
+//! kernels on it, a chunk a call, each vertex's result stored straight to its place in the
+//! caller's output (a scattered `Dest`: the vertex's slot read from the order, its six floats
+//! by its own stores, in any of the three layouts). The kernels give every vertex the same
+//! bits whatever its block-mates (their tests shift every block and compare), so the output
+//! is the ungrouped kernels', bit for bit (tested on every layout).
 //!
 //! What it costs: the copy (a `Vertex<K>` and a `u32` a vertex, only on rigs that gain)
-//! and, each job, one more write of each vertex's output from the stage; the output is
-//! never streamed (the job streams only meshes of 2¹⁸ vertices or more into a packed
-//! output). On synthetic meshes whose influence counts are mixed in every block (2 and 4 in
-//! turn, or 1–4), best of 5 runs, two rounds, M vertices/s, grouped against ungrouped: at
-//! 10⁵ vertices 53.3–56.7 against 44.5–46.4 on one thread and 97.7–103.8 against 83.4–86.0
-//! on two (one round's 53.5 and 43.3 aside); at 10⁶, where the ungrouped output is
-//! streamed, 46.3–47.6 against 44.1–44.8 and 96.5–99.7 against 84.1–89.6 (a scratch loop,
-//! 2026-12-05). Measured (2026-12-05, a 2-core Intel Xeon with AVX-512F, one core; `cargo run
-//! --release -p chasles-skin --example dib_grouping`: best of 20 runs over the characters'
-//! clips, two rounds, M vertices/s), DIB in the rig's order (grouping off,
-//! [`super::FastRig::without_dib_grouping`]) → grouped here → on a rig reordered once
-//! (`crate::vertex_order`, no stage): the Fox 73.7–75.7 → 88.9–91.1 → 99.3–99.4,
-//! RiggedFigure 62.0–63.6 → 67.1–69.0 → 71.8, CesiumMan 65.3–66.1 → 72.7–73.0 →
-//! 78.3: the stage, its put-back and a kernel call a window take 4–11 % off the reordered
-//! rig's speed. A first version, whose `Dest::put` read each vertex back through a copy on the
-//! stack, ran slower than the ungrouped kernel.
+//! and each vertex's own two stores (three or four into split arrays) where the packed
+//! output takes six whole-register stores for eight vertices; the output is never streamed
+//! (the job streams only meshes of 2¹⁸ vertices or more into a packed output). Measured
+//! (2026-12-05, a 2-core Intel Xeon with AVX-512F, one core; `cargo run --release -p
+//! chasles-skin --example dib_grouping`: best of 20 runs over the characters' clips, the
+//! two builds in turn, three rounds of two, M vertices/s), DIB in the rig's order (grouping
+//! off, [`super::FastRig::without_dib_grouping`]) → grouped here → on a rig reordered once
+//! (`crate::vertex_order`, nothing to put back): the Fox 76–78 → 97.3–100.0 → 99.5–102.8,
+//! RiggedFigure 63.6–65.4 → 72.5–74.4 → 73.6–75.7, CesiumMan 66.0–67.8 → 76.3–77.5 →
+//! 78.0–79.9 — 1–4 % below the reordered rig. The first grouped path ran the kernels a
+//! window of 256 at a time into a stage on the stack and put each vertex back from there:
+//! the Fox 88.6–92.8, RiggedFigure 68.3–70.2, CesiumMan 72.9–74.8 in the same runs, 7–12 %
+//! below the reordered rig, all of it in the put-back's loop (leaving the put-back out, a
+//! wrong output, ran as fast as the reordered rig; the loop was 17 instructions a vertex, and 13
+//! once its bounds checks were hoisted still ran behind these direct stores). Earlier
+//! still, a `Dest::put` that read each vertex back through a copy on the stack ran slower
+//! than the ungrouped kernel. On synthetic meshes whose influence counts are mixed in
+//! every block (2 and 4 in turn, or 1–4), the stage's path against ungrouped (best of 5
+//! runs, two rounds, M vertices/s, a scratch loop): at 10⁵ vertices 53.3–56.7 against
+//! 44.5–46.4 on one thread and 97.7–103.8 against 83.4–86.0 on two; at 10⁶, where the
+//! ungrouped output is streamed, 46.3–47.6 against 44.1–44.8 and 96.5–99.7 against
+//! 84.1–89.6.
 
-use super::dest::Dest;
 use super::job::for_chunks_unshifted;
 use super::{Kernel, Output, Vertex, CHUNK};
 use crate::vertex_order::{by_kind, WINDOW};
 
-/// Vertices skinned into the stage at a time: one window of the order, which the order
-/// maps onto itself (four windows at a time, a stage of 24 KB instead of 6, measured no
-/// faster).
-const SPAN: usize = WINDOW;
-
-// Every chunk of the unshifted grid starts at a span's start.
-const _: () = assert!(CHUNK.is_multiple_of(SPAN) && SPAN.is_multiple_of(WINDOW));
+// Every chunk of the unshifted grid starts at a window's start.
+const _: () = assert!(CHUNK.is_multiple_of(WINDOW));
 
 /// A rig's vertices in `crate::vertex_order`'s order: `vertices[i]` is the rig's vertex
 /// `order[i]`.
@@ -85,6 +85,11 @@ impl<const K: usize> Groups<K> {
         if before == 0 || 4 * after > 3 * before {
             return None;
         }
+        // What `run`'s writes rest on: the order moves a vertex only within its window.
+        let within = |(i, &o): (usize, &u32)| o as usize / WINDOW == i / WINDOW;
+        if !order.iter().enumerate().all(within) {
+            return None;
+        }
         Some(Groups {
             vertices: order.iter().map(|&o| vertices[o as usize]).collect(),
             order,
@@ -94,9 +99,8 @@ impl<const K: usize> Groups<K> {
 
 /// DIB's SIMD kernel `F` on the grouped vertices `g` into `out` (the caller checked the
 /// sizes, the joints and that the SIMD kernels run): on the grid that starts at 0, each
-/// chunk a window at a time (the last window with the 1–7 vertices after it, so that every
-/// window of a mesh of eight or more goes through the SIMD kernel, as every chunk does
-/// ungrouped), into a stage whose vertices are then put where the rig has them.
+/// chunk by one kernel call that writes each vertex straight to the place the rig has it
+/// (a scattered `Dest`).
 pub(super) fn run<const K: usize, F: Kernel<K>>(
     g: &Groups<K>,
     joints: &[F::Joint],
@@ -107,24 +111,13 @@ pub(super) fn run<const K: usize, F: Kernel<K>>(
     // What lets `F::chunk` take the SIMD kernel (its safety rests on it).
     let simd = super::simd(K);
     debug_assert!(simd, "the grouping is for the SIMD kernels");
-    for_chunks_unshifted(out, &g.vertices, parallel, |first, mut o, v| {
-        let mut stage = [[0f32; 6]; SPAN + 7];
-        let mut s = 0;
-        while s < v.len() {
-            let e = if v.len() - s < SPAN + 8 {
-                v.len()
-            } else {
-                s + SPAN
-            };
-            let stage = &mut stage[..e - s];
-            F::chunk(Dest::packed(stage), &v[s..e], joints, table, simd, false);
-            for (i, r) in stage.iter().enumerate() {
-                // Windows start at multiples of WINDOW, and the order moves a vertex only
-                // within its window: `order` maps this window onto itself.
-                o.put(g.order[first + s + i] as usize - first, *r);
-            }
-            s = e;
-        }
+    for_chunks_unshifted(out, &g.vertices, parallel, |first, o, v| {
+        // SAFETY: the chunk starts at a multiple of CHUNK, so of WINDOW, and ends at one or
+        // at the mesh's end; `order` moves a vertex only within its window (checked when
+        // `g` was made, `Groups::of`), so it maps this chunk onto itself: every
+        // `order[i] − first` is below `o.len()`. `o` is the job's chunk, not scattered.
+        let o = unsafe { o.scattered(&g.order[first..first + v.len()], first) };
+        F::chunk(o, v, joints, table, simd, false);
     });
 }
 
@@ -132,6 +125,7 @@ pub(super) fn run<const K: usize, F: Kernel<K>>(
 mod tests {
     use super::*;
     use crate::fast::avx2::dib::tests::{joints, with_counts};
+    use crate::fast::dest::Dest;
     use crate::fast::{dib, simd, FastRig, Output, Palette, SkinningJob};
     use crate::synthetic;
 
@@ -262,6 +256,71 @@ mod tests {
             }
         }
         check::<8>(4096 + 77, mixed, true);
+    }
+
+    /// The AVX2 kernel's blocks of eight and the AVX-512 kernel's of sixteen (where the
+    /// processor has it) write each vertex of a scattered output to its slot, in every
+    /// layout, exactly the floats they store packed, and touch nothing else.
+    #[test]
+    fn both_kernels_write_a_scattered_output_slot_by_slot() {
+        use crate::fast::avx2::dib::dib_with;
+        if !simd(4) {
+            eprintln!("no AVX2+FMA here: no SIMD kernel to scatter");
+            return;
+        }
+        let n = 300;
+        let rig = with_counts(&synthetic::rig(n, 54, 5), |i| 1 + (i * 7919) % 4);
+        let (v, d) = (rig.vertices(), joints(54));
+        // A permutation of the slots 1000..1000 + n: the kernels' vertex i goes to slot
+        // order[i] − 1000.
+        let order: Vec<u32> = (0..n as u32)
+            .map(|i| 1000 + (i * 7 + 3) % n as u32)
+            .collect();
+        let sentinel = f32::from_bits(0x7fc0_1234);
+        let bits = |x: f32| x.to_bits();
+        let mut kernels = vec![false];
+        if crate::fast::uses_avx512(4) {
+            kernels.push(true);
+        }
+        for sixteen in kernels {
+            let mut want = vec![[sentinel; 6]; n];
+            // SAFETY: AVX2 and FMA are present (`simd`), AVX-512F where `sixteen`
+            // (`uses_avx512`); the joint indices are below 54; `want` holds n vertices.
+            let done = unsafe { dib_with(v, &d, Dest::packed(&mut want), false, sixteen) };
+            assert_eq!(done, n / 8 * 8);
+            let (mut packed, mut inter) = (vec![[sentinel; 6]; n], vec![sentinel; 8 * n]);
+            let (mut p, mut nr) = (vec![[sentinel; 3]; n], vec![[sentinel; 3]; n]);
+            // SAFETY: as above; every order[i] − 1000 is below n, each view's length.
+            unsafe {
+                for o in [
+                    Dest::packed(&mut packed),
+                    Dest::interleaved(&mut inter, 8),
+                    Dest::split(&mut p, &mut nr),
+                ] {
+                    assert_eq!(
+                        dib_with(v, &d, o.scattered(&order, 1000), false, sixteen),
+                        done
+                    );
+                }
+            }
+            for (i, &slot) in order.iter().enumerate() {
+                let s = slot as usize - 1000;
+                let want = if i < done { want[i] } else { [sentinel; 6] };
+                let split: [f32; 6] =
+                    std::array::from_fn(|c| if c < 3 { p[s][c] } else { nr[s][c - 3] });
+                for got in [packed[s], std::array::from_fn(|c| inter[8 * s + c]), split] {
+                    assert_eq!(
+                        got.map(bits),
+                        want.map(bits),
+                        "sixteen {sixteen}, vertex {i}"
+                    );
+                }
+                assert_eq!(
+                    [inter[8 * s + 6], inter[8 * s + 7]].map(bits),
+                    [bits(sentinel); 2]
+                );
+            }
+        }
     }
 
     /// The grid the grouped path runs on starts its chunks at multiples of 4096 (so at

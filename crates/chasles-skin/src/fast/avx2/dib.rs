@@ -58,7 +58,7 @@ pub(in crate::fast) unsafe fn dib_with<const K: usize>(
     stream: bool,
     sixteen: bool,
 ) -> usize {
-    unsafe { by_layout!(o, S => dib_blocks::<K, S>(v, d, o, stream, sixteen)) }
+    unsafe { by_layout!(scattered o, S => dib_blocks::<K, S>(v, d, o, stream, sixteen)) }
 }
 
 /// [`dib_with`]'s loop for the layout `S`, a function of its own (each layout's frame its own):

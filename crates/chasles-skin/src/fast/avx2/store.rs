@@ -24,6 +24,8 @@ pub(super) struct Packed;
 pub(super) struct Interleaved;
 /// [`Layout::Split`] for [`Store`].
 pub(super) struct Split;
+/// [`Layout::Scattered`] for [`Store`].
+pub(super) struct Scattered;
 impl Store for Packed {
     const LAYOUT: Layout = Layout::Packed;
 }
@@ -33,12 +35,28 @@ impl Store for Interleaved {
 impl Store for Split {
     const LAYOUT: Layout = Layout::Split;
 }
+impl Store for Scattered {
+    const LAYOUT: Layout = Layout::Scattered;
+}
 
 /// `$body` with the type `$s` naming the [`Store`] of `$o`'s layout: a kernel's loop
-/// monomorphized for each layout, the one for `$o` run.
+/// monomorphized for each layout, the one for `$o` run. A scattered `$o` is DIB's alone
+/// (`fast::grouped`): only the form `by_layout!(scattered $o, …)`, DIB's, compiles a loop
+/// for it; in the other kernels that arm cannot be reached.
 macro_rules! by_layout {
+    (scattered $o:expr, $s:ident => $body:expr) => {
+        if $o.layout() == $crate::fast::dest::Layout::Scattered {
+            type $s = $crate::fast::avx2::store::Scattered;
+            $body
+        } else {
+            $crate::fast::avx2::store::by_layout!($o, $s => $body)
+        }
+    };
     ($o:expr, $s:ident => $body:expr) => {
         match $o.layout() {
+            $crate::fast::dest::Layout::Scattered => {
+                unreachable!("a scattered output goes to DIB's kernels alone")
+            }
             $crate::fast::dest::Layout::Packed => {
                 type $s = $crate::fast::avx2::store::Packed;
                 $body
@@ -87,6 +105,10 @@ pub(in crate::fast) unsafe fn store_rows<S: Store>(
 ) {
     unsafe {
         debug_assert!(i + 8 <= o.len() && o.layout() == S::LAYOUT);
+        if S::LAYOUT == Layout::Scattered {
+            store_scattered(o, i, r);
+            return;
+        }
         let (ob, nb) = o.at(i);
         if S::LAYOUT != Layout::Packed {
             store_apart(ob, nb, o.stride(), S::LAYOUT == Layout::Split, r);
@@ -160,6 +182,60 @@ unsafe fn store_apart(p: *mut f32, n: *mut f32, stride: usize, split: bool, r: [
         for (k, t) in yz.iter().enumerate() {
             two(p.add(2 * k * stride + 4), *t);
             two_high(p.add((2 * k + 1) * stride + 4), *t);
+        }
+    }
+}
+
+/// Eight vertices' results (six lane vectors: x, y, z, nx, ny, nz) written to the slots
+/// that the scattered `o` names for vertices `i … i + 7` (`Dest::slot`), each vertex's six
+/// floats and no other, in any order: into a packed or interleaved buffer (the normal after
+/// the position) x y z nx by one 16-byte store and ny nz by one 8-byte store, as
+/// [`store_apart`] does; into split arrays each three floats by an 8-byte and a 4-byte
+/// store (a 16-byte one would write a float of a slot that may be written already).
+///
+/// # Safety
+/// `i + 8 <= o.len()`, `o` scattered.
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn store_scattered(o: &Dest<'_>, i: usize, r: [__m256; 6]) {
+    unsafe {
+        let half = |t: &[__m256; 4], l: usize| {
+            if l < 4 {
+                _mm256_castps256_ps128(t[l])
+            } else {
+                _mm256_extractf128_ps::<1>(t[l - 4])
+            }
+        };
+        // As in `store_apart`: unaligned 8-byte writes of floats 0–1 or 2–3.
+        let two = |at: *mut f32, x: __m128| {
+            (at as *mut f64).write_unaligned(_mm_cvtsd_f64(_mm_castps_pd(x)))
+        };
+        let three = |at: *mut f32, x: __m128| {
+            two(at, x);
+            _mm_store_ss(at.add(2), _mm_movehl_ps(x, x));
+        };
+        let (a, yz) = halves(r);
+        if o.stride() == 3 {
+            let b = transpose4_halves([r[3], r[4], r[5], r[0]]);
+            for l in 0..8 {
+                let (p, n) = o.slot(i + l);
+                three(p, half(&a, l));
+                three(n, half(&b, l));
+            }
+            return;
+        }
+        // ny nz of vertices 0, 1, 4, 5 (`yz[0]`) and 2, 3, 6, 7 (`yz[1]`), as in `halves`.
+        for l in 0..8 {
+            let (p, _) = o.slot(i + l);
+            _mm_storeu_ps(p, half(&a, l));
+            let t = yz[(l / 2) % 2];
+            let t = if l < 4 {
+                _mm256_castps256_ps128(t)
+            } else {
+                _mm256_extractf128_ps::<1>(t)
+            };
+            let t = if l % 2 == 0 { t } else { _mm_movehl_ps(t, t) };
+            two(p.add(4), t);
         }
     }
 }
