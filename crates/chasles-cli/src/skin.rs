@@ -8,7 +8,7 @@ use crate::picture_args::MAX_GIF_FRAMES;
 use crate::pictures;
 use anyhow::{anyhow, bail, Context, Result};
 use chasles_skin::cylinder::{self, Motion};
-use chasles_skin::{json_rig, writers, Method, Pose, Rig, Skinned};
+use chasles_skin::{json_rig, peers, writers, Method, Pose, Rig, Skinned};
 use std::path::{Path, PathBuf};
 
 /// Options of `chasles skin`.
@@ -56,6 +56,11 @@ pub struct SkinArgs {
     /// 100000,1000000; not with --rig).
     #[arg(long, value_delimiter = ',', value_name = "N,N,…")]
     pub bench_vertices: Option<Vec<usize>>,
+    /// --bench: how the synthetic meshes' joints turn: near (within 60° of the identity, as
+    /// in skinning; the default) or uniform (over all rotations: far-apart joints, random
+    /// antipodality signs, DIB's longest iteration); not with --rig.
+    #[arg(long, value_enum, value_name = "KIND")]
+    pub bench_rotations: Option<BenchRotations>,
     /// --bench: timed rounds per table (default 21, or 7 for meshes over 2·10^5 vertices;
     /// at most 10000).
     #[arg(long, value_name = "N")]
@@ -185,11 +190,21 @@ fn threads(s: &str) -> std::result::Result<usize, String> {
     }
 }
 
+/// `--bench-rotations`: how the synthetic meshes' joints turn ([`peers::Rotations`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum BenchRotations {
+    /// Within 60° of the identity.
+    Near,
+    /// Uniform over all rotations.
+    Uniform,
+}
+
 /// What `chasles skin --bench` measures: synthetic meshes of some sizes, or a rig of one's
 /// own in one pose (described in words).
 pub enum BenchMesh<'a> {
-    /// [`chasles_skin::peers::measure`]'s meshes of these vertex counts.
-    Synthetic(&'a [usize]),
+    /// [`chasles_skin::peers::measure_posed`]'s meshes of these vertex counts, their joints
+    /// turned so.
+    Synthetic(&'a [usize], peers::Rotations),
     /// A rig, its joint transforms and words for the pose.
     Rig(&'a Rig, chasles_skin::JointTransforms, String),
 }
@@ -211,11 +226,10 @@ const RIG_SAMPLE_VERTICES: usize = 100_000;
 /// processes (or the host of a virtual machine) kept more than a quarter of the CPUs busy is
 /// flagged.
 pub fn bench(mesh: &BenchMesh, threads: &[usize], rounds: Option<usize>) -> Result<()> {
-    use chasles_skin::peers;
     let rounds_for = |n: usize| rounds.unwrap_or(if n <= 200_000 { 21 } else { 7 });
     let load = peers::Load::start();
     let mut tables = Vec::new();
-    if let BenchMesh::Synthetic(sizes) = mesh {
+    if let BenchMesh::Synthetic(sizes, _) = mesh {
         if let Some(n) = sizes.iter().find(|n| **n == 0 || **n > 100_000_000) {
             bail!("--bench-vertices: {n} is not between 1 and 10^8");
         }
@@ -223,7 +237,7 @@ pub fn bench(mesh: &BenchMesh, threads: &[usize], rounds: Option<usize>) -> Resu
     // On a terminal, which table is being timed (hidden when stderr is not one; cleared
     // when done or on an error).
     let count = match mesh {
-        BenchMesh::Synthetic(sizes) => sizes.len(),
+        BenchMesh::Synthetic(sizes, _) => sizes.len(),
         BenchMesh::Rig(..) => 1,
     } * threads.len();
     let bar =
@@ -234,11 +248,11 @@ pub fn bench(mesh: &BenchMesh, threads: &[usize], rounds: Option<usize>) -> Resu
     );
     let progress = |n: usize, t: usize| bar.set_message(format!("{n} vertices on {t} thread(s)"));
     match mesh {
-        BenchMesh::Synthetic(sizes) => {
+        BenchMesh::Synthetic(sizes, rotations) => {
             for &n in *sizes {
                 for &t in threads {
                     progress(n, t);
-                    tables.push(peers::measure(n, t, rounds_for(n))?);
+                    tables.push(peers::measure_posed(n, t, rounds_for(n), *rotations)?);
                     bar.inc(1);
                 }
             }
@@ -275,7 +289,7 @@ pub fn bench(mesh: &BenchMesh, threads: &[usize], rounds: Option<usize>) -> Resu
     for t in &tables {
         let r = |name: &str| t.rate(name).unwrap_or(f64::NAN);
         let dqs = r("dqs");
-        let centres = if t.mesh == peers::SYNTHETIC {
+        let centres = if t.mesh.starts_with(peers::SYNTHETIC) {
             format!(
                 "SBS solved {} rotation centres a pose here, real rigs far fewer",
                 t.centres
@@ -347,10 +361,21 @@ fn bench_args(a: &SkinArgs) -> Result<()> {
     let threads = a.bench_threads.as_deref().unwrap_or(&all);
     let Some(path) = &a.rig else {
         let sizes = a.bench_vertices.as_deref().unwrap_or(&[100_000, 1_000_000]);
-        return bench(&BenchMesh::Synthetic(sizes), threads, a.bench_rounds);
+        let rotations = match a.bench_rotations {
+            Some(BenchRotations::Uniform) => peers::Rotations::Uniform,
+            Some(BenchRotations::Near) | None => peers::Rotations::Near,
+        };
+        return bench(
+            &BenchMesh::Synthetic(sizes, rotations),
+            threads,
+            a.bench_rounds,
+        );
     };
     if a.bench_vertices.is_some() {
         bail!("--bench-vertices sizes the synthetic meshes: not with --rig");
+    }
+    if a.bench_rotations.is_some() {
+        bail!("--bench-rotations turns the synthetic meshes' joints: not with --rig");
     }
     let rig = chasles_skin::load(path)?;
     let (pose, when) = if a.pose.is_none() && a.anim.is_none() && a.time.is_none() {
@@ -379,6 +404,7 @@ fn bench_gpu_args(a: &SkinArgs) -> Result<()> {
         ("--bench-vertices", a.bench_vertices.is_some()),
         ("--bench-rounds", a.bench_rounds.is_some()),
         ("--bench-threads", a.bench_threads.is_some()),
+        ("--bench-rotations", a.bench_rotations.is_some()),
     ];
     if let Some((flag, _)) = given.iter().find(|(_, g)| *g) {
         bail!("{flag} is for the CPU's table: --bench --device gpu times synthetic meshes of 10^5 to 10^7 vertices only");

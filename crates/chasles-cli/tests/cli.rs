@@ -1721,6 +1721,10 @@ fn skin_bench_measures_a_rig_of_ones_own_in_its_clip() {
             vec!["--bench-rounds", "0"],
             "--bench-rounds: 0 is not between 1 and 10000",
         ),
+        (
+            vec!["--bench-rotations", "uniform"],
+            "--bench-rotations turns the synthetic meshes' joints: not with --rig",
+        ),
         // The GPU's table is its own: it takes none of the CPU table's options.
         (
             vec!["--device", "gpu"],
@@ -1809,4 +1813,24 @@ fn skin_bench_prints_every_kernel_on_every_thread_count_with_round_by_round_rati
     assert_eq!(bad.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&bad.stderr)
         .contains("0 is not a thread count from 1 to 1024 or all"));
+    // Joints turned uniformly: the same rows, the mesh named; an unknown kind is refused.
+    let out = stdout(&chasles(&[
+        "skin",
+        "--bench",
+        "--bench-vertices",
+        "64",
+        "--bench-threads",
+        "1",
+        "--bench-rotations",
+        "uniform",
+    ]));
+    let uniform = out
+        .lines()
+        .filter(|l| l.starts_with("| 64 (synthetic, uniform rotations) | 1 |"))
+        .count();
+    assert_eq!(uniform, 13, "{out}");
+    assert!(out.contains("SBS solved"), "{out}");
+    let bad = chasles(&["skin", "--bench", "--bench-rotations", "sideways"]);
+    assert_eq!(bad.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("sideways"));
 }

@@ -1,6 +1,9 @@
 //! Synthetic rigs for benchmarks: n vertices with random positions and normals, 4 (or K)
 //! random distinct joints per vertex with random convex weights, and random rigid joint
-//! transforms within 60° of the identity (as in skinning). Deterministic for a seed.
+//! transforms within 60° of the identity (as in skinning; [`joints`]) or with rotations
+//! uniform over all of them ([`uniform_joints`]: far apart, half their quaternions with a
+//! negative scalar, the worst case for DQS's antipodality signs and DIB's iteration).
+//! Deterministic for a seed.
 
 use crate::fast::{FastRig, Vertex};
 use crate::pose::JointTransforms;
@@ -120,5 +123,70 @@ pub fn joints(joints: usize, seed: u64) -> JointTransforms {
         matrices: dual_quats.iter().map(|d| d.to_matrix4()).collect(),
         dual_quats,
         non_rigidity: 0.0,
+    }
+}
+
+/// Random rigid joint transforms whose rotations are uniform over all rotations (Shoemake's
+/// method: `[√(1−u₁) sin 2πu₂, √(1−u₁) cos 2πu₂, √u₁ sin 2πu₃, √u₁ cos 2πu₃]` for three
+/// uniform numbers, the Haar measure on the unit quaternions; the scalar part's sign is
+/// either), translations in the unit cube as [`joints`]'.
+pub fn uniform_joints(joints: usize, seed: u64) -> JointTransforms {
+    use std::f32::consts::TAU;
+    let mut r = Mix(seed ^ 0x5EED_0F50);
+    let dual_quats: Vec<DualQuat<f32>> = (0..joints)
+        .map(|_| {
+            let (u1, u2, u3) = (r.next(), r.next(), r.next());
+            let (a, b) = ((1.0 - u1).sqrt(), u1.sqrt());
+            let q = Quat::new(
+                b * (TAU * u3).cos(),
+                a * (TAU * u2).sin(),
+                a * (TAU * u2).cos(),
+                b * (TAU * u3).sin(),
+            );
+            let q = q.normalize().unwrap_or(Quat::identity());
+            DualQuat::from_rotation_translation(q, Vec3::new(r.next(), r.next(), r.next()))
+        })
+        .collect();
+    JointTransforms {
+        matrices: dual_quats.iter().map(|d| d.to_matrix4()).collect(),
+        dual_quats,
+        non_rigidity: 0.0,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The uniform joints are unit, rigid and spread over every angle (the Haar measure
+    /// turns 0.61 of the rotations by more than 2π/3), half with a negative scalar part,
+    /// the same for a seed; [`joints`] stay within 60°.
+    #[test]
+    fn uniform_joints_cover_every_angle_and_near_ones_stay_near() {
+        let u = uniform_joints(2000, 3);
+        let angle = |d: &DualQuat<f32>| 2.0 * d.real.w.abs().min(1.0).acos();
+        let far = u
+            .dual_quats
+            .iter()
+            .filter(|d| angle(d) > 2.0 * std::f32::consts::FRAC_PI_3)
+            .count();
+        let negative = u.dual_quats.iter().filter(|d| d.real.w < 0.0).count();
+        assert!(u
+            .dual_quats
+            .iter()
+            .all(|d| (d.real.norm() - 1.0).abs() < 1e-5));
+        // P(angle > 2π/3) = 1 − (2π/3 − sin(2π/3))/π = 0.609.
+        assert!((1100..1330).contains(&far), "{far} of 2000 beyond 120°");
+        assert!(
+            (900..1100).contains(&negative),
+            "{negative} of 2000 with w < 0"
+        );
+        assert_eq!(u.dual_quats, uniform_joints(2000, 3).dual_quats);
+        assert_ne!(u.dual_quats, uniform_joints(2000, 4).dual_quats);
+        let n = joints(2000, 3);
+        assert!(n.dual_quats.iter().all(|d| angle(d) <= 1.0 + 1e-6));
+        for (m, d) in u.matrices.iter().zip(&u.dual_quats) {
+            assert_eq!(*m, d.to_matrix4());
+        }
     }
 }

@@ -32,6 +32,24 @@ pub const TRAFFIC: &str = "traffic: loads and stores alone";
 /// [`Table::mesh`] of [`measure`]'s synthetic meshes.
 pub const SYNTHETIC: &str = "synthetic";
 
+/// [`Table::mesh`] of the synthetic meshes posed with uniform rotations
+/// ([`measure_posed`], [`Rotations::Uniform`]).
+pub const SYNTHETIC_UNIFORM: &str = "synthetic, uniform rotations";
+
+/// How a synthetic mesh's joints are turned.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Rotations {
+    /// Within 60° of the identity, as in skinning ([`synthetic::joints`]): every joint's
+    /// quaternion in one hemisphere, so no antipodality sign ever flips and DIB converges
+    /// in one update.
+    #[default]
+    Near,
+    /// Uniform over all rotations ([`synthetic::uniform_joints`]): the signs flip at random
+    /// (a baseline's branch on them mispredicts) and DIB's iteration takes its most
+    /// updates.
+    Uniform,
+}
+
 /// A median over rounds with the lowest and highest value.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Spread {
@@ -143,10 +161,24 @@ impl Table {
 /// the fast paths' chunks spread over it). The random joints make nearly every vertex its
 /// own SBS cluster: SBS's worst case.
 pub fn measure(n: usize, threads: usize, rounds: usize) -> Result<Table> {
+    measure_posed(n, threads, rounds, Rotations::Near)
+}
+
+/// [`measure`] with the joints turned as `rotations` says; the table's mesh is
+/// [`SYNTHETIC`] or [`SYNTHETIC_UNIFORM`].
+pub fn measure_posed(
+    n: usize,
+    threads: usize,
+    rounds: usize,
+    rotations: Rotations,
+) -> Result<Table> {
     let rig = synthetic::rig(n, 54, 7);
-    let jt = synthetic::joints(54, 7);
+    let (jt, name) = match rotations {
+        Rotations::Near => (synthetic::joints(54, 7), SYNTHETIC),
+        Rotations::Uniform => (synthetic::uniform_joints(54, 7), SYNTHETIC_UNIFORM),
+    };
     on_threads(threads, |parallel| {
-        let mesh = Mesh::four(SYNTHETIC, &rig, &jt, 1);
+        let mesh = Mesh::four(name, &rig, &jt, 1);
         measure_on(mesh, parallel, rounds, threads.max(1))
     })
 }
