@@ -1764,14 +1764,14 @@ fn skin_bench_measures_a_rig_of_ones_own_in_its_clip() {
 
 #[test]
 fn skin_bench_prints_every_kernel_on_every_thread_count_with_round_by_round_ratios() {
-    let out = stdout(&chasles(&[
-        "skin",
-        "--bench",
-        "--bench-vertices",
-        "64",
-        "--bench-threads",
-        "1,2",
-    ]));
+    // The bench on synthetic meshes of 64 vertices, on these threads, with `more`.
+    let bench64 = |threads: &str, more: &[&str]| {
+        let mut args = vec!["skin", "--bench", "--bench-vertices", "64"];
+        args.extend(["--bench-threads", threads]);
+        args.extend(more);
+        stdout(&chasles(&args))
+    };
+    let out = bench64("1,2", &[]);
     let rows: Vec<Vec<&str>> = out
         .lines()
         .filter(|l| l.starts_with("| 64 |"))
@@ -1814,16 +1814,7 @@ fn skin_bench_prints_every_kernel_on_every_thread_count_with_round_by_round_rati
     assert!(String::from_utf8_lossy(&bad.stderr)
         .contains("0 is not a thread count from 1 to 1024 or all"));
     // Joints turned uniformly: the same rows, the mesh named; an unknown kind is refused.
-    let out = stdout(&chasles(&[
-        "skin",
-        "--bench",
-        "--bench-vertices",
-        "64",
-        "--bench-threads",
-        "1",
-        "--bench-rotations",
-        "uniform",
-    ]));
+    let out = bench64("1", &["--bench-rotations", "uniform"]);
     let uniform = out
         .lines()
         .filter(|l| l.starts_with("| 64 (synthetic, uniform rotations) | 1 |"))

@@ -111,11 +111,18 @@ pub fn with_influences<const K: usize>(
 
 /// Random rigid joint transforms within 60° of the identity.
 pub fn joints(joints: usize, seed: u64) -> JointTransforms {
-    let mut r = Mix(seed ^ 0xABCD);
+    posed(joints, Mix(seed ^ 0xABCD), |r| {
+        let axis = Vec3::new(r.next() - 0.5, r.next() - 0.5, r.next() - 0.5);
+        Quat::from_axis_angle(axis, r.next() * 1.0).unwrap_or(Quat::identity())
+    })
+}
+
+/// `joints` rigid transforms, each a rotation drawn by `rotation` and then a translation in
+/// the unit cube, from the generator `r`.
+fn posed(joints: usize, mut r: Mix, rotation: impl Fn(&mut Mix) -> Quat<f32>) -> JointTransforms {
     let dual_quats: Vec<DualQuat<f32>> = (0..joints)
         .map(|_| {
-            let axis = Vec3::new(r.next() - 0.5, r.next() - 0.5, r.next() - 0.5);
-            let q = Quat::from_axis_angle(axis, r.next() * 1.0).unwrap_or(Quat::identity());
+            let q = rotation(&mut r);
             DualQuat::from_rotation_translation(q, Vec3::new(r.next(), r.next(), r.next()))
         })
         .collect();
@@ -132,26 +139,17 @@ pub fn joints(joints: usize, seed: u64) -> JointTransforms {
 /// either), translations in the unit cube as [`joints`]'.
 pub fn uniform_joints(joints: usize, seed: u64) -> JointTransforms {
     use std::f32::consts::TAU;
-    let mut r = Mix(seed ^ 0x5EED_0F50);
-    let dual_quats: Vec<DualQuat<f32>> = (0..joints)
-        .map(|_| {
-            let (u1, u2, u3) = (r.next(), r.next(), r.next());
-            let (a, b) = ((1.0 - u1).sqrt(), u1.sqrt());
-            let q = Quat::new(
-                b * (TAU * u3).cos(),
-                a * (TAU * u2).sin(),
-                a * (TAU * u2).cos(),
-                b * (TAU * u3).sin(),
-            );
-            let q = q.normalize().unwrap_or(Quat::identity());
-            DualQuat::from_rotation_translation(q, Vec3::new(r.next(), r.next(), r.next()))
-        })
-        .collect();
-    JointTransforms {
-        matrices: dual_quats.iter().map(|d| d.to_matrix4()).collect(),
-        dual_quats,
-        non_rigidity: 0.0,
-    }
+    posed(joints, Mix(seed ^ 0x5EED_0F50), |r| {
+        let (u1, u2, u3) = (r.next(), r.next(), r.next());
+        let (a, b) = ((1.0 - u1).sqrt(), u1.sqrt());
+        let q = Quat::new(
+            b * (TAU * u3).cos(),
+            a * (TAU * u2).sin(),
+            a * (TAU * u2).cos(),
+            b * (TAU * u3).sin(),
+        );
+        q.normalize().unwrap_or(Quat::identity())
+    })
 }
 
 #[cfg(test)]

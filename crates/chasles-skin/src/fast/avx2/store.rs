@@ -138,20 +138,7 @@ pub(in crate::fast) unsafe fn store_rows<S: Store>(
 #[target_feature(enable = "avx2,fma")]
 unsafe fn store_apart(p: *mut f32, n: *mut f32, stride: usize, split: bool, r: [__m256; 6]) {
     unsafe {
-        // Vertex l's four floats from the halves: l < 4 low, else high.
-        let half = |t: &[__m256; 4], l: usize| {
-            if l < 4 {
-                _mm256_castps256_ps128(t[l])
-            } else {
-                _mm256_extractf128_ps::<1>(t[l - 4])
-            }
-        };
-        // Floats 0–1 (`two`) or 2–3 (`two_high`) of x to `at`, which may be only 4-byte
-        // aligned: unaligned 8-byte writes (`vmovlps`, `vmovhps`), not `_mm_store_sd` or
-        // `_mm_storeh_pd`, which write a typed f64 and so ask for 8-byte alignment.
-        let two = |at: *mut f32, x: __m128| {
-            (at as *mut f64).write_unaligned(_mm_cvtsd_f64(_mm_castps_pd(x)))
-        };
+        // Floats 2–3 of x to `at`, as `two` writes 0–1.
         let two_high = |at: *mut f32, x: __m128| {
             let x = _mm_castps_pd(x);
             (at as *mut f64).write_unaligned(_mm_cvtsd_f64(_mm_unpackhi_pd(x, x)))
@@ -186,6 +173,30 @@ unsafe fn store_apart(p: *mut f32, n: *mut f32, stride: usize, split: bool, r: [
     }
 }
 
+/// Vertex `l`'s four floats from registers whose halves hold vertices 0–3 (low) and 4–7
+/// (high), as [`halves`] leaves them.
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+fn half(t: &[__m256; 4], l: usize) -> __m128 {
+    if l < 4 {
+        _mm256_castps256_ps128(t[l])
+    } else {
+        _mm256_extractf128_ps::<1>(t[l - 4])
+    }
+}
+
+/// Floats 0–1 of `x` to `at`, which may be only 4-byte aligned: an unaligned 8-byte write
+/// (`vmovlps`), not `_mm_store_sd`, which writes a typed f64 and so asks for 8-byte
+/// alignment.
+///
+/// # Safety
+/// The two floats at `at` must be writable.
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn two(at: *mut f32, x: __m128) {
+    unsafe { (at as *mut f64).write_unaligned(_mm_cvtsd_f64(_mm_castps_pd(x))) }
+}
+
 /// Eight vertices' results (six lane vectors: x, y, z, nx, ny, nz) written to the slots
 /// that the scattered `o` names for vertices `i … i + 7` (`Dest::slot`), each vertex's six
 /// floats and no other, in any order: into a packed or interleaved buffer (the normal after
@@ -199,17 +210,6 @@ unsafe fn store_apart(p: *mut f32, n: *mut f32, stride: usize, split: bool, r: [
 #[target_feature(enable = "avx2,fma")]
 unsafe fn store_scattered(o: &Dest<'_>, i: usize, r: [__m256; 6]) {
     unsafe {
-        let half = |t: &[__m256; 4], l: usize| {
-            if l < 4 {
-                _mm256_castps256_ps128(t[l])
-            } else {
-                _mm256_extractf128_ps::<1>(t[l - 4])
-            }
-        };
-        // As in `store_apart`: unaligned 8-byte writes of floats 0–1 or 2–3.
-        let two = |at: *mut f32, x: __m128| {
-            (at as *mut f64).write_unaligned(_mm_cvtsd_f64(_mm_castps_pd(x)))
-        };
         let three = |at: *mut f32, x: __m128| {
             two(at, x);
             _mm_store_ss(at.add(2), _mm_movehl_ps(x, x));
