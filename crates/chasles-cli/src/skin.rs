@@ -218,7 +218,7 @@ const RIG_SAMPLE_VERTICES: usize = 100_000;
 /// copy of the bytes each vertex moves (the bandwidth bound: 72 with four influences, 96
 /// with eight) and the fast paths' loads and stores alone ([`chasles_skin::fast::traffic`]:
 /// the bound of their own traffic, 48 bytes read a vertex, 72 with eight influences, and 24
-/// written), timed in `rounds` interleaved rounds ([`chasles_skin::peers::measure`],
+/// written), timed in `rounds` interleaved rounds ([`chasles_skin::peers::measure_posed`],
 /// [`chasles_skin::peers::measure_rig`]; by default 21, 7 above 2·10⁵ vertices; the caller
 /// checks the range): the median rate of each with its spread, our
 /// speed over each baseline's (LBS over the LBS baselines, DQS over the DQS ones) and each
@@ -289,7 +289,7 @@ pub fn bench(mesh: &BenchMesh, threads: &[usize], rounds: Option<usize>) -> Resu
     for t in &tables {
         let r = |name: &str| t.rate(name).unwrap_or(f64::NAN);
         let dqs = r("dqs");
-        let centres = if t.mesh.starts_with(peers::SYNTHETIC) {
+        let centres = if t.synthetic {
             format!(
                 "SBS solved {} rotation centres a pose here, real rigs far fewer",
                 t.centres

@@ -1,7 +1,7 @@
 //! DIB's fast path on the built-in characters in three vertex orders: the rig's own with
 //! the fast path's grouping turned off (`FastRig::without_dib_grouping`), grouped by the
 //! fast path itself (a copy of the vertices sorted by influence count within windows of
-//! 256, results put back in the rig's order: `fast::grouped`), and on the rig reordered
+//! 256, each result stored at its place in the rig's order: `fast::grouped`), and on the rig reordered
 //! once (`vertex_order::by_influence_count`, `Rig::reordered`). Each: the best of 20 runs,
 //! a run skinning every clip at seven times ten times over, on one thread; the three in
 //! turn, twice (`cargo run --release -p chasles-skin --example dib_grouping`).

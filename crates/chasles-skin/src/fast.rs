@@ -100,7 +100,7 @@ pub use traffic::traffic;
 /// rig's order. Where DIB's SIMD kernels would iterate in far fewer blocks with the
 /// vertices grouped by influence count, the first DIB job makes a grouped copy of them and
 /// every DIB job runs on it, giving every vertex the same bits in the rig's order (module
-/// `grouped`: the built-in characters 1.06–1.24× as fast);
+/// `grouped`: the built-in characters 1.11–1.32× as fast);
 /// [`FastRig::without_dib_grouping`] forgoes the copy, and a rig reordered once by
 /// [`crate::vertex_order`] needs none.
 #[derive(Debug, Clone)]

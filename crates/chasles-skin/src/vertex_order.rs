@@ -21,7 +21,7 @@
 //! (`fast::grouped`: a copy of the vertices in this order, each vertex's result stored
 //! straight to its place in the rig's order). Applying the order to an asset once, when it
 //! is built (like an order for a GPU's vertex cache; the windows keep neighbours near each
-//! other), saves that copy and the scattered stores (1–4 % of DIB's time on the
+//! other), saves that copy and the scattered stores (2–3 % of DIB's time on the
 //! characters).
 //!
 //! Measured (2026-12-05, a 2-core Intel Xeon with AVX-512F, one core; blocks of sixteen

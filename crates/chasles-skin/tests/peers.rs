@@ -119,6 +119,45 @@ fn every_baseline_matches_an_f64_reference_on_a_single_influence_mesh() {
     );
 }
 
+/// On four influences and joints turned uniformly (half the antipodality signs flip), the
+/// DQS baselines blend as our DQS does: each sign fix is tested, not only the one-joint
+/// case (a swapped `copysign` would pass that one).
+#[test]
+fn the_dqs_baselines_fix_the_signs_as_ours_does() {
+    let rig = synthetic::rig(3000, 54, 11);
+    let jt = synthetic::uniform_joints(54, 11);
+    let v = rig.vertices();
+    let mut want = vec![[0f32; 6]; v.len()];
+    dqs(&rig, &dual_quats8(&jt), &mut want, false).unwrap();
+    let want: Vec<[f64; 6]> = want.iter().map(|o| o.map(f64::from)).collect();
+    let pj = peers::Joints::of(&jt);
+    let flipped = v
+        .iter()
+        .filter(|x| {
+            let r = |k: usize| jt.dual_quats[usize::from(x.j[k])].real;
+            (1..4).any(|k| r(0).dot(r(k)) < 0.0)
+        })
+        .count();
+    assert!(
+        flipped > v.len() / 2,
+        "{flipped} vertices with a flipped sign"
+    );
+    let mut out = vec![[f32::NAN; 6]; v.len()];
+    peers::glam_dqs(v, &pj.glam_dq, &mut out);
+    assert!(
+        worst(&out, &want) < 2e-5,
+        "glam dqs: {:e}",
+        worst(&out, &want)
+    );
+    out.iter_mut().for_each(|o| *o = [f32::NAN; 6]);
+    peers::nalgebra_dqs(v, &pj.nalgebra_dq, &mut out);
+    assert!(
+        worst(&out, &want) < 2e-5,
+        "nalgebra dqs: {:e}",
+        worst(&out, &want)
+    );
+}
+
 /// A rig of `vertices` vertices on a line, each with `influences` equal weights on joints
 /// `0..influences` (unparented, at the origin), in its rest pose.
 fn spread_rig(vertices: usize, influences: usize) -> (chasles_skin::Rig, JointTransforms) {

@@ -29,7 +29,9 @@ pub(super) enum Layout {
 /// A mutable view of `len` vertices' outputs: vertex i's position at `pos + i·stride`,
 /// its normal at `nrm + i·stride` (3 floats each). Made only from slices that hold every
 /// float it names ([`Dest::packed`], [`Dest::interleaved`], [`Dest::split`]), so a write
-/// through it to a vertex below `len` stays inside the caller's buffers.
+/// through it to a vertex below `len` stays inside the caller's buffers. A scattered view
+/// ([`Dest::scattered`]) puts its vertex i in slot `order[i] − base` instead, every one of
+/// which its maker vouched lies inside them.
 #[derive(Debug)]
 pub(super) struct Dest<'a> {
     pos: *mut f32,
@@ -155,8 +157,8 @@ impl<'a> Dest<'a> {
     /// Writes vertex `i`'s position and normal (`o[0..3]`, `o[3..6]`), as values: copied
     /// from a pointer into `o`, each vertex went through a copy on the stack whose 12-byte
     /// halves were read back across the copy's two stores, which stalls each read (DIB's
-    /// grouped path, `super::grouped`, spent a third of its time putting its stage out). A
-    /// scattered view writes it to its slot. Panics past the end, out of line.
+    /// grouped path, `super::grouped`, once spent a third of its time putting its stage out
+    /// so). A scattered view writes it to its slot. Panics past the end, out of line.
     #[inline(always)]
     pub(super) fn put(&mut self, i: usize, o: Out) {
         if i >= self.len {
@@ -183,9 +185,10 @@ impl<'a> Dest<'a> {
     /// Vertex `i`'s position and normal pointers, for the SIMD kernels' stores.
     ///
     /// # Safety
-    /// `i < len`.
+    /// `i < len`, and the view is not scattered (a scattered view's `len` counts its order,
+    /// not its slots: [`Dest::slot`]).
     pub(super) unsafe fn at(&self, i: usize) -> (*mut f32, *mut f32) {
-        debug_assert!(i < self.len);
+        debug_assert!(i < self.len && self.layout != Layout::Scattered);
         // SAFETY: vertex i's floats lie in the slices the Dest was made from.
         unsafe { (self.pos.add(i * self.stride), self.nrm.add(i * self.stride)) }
     }

@@ -15,7 +15,7 @@
 //! is the ungrouped kernels', bit for bit (tested on every layout).
 //!
 //! What it costs: the copy (a `Vertex<K>` and a `u32` a vertex, only on rigs that gain)
-//! and each vertex's own two stores (three or four into split arrays) where the packed
+//! and each vertex's own two stores (four into split arrays) where the packed
 //! output takes six whole-register stores for eight vertices; the output is never streamed
 //! (the job streams only meshes of 2¹⁸ vertices or more into a packed output). Measured
 //! (2026-12-05, a 2-core Intel Xeon with AVX-512F, one core; `cargo run --release -p
@@ -24,9 +24,9 @@
 //! off, [`super::FastRig::without_dib_grouping`]) → grouped here → on a rig reordered once
 //! (`crate::vertex_order`, nothing to put back): the Fox 76–78 → 97.3–100.0 → 99.5–102.8,
 //! RiggedFigure 63.6–65.4 → 72.5–74.4 → 73.6–75.7, CesiumMan 66.0–67.8 → 76.3–77.5 →
-//! 78.0–79.9 — 1–4 % below the reordered rig. The first grouped path ran the kernels a
+//! 78.0–79.9 — 2–3 % below the reordered rig by the ranges' middles. The first grouped path ran the kernels a
 //! window of 256 at a time into a stage on the stack and put each vertex back from there:
-//! the Fox 88.6–92.8, RiggedFigure 68.3–70.2, CesiumMan 72.9–74.8 in the same runs, 7–12 %
+//! the Fox 88.6–92.8, RiggedFigure 68.3–70.2, CesiumMan 72.9–74.8 in the same runs, 7–10 %
 //! below the reordered rig, all of it in the put-back's loop (leaving the put-back out, a
 //! wrong output, ran as fast as the reordered rig; the loop was 17 instructions a vertex, and 13
 //! once its bounds checks were hoisted still ran behind these direct stores). Earlier
@@ -100,7 +100,8 @@ impl<const K: usize> Groups<K> {
 /// DIB's SIMD kernel `F` on the grouped vertices `g` into `out` (the caller checked the
 /// sizes, the joints and that the SIMD kernels run): on the grid that starts at 0, each
 /// chunk by one kernel call that writes each vertex straight to the place the rig has it
-/// (a scattered `Dest`).
+/// (a scattered `Dest`). `F` must be DIB's kernel (the one `Kernel::GROUPED`): the other
+/// kernels' stores have no scattered form and would panic (`by_layout!`).
 pub(super) fn run<const K: usize, F: Kernel<K>>(
     g: &Groups<K>,
     joints: &[F::Joint],
@@ -288,14 +289,16 @@ mod tests {
             // (`uses_avx512`); the joint indices are below 54; `want` holds n vertices.
             let done = unsafe { dib_with(v, &d, Dest::packed(&mut want), false, sixteen) };
             assert_eq!(done, n / 8 * 8);
-            let (mut packed, mut inter) = (vec![[sentinel; 6]; n], vec![sentinel; 8 * n]);
-            let (mut p, mut nr) = (vec![[sentinel; 3]; n], vec![[sentinel; 3]; n]);
+            // Each buffer eight vertices longer than its view: a write past the view shows.
+            let m = n + 8;
+            let (mut packed, mut inter) = (vec![[sentinel; 6]; m], vec![sentinel; 8 * m]);
+            let (mut p, mut nr) = (vec![[sentinel; 3]; m], vec![[sentinel; 3]; m]);
             // SAFETY: as above; every order[i] − 1000 is below n, each view's length.
             unsafe {
                 for o in [
-                    Dest::packed(&mut packed),
-                    Dest::interleaved(&mut inter, 8),
-                    Dest::split(&mut p, &mut nr),
+                    Dest::packed(&mut packed[..n]),
+                    Dest::interleaved(&mut inter[..8 * n], 8),
+                    Dest::split(&mut p[..n], &mut nr[..n]),
                 ] {
                     assert_eq!(
                         dib_with(v, &d, o.scattered(&order, 1000), false, sixteen),
@@ -320,6 +323,9 @@ mod tests {
                     [bits(sentinel); 2]
                 );
             }
+            let untouched = |x: &[f32]| x.iter().all(|x| bits(*x) == bits(sentinel));
+            assert!(untouched(packed[n..].as_flattened()) && untouched(&inter[8 * n..]));
+            assert!(untouched(p[n..].as_flattened()) && untouched(nr[n..].as_flattened()));
         }
     }
 

@@ -248,7 +248,7 @@ pub(super) fn for_chunks<const K: usize>(
 
 /// [`for_chunks`] on the grid that starts at 0 (never streamed): every chunk but the last
 /// is [`CHUNK`] long and starts at a multiple of it (so of any of its divisors: the windows
-/// of `crate::vertex_order`, which `super::grouped` skins one at a time).
+/// of `crate::vertex_order`, which `super::grouped`'s order keeps each vertex within).
 pub(super) fn for_chunks_unshifted<const K: usize>(
     out: Output<'_>,
     vertices: &[Vertex<K>],

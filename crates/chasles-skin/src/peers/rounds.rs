@@ -40,8 +40,8 @@ pub const SYNTHETIC_UNIFORM: &str = "synthetic, uniform rotations";
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Rotations {
     /// Within 60° of the identity, as in skinning ([`synthetic::joints`]): every joint's
-    /// quaternion in one hemisphere, so no antipodality sign ever flips and DIB converges
-    /// in one update.
+    /// quaternion in one hemisphere, so no antipodality sign ever flips, and most of DIB's
+    /// blocks converge in one update (two passes; a few take a second).
     #[default]
     Near,
     /// Uniform over all rotations ([`synthetic::uniform_joints`]): the signs flip at random
@@ -115,8 +115,11 @@ pub struct Row {
 /// The figures of one mesh on one or on all threads.
 #[derive(Debug, Clone)]
 pub struct Table {
-    /// The mesh: [`SYNTHETIC`] ([`measure`]) or the rig's name ([`measure_rig`]).
+    /// The mesh: [`SYNTHETIC`] ([`measure`]), [`SYNTHETIC_UNIFORM`] ([`measure_posed`]) or
+    /// the rig's name ([`measure_rig`]).
     pub mesh: String,
+    /// Whether the mesh is a synthetic one ([`measure`], [`measure_posed`]), not a rig.
+    pub synthetic: bool,
     /// Vertices in the mesh.
     pub vertices: usize,
     /// Threads (1, or rayon's count).
@@ -178,7 +181,10 @@ pub fn measure_posed(
         Rotations::Uniform => (synthetic::uniform_joints(54, 7), SYNTHETIC_UNIFORM),
     };
     on_threads(threads, |parallel| {
-        let mesh = Mesh::four(name, &rig, &jt, 1);
+        let mesh = Mesh {
+            synthetic: true,
+            ..Mesh::four(name, &rig, &jt, 1)
+        };
         measure_on(mesh, parallel, rounds, threads.max(1))
     })
 }
@@ -229,6 +235,7 @@ pub fn measure_rig(
                 baselines: None,
                 ungrouped: Some(&ungrouped),
                 reps,
+                synthetic: false,
             };
             measure_on(mesh, parallel, rounds, threads.max(1))
         })
@@ -264,6 +271,8 @@ struct Mesh<'a, const K: usize> {
     baselines: Option<&'a [Vertex<4>]>,
     ungrouped: Option<&'a FastRig<K>>,
     reps: usize,
+    /// A synthetic mesh ([`Table::synthetic`]).
+    synthetic: bool,
 }
 
 impl<'a> Mesh<'a, 4> {
@@ -276,6 +285,7 @@ impl<'a> Mesh<'a, 4> {
             baselines: Some(rig.vertices()),
             ungrouped: None,
             reps,
+            synthetic: false,
         }
     }
 }
@@ -399,6 +409,7 @@ fn measure_on<const K: usize>(
         .collect();
     Ok(Table {
         mesh: mesh.name.to_string(),
+        synthetic: mesh.synthetic,
         vertices: n,
         threads,
         centres: rig.clusters().len(),
@@ -426,7 +437,7 @@ pub fn markdown(tables: &[Table]) -> String {
             });
             s += &format!(
                 "| {} | {} | {} | {:.1} | {:.1}–{:.1} | {ours} | {:.2} ({:.2}–{:.2}) | {:.2} ({:.2}–{:.2}) |\n",
-                if t.mesh == SYNTHETIC {
+                if t.synthetic && t.mesh == SYNTHETIC {
                     t.vertices.to_string()
                 } else {
                     format!("{} ({})", t.vertices, t.mesh)
@@ -564,6 +575,7 @@ mod tests {
     fn a_mesh_fits_in_a_cache_that_holds_its_bytes() {
         let t = Table {
             mesh: "m".into(),
+            synthetic: true,
             vertices: 1_000_000,
             threads: 1,
             centres: 0,

@@ -215,6 +215,8 @@ unsafe fn store_scattered(o: &Dest<'_>, i: usize, r: [__m256; 6]) {
             _mm_store_ss(at.add(2), _mm_movehl_ps(x, x));
         };
         let (a, yz) = halves(r);
+        // Split arrays have a stride of 3; packed and interleaved ones 6 or more.
+        debug_assert!(o.stride() == 3 || o.stride() >= 6);
         if o.stride() == 3 {
             let b = transpose4_halves([r[3], r[4], r[5], r[0]]);
             for l in 0..8 {
