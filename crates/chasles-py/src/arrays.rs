@@ -156,7 +156,7 @@ pub fn check_frames(frames: usize, max_frames: usize) -> PyResult<()> {
 
 /// `obj` as a C-contiguous, aligned array of T (numpy's `require`); a `ValueError` naming
 /// the argument when it is not numbers.
-pub fn array<'py, T: Element>(
+pub fn array<'py, T: Num>(
     obj: &Bound<'py, PyAny>,
     name: &str,
 ) -> PyResult<PyReadonlyArrayDyn<'py, T>> {
@@ -165,14 +165,14 @@ pub fn array<'py, T: Element>(
     // C-contiguous, aligned (arrays unpickled from out-of-band buffers may not be) and a
     // base-class ndarray.
     let kw = PyDict::new(py);
-    let dtype = numpy::dtype::<T>(py);
-    kw.set_item(intern!(py, "dtype"), &dtype)?;
+    kw.set_item(intern!(py, "dtype"), numpy::dtype::<T>(py))?;
     kw.set_item(intern!(py, "requirements"), "CAE")?;
     let a = np
         .call_method(intern!(py, "require"), (obj,), Some(&kw))
         .map_err(|e| {
             value_error(format!(
-                "{name}: cannot be read as an array of {dtype}: {e}"
+                "{name}: cannot be read as an array of {}: {e}",
+                type_name::<T>()
             ))
         })?;
     let a = a

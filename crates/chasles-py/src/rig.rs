@@ -435,7 +435,7 @@ impl PyRig {
     /// >>> bool(np.array_equal(q, p[order]))
     /// True
     fn reordered(&self, order: &Bound<'_, PyAny>) -> PyResult<PyRig> {
-        let a = array::<i64>(order, "order")?;
+        let a = int_array(order, "order")?;
         if a.ndim() != 1 {
             return Err(value_error(format!(
                 "order must have shape (V,), got {}",

@@ -301,5 +301,9 @@ def test_bad_vertex_orders_raise():
         rig.reordered(bad)
     with pytest.raises(ValueError, match=r"order must have shape \(V,\)"):
         rig.reordered(order.reshape(-1, 2))
-    with pytest.raises(ValueError, match="order: cannot be read as an array of int64"):
+    # Only integers name vertices: strings, and floats (which numpy would truncate), are
+    # refused as the skinning functions' joint indices are.
+    with pytest.raises(ValueError, match="order must be integers, got <U1"):
         rig.reordered(["a", "b"])
+    with pytest.raises(ValueError, match="order must be integers, got float64"):
+        rig.reordered(order + 0.25)

@@ -283,6 +283,7 @@ mod tests {
         unsafe { Dest::split(&mut p, &mut n).scattered(&order, 10) }.put(0, o(5.0));
         assert_eq!((p[2], n[2]), ([5.0, 5.1, 5.2], [5.3, 5.4, 5.5]));
         assert_eq!(p.iter().filter(|p| **p == [0.0; 3]).count(), 3);
+        assert_eq!(n.iter().filter(|n| **n == [0.0; 3]).count(), 3);
     }
 
     #[test]

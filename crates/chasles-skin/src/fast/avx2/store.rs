@@ -138,11 +138,6 @@ pub(in crate::fast) unsafe fn store_rows<S: Store>(
 #[target_feature(enable = "avx2,fma")]
 unsafe fn store_apart(p: *mut f32, n: *mut f32, stride: usize, split: bool, r: [__m256; 6]) {
     unsafe {
-        // Floats 2–3 of x to `at`, as `two` writes 0–1.
-        let two_high = |at: *mut f32, x: __m128| {
-            let x = _mm_castps_pd(x);
-            (at as *mut f64).write_unaligned(_mm_cvtsd_f64(_mm_unpackhi_pd(x, x)))
-        };
         let (a, yz) = halves(r);
         if split {
             let b = transpose4_halves([r[3], r[4], r[5], r[0]]);
@@ -150,19 +145,11 @@ unsafe fn store_apart(p: *mut f32, n: *mut f32, stride: usize, split: bool, r: [
                 for l in 0..7 {
                     _mm_storeu_ps(base.add(3 * l), half(t, l));
                 }
-                let last = half(t, 7);
-                two(base.add(21), last);
-                _mm_store_ss(base.add(23), _mm_movehl_ps(last, last));
+                three(base.add(21), half(t, 7));
             }
             return;
         }
-        // ny nz of vertices (0, 1), (2, 3), (4, 5), (6, 7).
-        let yz = [
-            _mm256_castps256_ps128(yz[0]),
-            _mm256_castps256_ps128(yz[1]),
-            _mm256_extractf128_ps::<1>(yz[0]),
-            _mm256_extractf128_ps::<1>(yz[1]),
-        ];
+        let yz = pairs(yz);
         for l in 0..8 {
             _mm_storeu_ps(p.add(l * stride), half(&a, l));
         }
@@ -185,6 +172,19 @@ fn half(t: &[__m256; 4], l: usize) -> __m128 {
     }
 }
 
+/// The ny nz of vertices (0, 1), (2, 3), (4, 5), (6, 7) from [`halves`]' `yz`, a pair to
+/// a register (the first vertex's in floats 0–1, the second's in 2–3).
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+fn pairs(yz: [__m256; 2]) -> [__m128; 4] {
+    [
+        _mm256_castps256_ps128(yz[0]),
+        _mm256_castps256_ps128(yz[1]),
+        _mm256_extractf128_ps::<1>(yz[0]),
+        _mm256_extractf128_ps::<1>(yz[1]),
+    ]
+}
+
 /// Floats 0–1 of `x` to `at`, which may be only 4-byte aligned: an unaligned 8-byte write
 /// (`vmovlps`), not `_mm_store_sd`, which writes a typed f64 and so asks for 8-byte
 /// alignment.
@@ -195,6 +195,30 @@ fn half(t: &[__m256; 4], l: usize) -> __m128 {
 #[target_feature(enable = "avx2,fma")]
 unsafe fn two(at: *mut f32, x: __m128) {
     unsafe { (at as *mut f64).write_unaligned(_mm_cvtsd_f64(_mm_castps_pd(x))) }
+}
+
+/// Floats 2–3 of `x` to `at`, as [`two`] writes 0–1 (`vmovhps`, not `_mm_storeh_pd`).
+///
+/// # Safety
+/// The two floats at `at` must be writable.
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn two_high(at: *mut f32, x: __m128) {
+    let x = _mm_castps_pd(x);
+    unsafe { (at as *mut f64).write_unaligned(_mm_cvtsd_f64(_mm_unpackhi_pd(x, x))) }
+}
+
+/// Floats 0–2 of `x` to `at`: an 8-byte and a 4-byte write, nothing past them.
+///
+/// # Safety
+/// The three floats at `at` must be writable.
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn three(at: *mut f32, x: __m128) {
+    unsafe {
+        two(at, x);
+        _mm_store_ss(at.add(2), _mm_movehl_ps(x, x));
+    }
 }
 
 /// Eight vertices' results (six lane vectors: x, y, z, nx, ny, nz) written to the slots
@@ -210,10 +234,6 @@ unsafe fn two(at: *mut f32, x: __m128) {
 #[target_feature(enable = "avx2,fma")]
 unsafe fn store_scattered(o: &Dest<'_>, i: usize, r: [__m256; 6]) {
     unsafe {
-        let three = |at: *mut f32, x: __m128| {
-            two(at, x);
-            _mm_store_ss(at.add(2), _mm_movehl_ps(x, x));
-        };
         let (a, yz) = halves(r);
         // Split arrays have a stride of 3; packed and interleaved ones 6 or more.
         debug_assert!(o.stride() == 3 || o.stride() >= 6);
@@ -226,18 +246,15 @@ unsafe fn store_scattered(o: &Dest<'_>, i: usize, r: [__m256; 6]) {
             }
             return;
         }
-        // ny nz of vertices 0, 1, 4, 5 (`yz[0]`) and 2, 3, 6, 7 (`yz[1]`), as in `halves`.
+        let yz = pairs(yz);
         for l in 0..8 {
             let (p, _) = o.slot(i + l);
             _mm_storeu_ps(p, half(&a, l));
-            let t = yz[(l / 2) % 2];
-            let t = if l < 4 {
-                _mm256_castps256_ps128(t)
+            if l % 2 == 0 {
+                two(p.add(4), yz[l / 2]);
             } else {
-                _mm256_extractf128_ps::<1>(t)
-            };
-            let t = if l % 2 == 0 { t } else { _mm_movehl_ps(t, t) };
-            two(p.add(4), t);
+                two_high(p.add(4), yz[l / 2]);
+            }
         }
     }
 }
