@@ -6,7 +6,9 @@
 * DLB of (n, 4) dual quaternions against a numpy-vectorized DLB (the same antipodality fix
   against the heaviest weight and the same normalization);
 * skinning CesiumMan's whole clip (LBS) against a numpy einsum LBS given the same joint
-  matrices, with and without the posing of each frame on our side.
+  matrices, with and without the posing of each frame on our side, and a pose a call (the
+  free `skin()`, which lays the rig out on every call, and `Rig.from_arrays` once with
+  `skin_with`) against numpy a frame a call.
 
 Each time is the best of --repeat runs; every pair of results is checked to agree first.
 Targets (issue 19): at least 5x scipy on Slerp and conversions, at least 10x numpy on DLB
@@ -141,6 +143,16 @@ def main():
         lambda: numpy_lbs(jm, j, wt, p, nn), "numpy einsum", 10, check_skin)
     row(label + ", posed too", lambda: rig.skin_clip(0, fps=a.fps, method="lbs"),
         lambda: numpy_lbs(jm, j, wt, p, nn), "numpy einsum", 10, lambda: None)
+    # A pose a call, as a loop over frames that come one at a time calls it: the free
+    # function checks the arrays and lays the rig out on every call; Rig.from_arrays does it
+    # once, and skin_with skins by each frame's matrices.
+    own = chasles.Rig.from_arrays(p, nn, j, wt)
+    per_frame = lambda: [numpy_lbs(m[None], j, wt, p, nn) for m in jm]
+    row(label + ", a pose a call, skin()", lambda: [chasles.skin(p, nn, j, wt, m, "lbs") for m in jm],
+        per_frame, "numpy einsum", 10, lambda: None)
+    row(label + ", a pose a call, Rig.from_arrays once, skin_with",
+        lambda: [own.skin_with(m, "lbs") for m in jm], per_frame, "numpy einsum", 10,
+        lambda: close(np.stack([own.skin_with(m, "lbs")[0] for m in jm]), numpy_lbs(jm, j, wt, p, nn)[0], 1e-4))
     row(f"DQS, CesiumMan clip, posed too", lambda: rig.skin_clip(0, fps=a.fps, method="dqs"),
         lambda: numpy_lbs(jm, j, wt, p, nn), "numpy einsum LBS", 10, lambda: None)
 

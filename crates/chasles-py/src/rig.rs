@@ -10,7 +10,9 @@
 //! shader, the CPU otherwise, as `chasles skin --device auto`.
 
 use crate::arrays::{array, skin_error, value_error};
-use crate::skin::{device, frames_out, method, skin_into, Device, Layout};
+use crate::skin::{
+    device, frames_out, method, rig_from_arrays, skin_by_matrices, skin_into, Device, Layout,
+};
 use chasles::{Quat, Vec3};
 use chasles_skin::gpu::GpuSkinner;
 use chasles_skin::pose::skinning_matrices;
@@ -293,6 +295,40 @@ impl PyRig {
         Self::of(rig.map_err(skin_error)?)
     }
 
+    /// A rig of your own arrays, laid out for skinning once: ``positions`` and ``normals``
+    /// (V, 3) bind-pose vertices, ``joints`` (V, K) integer joint indices and ``weights``
+    /// (V, K) their weights (checked as :func:`skin` checks them), ``centres`` (J, 3) the
+    /// joints' bind-pose origins (about which QLB and SBS blend rotations; default the
+    /// origin). J is ``joint_count`` when given, else the number of centres, else the
+    /// largest joint index plus one. Each joint is a root node with the identity rest
+    /// transform; there are no triangles and no clips. Skin it by joint matrices with
+    /// :meth:`skin_with`: :func:`skin` does the same but lays the rig out again on every
+    /// call. Named ``name`` in messages; pickles as any rig.
+    ///
+    /// >>> import chasles, numpy as np
+    /// >>> p = np.array([[1.0, 0.0, 0.0]]); n = np.array([[0.0, 0.0, 1.0]])
+    /// >>> rig = chasles.Rig.from_arrays(p, n, [[0, 1]], [[0.5, 0.5]])
+    /// >>> rig.vertex_count, rig.joint_count
+    /// (1, 2)
+    #[classmethod]
+    #[pyo3(signature = (positions, normals, joints, weights, *, centres = None,
+        joint_count = None, name = "arrays"))]
+    #[allow(clippy::too_many_arguments)]
+    fn from_arrays(
+        _cls: &Bound<'_, PyType>,
+        positions: &Bound<'_, PyAny>,
+        normals: &Bound<'_, PyAny>,
+        joints: &Bound<'_, PyAny>,
+        weights: &Bound<'_, PyAny>,
+        centres: Option<&Bound<'_, PyAny>>,
+        joint_count: Option<usize>,
+        name: &str,
+    ) -> PyResult<Self> {
+        let mut rig = rig_from_arrays(positions, normals, joints, weights, centres, joint_count)?;
+        rig.name = name.to_string();
+        Self::of(rig)
+    }
+
     /// A rig from its pickled bytes (what pickling calls).
     #[classmethod]
     fn _from_state(_cls: &Bound<'_, PyType>, state: &[u8]) -> PyResult<Self> {
@@ -551,6 +587,31 @@ impl PyRig {
                 parallel,
             )?)
         })
+    }
+    /// Skins by your own skinning matrices ``joint_matrices`` (..., J, 4, 4), ``C_j =
+    /// World_j · InverseBind_j`` of one pose or of a batch of poses (J the rig's joints),
+    /// by ``method`` on the CPU, through the layout made when the rig was — the numbers of
+    /// :func:`skin` on the same arrays, and of :meth:`skin` where the matrices are
+    /// :meth:`skinning_matrices`'. A batch's poses run one per task on all cores. Returns
+    /// float32 ``(positions, normals)`` of shape (..., V, 3).
+    ///
+    /// >>> import chasles, numpy as np
+    /// >>> rig = chasles.Rig.model("CesiumMan")
+    /// >>> m = rig.skinning_matrices(rig.pose(0, 0.5))
+    /// >>> pos, nrm = rig.skin_with(m, "dib")
+    /// >>> bool(np.array_equal(pos, rig.skin(clip=0, time=0.5, method="dib")[0]))
+    /// True
+    /// >>> rig.skin_with(np.stack([m, m, m]))[0].shape
+    /// (3, 3273, 3)
+    #[pyo3(signature = (joint_matrices, method = "dqs"))]
+    fn skin_with<'py>(
+        &self,
+        joint_matrices: &Bound<'py, PyAny>,
+        method: &str,
+    ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+        let m = self::method(method)?;
+        let mats = array::<f32>(joint_matrices, "joint_matrices")?;
+        skin_by_matrices(joint_matrices.py(), &self.rig, &self.layout, &mats, m)
     }
     /// Skins a whole clip at ``fps`` frames a second — ``floor(duration · fps) + 1``
     /// frames at ``t = f / fps``, as ``chasles skin --all-frames`` — or at the given

@@ -6,14 +6,16 @@
 //! same; a rig with more than 8 influences on a vertex takes the reference path
 //! (`skinning::skin_joints`), as the CLI's does. Whole clips are skinned one frame per
 //! task on all cores; users' own arrays (positions, normals, joints, weights, joint
-//! matrices) are made into a checked `Rig` first ([`skin`]).
+//! matrices) are made into a checked `Rig` first ([`rig_from_arrays`]): by [`skin`] on every
+//! call, or once by `Rig.from_arrays`, whose `Rig.skin_with` then skins it by joint
+//! matrices through the layout made with it ([`skin_by_matrices`], the same numbers).
 
 use crate::arrays::{array, item_error, leading, value_error, Fail};
 use chasles::{Mat4, Vec3};
 use chasles_skin::fast::{FastRig, Output, Palette, SkinningJob};
 use chasles_skin::pose::rigid_of;
 use chasles_skin::{skin_joints, Influences, JointTransforms, Mesh, Method, Node, Rig, SkinError};
-use numpy::{PyArrayDyn, PyArrayMethods, PyUntypedArrayMethods};
+use numpy::{PyArrayDyn, PyArrayMethods, PyReadonlyArrayDyn, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 
 /// A rig laid out for skinning: the fast path's layout, or the reference path for more
@@ -197,7 +199,9 @@ pub fn frames_out<'py>(
 /// default), ``dib``, ``log``, ``qlb`` or ``sbs``; ``centres`` (J, 3) are the joints'
 /// bind-pose origins, about which QLB and SBS blend rotations (default: the origin).
 /// Returns float32 ``(positions, normals)`` of shape (..., V, 3) — the skinning kernels
-/// work in float32. Runs through the fast job (up to 8 influences) on all cores.
+/// work in float32. Runs through the fast job (up to 8 influences) on all cores. Every
+/// call checks the arrays and lays the rig out again: to skin one mesh by many poses, make
+/// it once with :meth:`Rig.from_arrays` and call :meth:`Rig.skin_with`.
 ///
 /// >>> import chasles, numpy as np
 /// >>> p = np.array([[1.0, 0.0, 0.0]]); n = np.array([[0.0, 0.0, 1.0]])
@@ -217,13 +221,66 @@ pub fn skin<'py>(
     method: &str,
     centres: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
-    let py = positions.py();
     let m = self::method(method)?;
+    let mats = array::<f32>(joint_matrices, "joint_matrices")?;
+    let ms = mats.shape();
+    let nj = (ms.len() >= 3).then(|| ms[ms.len() - 3]);
+    let rig = rig_from_arrays(positions, normals, joints, weights, centres, nj)?;
+    let layout = Layout::of(&rig).map_err(crate::arrays::skin_error)?;
+    skin_by_matrices(positions.py(), &rig, &layout, &mats, m)
+}
+
+/// `rig` (laid out as `layout`) skinned by `m` with the skinning matrices `mats`
+/// (..., J, 4, 4), J the rig's joints: float32 (..., V, 3) positions and normals, a batch's
+/// poses one per task on all cores (the free [`skin`]'s and `Rig.skin_with`'s last step).
+pub fn skin_by_matrices<'py>(
+    py: Python<'py>,
+    rig: &Rig,
+    layout: &Layout,
+    mats: &PyReadonlyArrayDyn<'_, f32>,
+    m: Method,
+) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+    let nj = rig.joints.len();
+    let ms = mats.shape();
+    if ms.len() < 3 || ms[ms.len() - 3..] != [nj, 4, 4] {
+        return Err(value_error(format!(
+            "joint_matrices must have shape (..., {nj}, 4, 4), one per joint, got {}",
+            crate::arrays::shape_text(ms)
+        )));
+    }
+    let lead = ms[..ms.len() - 3].to_vec();
+    let md = mats.as_slice().map_err(|e| value_error(e.to_string()))?;
+    frames_out(
+        py,
+        &lead,
+        rig.mesh.positions.len(),
+        |f, pos, nrm, parallel| {
+            let mats: Vec<Mat4<f32>> = md[f * nj * 16..][..nj * 16]
+                .chunks_exact(16)
+                .map(|c| Mat4::from_row_major(c.try_into().unwrap_or([0.0; 16])))
+                .collect();
+            Ok(skin_into(rig, layout, &mats, m, pos, nrm, parallel)?)
+        },
+    )
+}
+
+/// Users' arrays made into a checked rig (the free [`skin`]'s and `Rig.from_arrays`'s):
+/// `positions` and `normals` (V, 3), `joints` (V, K) integers and `weights` (V, K),
+/// `centres` (J, 3) or none; J is `joint_count` when given, else the centres' count, else
+/// the largest joint index plus one. A `ValueError` names the array and its shape, or the
+/// vertex with bad influences.
+pub fn rig_from_arrays(
+    positions: &Bound<'_, PyAny>,
+    normals: &Bound<'_, PyAny>,
+    joints: &Bound<'_, PyAny>,
+    weights: &Bound<'_, PyAny>,
+    centres: Option<&Bound<'_, PyAny>>,
+    joint_count: Option<usize>,
+) -> PyResult<Rig> {
     let p = array::<f32>(positions, "positions")?;
     let n = array::<f32>(normals, "normals")?;
     let j = crate::rig::int_array(joints, "joints")?;
     let w = array::<f32>(weights, "weights")?;
-    let mats = array::<f32>(joint_matrices, "joint_matrices")?;
     let v = p.shape().first().copied().unwrap_or(0);
     leading(p.shape(), &[v, 3], "positions")?;
     let vl = leading(p.shape(), &[3], "positions")?;
@@ -252,16 +309,16 @@ pub fn skin<'py>(
             crate::arrays::shape_text(w.shape())
         )));
     }
-    let ms = mats.shape().to_vec();
-    if ms.len() < 3 || ms[ms.len() - 2..] != [4, 4] {
-        return Err(value_error(format!(
-            "joint_matrices must have shape (..., J, 4, 4), got {}",
-            crate::arrays::shape_text(&ms)
-        )));
-    }
-    let nj = ms[ms.len() - 3];
-    let lead = ms[..ms.len() - 3].to_vec();
     let c = centres.map(|c| array::<f32>(c, "centres")).transpose()?;
+    let slice = |e: numpy::AsSliceError| value_error(e.to_string());
+    let js = j.as_slice().map_err(slice)?;
+    let nj = match (joint_count, &c) {
+        (Some(nj), _) => nj,
+        (None, Some(c)) => c.shape().first().copied().unwrap_or(0),
+        (None, None) => js.iter().max().map_or(0, |m| {
+            usize::try_from(*m).map_or(0, |m| m.saturating_add(1))
+        }),
+    };
     if let Some(c) = &c {
         if c.shape() != [nj, 3] {
             return Err(value_error(format!(
@@ -270,27 +327,20 @@ pub fn skin<'py>(
             )));
         }
     }
-    let slice = |e: numpy::AsSliceError| value_error(e.to_string());
-    let (ps, ns, js, ws) = (
-        p.as_slice().map_err(slice)?,
-        n.as_slice().map_err(slice)?,
-        j.as_slice().map_err(slice)?,
-        w.as_slice().map_err(slice)?,
-    );
     let cs = match &c {
         Some(c) => Some(c.as_slice().map_err(slice)?),
         None => None,
     };
-    let rig = rig_of_arrays(ps, ns, js, ws, k, nj, cs).map_err(crate::arrays::skin_error)?;
-    let layout = Layout::of(&rig).map_err(crate::arrays::skin_error)?;
-    let md = mats.as_slice().map_err(slice)?;
-    frames_out(py, &lead, v, |f, pos, nrm, parallel| {
-        let mats: Vec<Mat4<f32>> = md[f * nj * 16..][..nj * 16]
-            .chunks_exact(16)
-            .map(|c| Mat4::from_row_major(c.try_into().unwrap_or([0.0; 16])))
-            .collect();
-        Ok(skin_into(&rig, &layout, &mats, m, pos, nrm, parallel)?)
-    })
+    rig_of_arrays(
+        p.as_slice().map_err(slice)?,
+        n.as_slice().map_err(slice)?,
+        js,
+        w.as_slice().map_err(slice)?,
+        k,
+        nj,
+        cs,
+    )
+    .map_err(crate::arrays::skin_error)
 }
 
 /// A checked rig of users' arrays: one root node per joint, inverse bind matrices that put
@@ -305,20 +355,19 @@ fn rig_of_arrays(
     centres: Option<&[f32]>,
 ) -> Result<Rig, SkinError> {
     let v = p.len() / 3;
-    let mut lists = Vec::with_capacity(v);
-    for vertex in 0..v {
-        let mut l = Vec::with_capacity(k);
-        for s in 0..k {
-            let (joint, weight) = (j[vertex * k + s], w[vertex * k + s]);
-            let joint = usize::try_from(joint).map_err(|_| SkinError::BadWeights {
-                vertex,
-                reason: format!("joint index {joint} is negative"),
-            })?;
-            l.push((joint, weight));
-        }
-        lists.push(l);
+    if let Some(at) = j.iter().position(|&joint| joint < 0) {
+        return Err(SkinError::BadWeights {
+            vertex: at / k.max(1),
+            reason: format!("joint index {} is negative", j[at]),
+        });
     }
-    let influences = Influences::from_lists(&lists, joints)?;
+    let row = |vertex: usize| {
+        let (js, ws) = (&j[vertex * k..][..k], &w[vertex * k..][..k]);
+        js.iter()
+            .zip(ws)
+            .map(|(&joint, &weight)| (joint as usize, weight))
+    };
+    let influences = Influences::from_rows((0..v).map(row), joints)?;
     let vecs = |a: &[f32]| -> Vec<Vec3<f32>> {
         a.chunks_exact(3)
             .map(|c| Vec3::new(c[0], c[1], c[2]))

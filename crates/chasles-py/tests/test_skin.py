@@ -158,6 +158,78 @@ def test_own_arrays_match_the_rig_and_numpy(cesium):
     assert np.array_equal(pb[1], one[0]) and np.array_equal(nb[1], one[1])
 
 
+def test_a_rig_of_arrays_made_once_skins_as_the_free_function(cesium, rng):
+    joints, weights = cesium.influences()
+    centres = np.linalg.inv(cesium.inverse_bind)[:, :3, 3]
+    own = chasles.Rig.from_arrays(cesium.positions, cesium.normals, joints, weights,
+                                  centres=centres, name="mine")
+    assert own.name == "mine" and own.joint_count == 19 and own.vertex_count == 3273
+    assert own.clips == [] and own.triangles.shape == (0, 3)
+    batch = np.stack([cesium.skinning_matrices(cesium.pose(0, t)) for t in (0.3, 1.1, 1.7)])
+    for method in SKIN_METHODS:
+        free = chasles.skin(cesium.positions, cesium.normals, joints, weights, batch, method,
+                            centres=centres)
+        mine = own.skin_with(batch, method)
+        assert mine[0].shape == (3, 3273, 3) and mine[0].dtype == np.float32
+        assert np.array_equal(mine[0], free[0]) and np.array_equal(mine[1], free[1]), method
+        # One pose alone is that frame of the batch.
+        one = own.skin_with(batch[2], method)
+        assert np.array_equal(one[0], mine[0][2]) and np.array_equal(one[1], mine[1][2])
+        # A loaded rig skinned by its own pose's matrices is that pose skinned.
+        loaded = cesium.skin_with(batch[0], method)
+        posed = cesium.skin(clip=0, time=0.3, method=method)
+        assert np.array_equal(loaded[0], posed[0]) and np.array_equal(loaded[1], posed[1])
+    # LBS is the weighted sum of the joints' matrices (numpy, independently).
+    blended = np.einsum("vk,vkij->vij", weights, batch[1][joints])
+    lbs = np.einsum("vij,vj->vi", blended[:, :3, :3], cesium.positions) + blended[:, :3, 3]
+    assert np.abs(own.skin_with(batch[1], "lbs")[0] - lbs).max() < 1e-5
+    # It pickles as any rig, and skins the same after.
+    back = pickle.loads(pickle.dumps(own))
+    assert np.array_equal(back.skin_with(batch, "sbs")[0], own.skin_with(batch, "sbs")[0])
+    # The joint count: the largest index plus one, the centres' count, or as given.
+    p, n = rng.normal(size=(3, 3)), np.tile([0.0, 0.0, 1.0], (3, 1))
+    j, w = [[0, 1], [1, 2], [2, 0]], [[0.5, 0.5], [1.0, 0.0], [0.3, 0.7]]
+    assert chasles.Rig.from_arrays(p, n, j, w).joint_count == 3
+    assert chasles.Rig.from_arrays(p, n, j, w, centres=np.zeros((5, 3))).joint_count == 5
+    assert chasles.Rig.from_arrays(p, n, j, w, joint_count=4).joint_count == 4
+    # More than eight influences: the reference path, as the free function takes it.
+    many = rng.uniform(0.1, 1.0, size=(3, 12))
+    wide = chasles.Rig.from_arrays(p, n, np.tile(np.arange(12), (3, 1)), many)
+    mats = np.tile(np.eye(4), (12, 1, 1))
+    mats[:, :3, 3] = rng.normal(size=(12, 3))
+    expected = p + (many / many.sum(1, keepdims=True)) @ mats[:, :3, 3]
+    assert np.abs(wide.skin_with(mats, "lbs")[0] - expected).max() < 1e-5
+
+
+def test_bad_arrays_for_a_rig_raise(cesium, rng):
+    p, n = rng.normal(size=(3, 3)), np.tile([0.0, 0.0, 1.0], (3, 1))
+    j, w = [[0, 1], [1, 2], [2, 0]], [[0.5, 0.5], [1.0, 0.0], [0.3, 0.7]]
+    # Vertex 1's joint 2 has weight 0 and is dropped; vertex 2's is not.
+    with pytest.raises(ValueError, match="vertex 2: joint index 2 out of range"):
+        chasles.Rig.from_arrays(p, n, j, w, joint_count=2)
+    with pytest.raises(ValueError, match=r"centres must have shape \(4, 3\), one per joint"):
+        chasles.Rig.from_arrays(p, n, j, w, centres=np.zeros((3, 3)), joint_count=4)
+    with pytest.raises(ValueError, match="joint index -2 is negative"):
+        chasles.Rig.from_arrays(p, n, [[0, 1], [1, -2], [2, 0]], w)
+    with pytest.raises(ValueError, match=r"normals must have shape \(3, 3\) like positions"):
+        chasles.Rig.from_arrays(p, n[:2], j, w)
+    with pytest.raises(ValueError, match="vertex 2: weight NaN for joint 2 is negative or not finite"):
+        chasles.Rig.from_arrays(p, n, j, [[0.5, 0.5], [1.0, 0.0], [np.nan, 0.7]])
+    with pytest.raises(ValueError, match="joints must be integers"):
+        chasles.Rig.from_arrays(p, n, np.array(j, dtype=float), w)
+    own = chasles.Rig.from_arrays(p, n, j, w)
+    with pytest.raises(ValueError, match=r"joint_matrices must have shape \(\.\.\., 3, 4, 4\)"):
+        own.skin_with(np.tile(np.eye(4), (2, 1, 1)))
+    with pytest.raises(ValueError, match=r"joint_matrices must have shape \(\.\.\., 19, 4, 4\)"):
+        cesium.skin_with(np.eye(4))
+    with pytest.raises(ValueError, match="unknown method 'bbw'"):
+        own.skin_with(np.tile(np.eye(4), (3, 1, 1)), "bbw")
+    bad = np.tile(np.eye(4), (2, 3, 1, 1))
+    bad[1, 2, 0, 3] = np.inf
+    with pytest.raises(ValueError, match="not finite"):
+        own.skin_with(bad)
+
+
 def test_more_than_eight_influences_take_the_reference_path(rng):
     v, j = 50, 12
     p = rng.normal(size=(v, 3))
@@ -237,7 +309,7 @@ def test_bad_skinning_inputs_raise(cesium, tmp_path, rng):
         chasles.skin(p, n, [[0], [-1]], [[1.0], [1.0]], eye)
     with pytest.raises(ValueError, match="joints must be integers"):
         chasles.skin(p, n, [[0.0], [1.0]], [[1.0], [1.0]], eye)
-    with pytest.raises(ValueError, match=r"joint_matrices must have shape \(\.\.\., J, 4, 4\)"):
+    with pytest.raises(ValueError, match=r"joint_matrices must have shape \(\.\.\., 2, 4, 4\)"):
         chasles.skin(p, n, [[0], [1]], [[1.0], [1.0]], np.eye(3))
     with pytest.raises(ValueError, match=r"weights must have shape \(2, 1\)"):
         chasles.skin(p, n, [[0], [1]], [[1.0, 2.0], [1.0, 1.0]], eye)

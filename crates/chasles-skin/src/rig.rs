@@ -131,17 +131,26 @@ impl Influences {
     /// the vertex: a joint index out of range, a negative or non-finite weight, or weights
     /// that sum to zero.
     pub fn from_lists(lists: &[Vec<(usize, f32)>], joints: usize) -> Result<Self> {
+        Self::from_rows(lists.iter().map(|l| l.iter().copied()), joints)
+    }
+    /// [`Influences::from_lists`] for rows given as iterators (say a vertex's slots of
+    /// fixed-width joint and weight arrays, as glTF and numpy hold them), so that no list is
+    /// made per vertex: the same checks, errors and numbers.
+    pub fn from_rows<R>(rows: impl Iterator<Item = R>, joints: usize) -> Result<Self>
+    where
+        R: Iterator<Item = (usize, f32)> + Clone,
+    {
         let mut out = Influences {
-            start: Vec::with_capacity(lists.len() + 1),
+            start: Vec::with_capacity(rows.size_hint().0 + 1),
             joints: Vec::new(),
             weights: Vec::new(),
         };
         out.start.push(0);
-        for (vertex, list) in lists.iter().enumerate() {
+        for (vertex, list) in rows.enumerate() {
             // Joints of weight 0 are dropped below, so only the others must exist.
-            let sum = checked_sum(vertex, list.iter().copied(), joints, false)?;
+            let sum = checked_sum(vertex, list.clone(), joints, false)?;
             let first = out.joints.len();
-            for &(joint, w) in list {
+            for (joint, w) in list {
                 if w > 0.0 {
                     out.joints.push(joint as u16);
                     out.weights.push((f64::from(w) / sum) as f32);

@@ -236,6 +236,48 @@ fn clip_sampling_follows_the_gltf_rules() {
 }
 
 #[test]
+fn influences_from_rows_of_slots_are_those_from_lists() {
+    // Four slots a vertex, as glTF and numpy hold them: zero weights (dropped), weights out
+    // of order (sorted heaviest first) and not summing to 1 (scaled).
+    let (joints, weights): (Vec<usize>, Vec<f32>) = (0..200u32)
+        .flat_map(|v| {
+            (0..4u32).map(move |k| {
+                let h = v.wrapping_mul(2_654_435_761).rotate_left(k * 7) ^ (k * 40_503);
+                let w = if h % 5 == 0 {
+                    0.0
+                } else {
+                    (h % 97) as f32 / 13.0 + 0.25 * (k % 2) as f32
+                };
+                ((h % 11) as usize, if k == 0 && w == 0.0 { 0.5 } else { w })
+            })
+        })
+        .unzip();
+    let (joints, weights) = (&joints, &weights);
+    let row = |v: usize| (0..4).map(move |k| (joints[4 * v + k], weights[4 * v + k]));
+    let lists: Vec<Vec<(usize, f32)>> = (0..200).map(|v| row(v).collect()).collect();
+    let by_rows = Influences::from_rows((0..200).map(row), 11).unwrap();
+    assert_eq!(by_rows, Influences::from_lists(&lists, 11).unwrap());
+    assert_eq!(by_rows.vertices(), 200);
+    // The same errors, naming the same vertex.
+    let bad = |v: usize| {
+        let w = if v == 150 { f32::NAN } else { 1.0 };
+        [(0usize, w)].into_iter()
+    };
+    assert!(matches!(
+        Influences::from_rows((0..200).map(bad), 1),
+        Err(SkinError::BadWeights { vertex: 150, .. })
+    ));
+    assert!(matches!(
+        Influences::from_rows((0..200).map(row), 10),
+        Err(SkinError::JointOutOfRange {
+            joint: 10,
+            joints: 10,
+            ..
+        })
+    ));
+}
+
+#[test]
 fn bad_rigs_get_errors_naming_the_problem() {
     assert!(matches!(
         Influences::from_lists(&[vec![(0, 0.5), (7, 0.5)]], 2),

@@ -224,6 +224,18 @@ class Rig:
     def model(cls, name: str) -> "Rig": ...
     @classmethod
     def from_bytes(cls, data: bytes, name: str = "rig.glb") -> "Rig": ...
+    @classmethod
+    def from_arrays(
+        cls,
+        positions: ArrayLike,
+        normals: ArrayLike,
+        joints: ArrayLike,
+        weights: ArrayLike,
+        *,
+        centres: Optional[ArrayLike] = None,
+        joint_count: Optional[int] = None,
+        name: str = "arrays",
+    ) -> "Rig": ...
     @property
     def name(self) -> str: ...
     @property
@@ -259,6 +271,9 @@ class Rig:
         *,
         clip: Union[int, str, None] = None,
         time: Optional[float] = None,
+    ) -> Tuple[NDArray[np.float32], NDArray[np.float32]]: ...
+    def skin_with(
+        self, joint_matrices: ArrayLike, method: str = "dqs"
     ) -> Tuple[NDArray[np.float32], NDArray[np.float32]]: ...
     def skin_clip(
         self,
