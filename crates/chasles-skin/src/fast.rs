@@ -61,10 +61,15 @@ pub struct Vertex<const K: usize> {
     pub p: [f32; 3],
     /// Bind normal.
     pub n: [f32; 3],
-    /// Joint indices, heaviest influence first: DQS, QLB and SBS take slot 0 as the
-    /// antipodality pivot ([`FastRig::new`] puts it there; a layout built by hand must).
+    /// Joint indices. DQS, QLB and SBS take slot 0 as the antipodality pivot:
+    /// [`FastRig::new`] puts the heaviest influence there, as the reference path pivots on
+    /// it; a layout built by hand pivots on whatever it puts there (which changes a blend
+    /// only where its joints' rotations are more than 180° apart), and DIB finds the
+    /// heaviest itself. Every slot's joint must exist, weight 0 or not (the kernels read
+    /// them all).
     pub j: [u16; K],
-    /// Weights, summing to 1.
+    /// Weights: finite, not negative, summing to 1 within [`WEIGHT_SUM_TOLERANCE`]
+    /// ([`FastRig::from_vertices`] checks them; LBS takes them as they are).
     pub w: [f32; K],
 }
 
@@ -159,8 +164,11 @@ impl<const K: usize> FastRig<K> {
     }
 
     /// A rig from laid-out vertices and the bind-pose origin of each joint (see
-    /// [`joint_centres`]; their number is the joint count); an error if a joint index is
-    /// out of range.
+    /// [`joint_centres`]; their number is the joint count). Errors name the vertex: a
+    /// joint index out of range ([`SkinError::JointOutOfRange`]), a weight negative or not
+    /// finite, or weights whose sum is not 1 within [`WEIGHT_SUM_TOLERANCE`]
+    /// ([`SkinError::BadWeights`]: scale them first, as [`crate::Influences`] does); a
+    /// position too far out ([`crate::reach`]).
     pub fn from_vertices(vertices: Vec<Vertex<K>>, centres: Vec<Vec3<f32>>) -> Result<Self> {
         let joints = centres.len();
         if let Some((i, v)) = vertices
@@ -174,6 +182,9 @@ impl<const K: usize> FastRig<K> {
                 joint,
                 joints,
             });
+        }
+        for (vertex, v) in vertices.iter().enumerate() {
+            check_weights(vertex, v)?;
         }
         let positions: Vec<Vec3<f32>> = vertices.iter().map(|v| Vec3::from_array(v.p)).collect();
         crate::reach::check_positions(crate::error::FAST_RIG, &positions)?;
@@ -229,6 +240,33 @@ impl<const K: usize> FastRig<K> {
             .get_or_init(|| grouped::Groups::of(&self.vertices))
             .as_ref()
     }
+}
+
+/// How far from 1 a laid-out vertex's weights may sum ([`FastRig::from_vertices`]): f32
+/// rounding of a handful of weights is a few 1e-7; weights stored in 8 or 16 bits (glTF's
+/// normalized integers) can be off by more and are to be scaled first.
+pub const WEIGHT_SUM_TOLERANCE: f32 = 1e-3;
+
+/// A laid-out vertex's weights: finite, not negative, summing to 1 within
+/// [`WEIGHT_SUM_TOLERANCE`].
+fn check_weights<const K: usize>(vertex: usize, v: &Vertex<K>) -> Result<()> {
+    if let Some(k) = v.w.iter().position(|w| !(w.is_finite() && *w >= 0.0)) {
+        return Err(SkinError::BadWeights {
+            vertex,
+            reason: format!(
+                "weight {} for joint {} is negative or not finite",
+                v.w[k], v.j[k]
+            ),
+        });
+    }
+    let sum: f32 = v.w.iter().sum();
+    if (sum - 1.0).abs() > WEIGHT_SUM_TOLERANCE {
+        return Err(SkinError::BadWeights {
+            vertex,
+            reason: format!("the weights sum to {sum}, not 1 (scale them first)"),
+        });
+    }
+    Ok(())
 }
 
 /// Joint matrices as 12 floats, row-major 3×4.

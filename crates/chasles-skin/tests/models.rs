@@ -278,6 +278,46 @@ fn influences_from_rows_of_slots_are_those_from_lists() {
 }
 
 #[test]
+fn a_layout_built_by_hand_has_its_weights_checked() {
+    use chasles_skin::fast::{FastRig, Vertex, WEIGHT_SUM_TOLERANCE};
+    let centres = vec![Vec3::zero(); 3];
+    let vertex = |w: [f32; 4]| Vertex {
+        p: [1.0, 0.0, 0.0],
+        n: [0.0, 0.0, 1.0],
+        j: [0, 1, 2, 0],
+        w,
+    };
+    let with_second = |w: [f32; 4]| {
+        FastRig::from_vertices(
+            vec![vertex([1.0, 0.0, 0.0, 0.0]), vertex(w)],
+            centres.clone(),
+        )
+    };
+    // Weights summing to 1 to rounding, the heaviest anywhere: taken as they are.
+    let f = with_second([0.1, 0.7, 0.2, 0.0]).unwrap();
+    assert_eq!(f.vertices()[1].w, [0.1, 0.7, 0.2, 0.0]);
+    assert!(with_second([0.5, 0.5 + WEIGHT_SUM_TOLERANCE / 2.0, 0.0, 0.0]).is_ok());
+    for (w, says) in [
+        (
+            [0.5, f32::NAN, 0.5, 0.0],
+            "weight NaN for joint 1 is negative or not finite",
+        ),
+        (
+            [1.5, -0.5, 0.0, 0.0],
+            "weight -0.5 for joint 1 is negative or not finite",
+        ),
+        ([0.5, 0.5, f32::INFINITY, 0.0], "weight inf for joint 2"),
+        ([0.25, 0.25, 0.0, 0.0], "the weights sum to 0.5, not 1"),
+        ([0.0; 4], "the weights sum to 0, not 1"),
+        ([0.5, 0.5, 0.5, 0.0], "the weights sum to 1.5, not 1"),
+    ] {
+        let e = with_second(w).unwrap_err();
+        assert!(matches!(e, SkinError::BadWeights { vertex: 1, .. }), "{e}");
+        assert!(e.to_string().contains(says), "{e}");
+    }
+}
+
+#[test]
 fn bad_rigs_get_errors_naming_the_problem() {
     assert!(matches!(
         Influences::from_lists(&[vec![(0, 0.5), (7, 0.5)]], 2),
