@@ -64,8 +64,9 @@ pub struct Vertex<const K: usize> {
     /// Joint indices. DQS, QLB and SBS take slot 0 as the antipodality pivot:
     /// [`FastRig::new`] puts the heaviest influence there, as the reference path pivots on
     /// it; a layout built by hand pivots on whatever it puts there (which changes a blend
-    /// only where its joints' rotations are more than 180° apart), and DIB finds the
-    /// heaviest itself. Every slot's joint must exist, weight 0 or not (the kernels read
+    /// only where the joints' quaternions, each taken into the pivot's hemisphere, are not
+    /// all in one hemisphere with one another: joints turned far apart, near 180°), and
+    /// DIB finds the heaviest itself. Every slot's joint must exist, weight 0 or not (the kernels read
     /// them all).
     pub j: [u16; K],
     /// Weights: finite, not negative, summing to 1 within [`WEIGHT_SUM_TOLERANCE`]
