@@ -146,6 +146,14 @@ impl<T: Real> DualQuat<T> {
         let dual = self.dual / n;
         Ok(Self::new(real, dual - real * real.dot(dual)))
     }
+    /// ScLERP from `self` to `end` (unit dual quaternions) at `t`: the screw motion along
+    /// the shorter rotation (Kavan et al. 2006, §4; [`crate::blend::sclerp::sclerp`]), as
+    /// nalgebra's `UnitDualQuaternion::sclerp` goes, and defined at a half turn, where
+    /// nalgebra's `try_sclerp` gives up. Errors: non-finite input.
+    #[inline]
+    pub fn sclerp(self, end: Self, t: T) -> Result<Self> {
+        crate::blend::sclerp::sclerp(self, end, t)
+    }
     /// The same transformation with `w0 ≥ 0` (`q̂` or `−q̂`): its powers take the shorter way.
     #[inline]
     pub fn to_positive_hemisphere(self) -> Self {

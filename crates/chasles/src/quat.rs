@@ -218,6 +218,17 @@ impl<T: Real> Quat<T> {
         Ok(T::TWO * d.vector().norm().atan2(d.w.abs()))
     }
 
+    /// Slerp from `self` to `end` at `t` along the shorter rotation (`end` flipped to `−end`
+    /// when `⟨self, end⟩ < 0`, Dam et al. footnote 7), as glam's `Quat::slerp` and
+    /// nalgebra's `UnitQuaternion::slerp` go: [`crate::interp::slerp::slerp_shortest`] for
+    /// unit quaternions (at t = 1 it gives `end` or `−end`, the same rotation), extrapolating
+    /// outside [0, 1]. The report's own Slerp, eq. 6.13 along the arc between
+    /// the two 4D points as given, is [`crate::interp::slerp::slerp`].
+    #[inline(always)]
+    pub fn slerp(self, end: Self, t: T) -> Self {
+        crate::interp::slerp::slerp_shortest(self, end, t)
+    }
+
     /// Converts the scalar type (e.g. f32 → f64).
     pub fn cast<U: Real>(self) -> Quat<U> {
         Quat::new(

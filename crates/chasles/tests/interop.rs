@@ -186,3 +186,41 @@ fn sclerp_against_nalgebra_accuracy_and_the_half_turn() {
     assert!(sclerp(p, q, 0.5).unwrap().is_unit(1e-12));
     println!("sclerp max error vs definition, 1 rad … 1e-6 rad: chasles {ours:.1e}, nalgebra {theirs:.1e}");
 }
+
+proptest! {
+    #[test]
+    fn the_methods_go_the_shorter_way_as_glam_and_nalgebra(
+        p in unit_quat(), q in unit_quat(), r in unit_dq(), s in unit_dq(), t in 0.0f64..=1.0
+    ) {
+        use chasles::blend::sclerp::sclerp;
+        use chasles::interp::slerp::slerp_shortest;
+        // Quat::slerp is slerp_shortest, bit for bit, in f32 and f64; and a pair on opposite
+        // hemispheres (half of these) goes as glam's and nalgebra's slerp go.
+        let (p32, q32) = (quat_of::<f32>(p), quat_of::<f32>(q));
+        prop_assert_eq!(p32.slerp(q32, t as f32), slerp_shortest(p32, q32, t as f32));
+        let g = Quat::from(glam::Quat::from(p32).slerp(glam::Quat::from(q32), t as f32));
+        prop_assert!((p32.slerp(q32, t as f32) - g).norm() < 2e-6, "glam {:?}", g);
+        let (p64, q64) = (quat_of::<f64>(p), quat_of::<f64>(q));
+        prop_assert_eq!(p64.slerp(q64, t), slerp_shortest(p64, q64, t));
+        // The shorter rotation: −q gives the same blend.
+        prop_assert!((p64.slerp(-q64, t) - p64.slerp(q64, t)).norm() < 1e-15);
+        let np: nalgebra::UnitQuaternion<f64> = p64.try_into().unwrap();
+        let nq: nalgebra::UnitQuaternion<f64> = q64.try_into().unwrap();
+        if let Some(n) = np.try_slerp(&nq, t, 1e-9) {
+            let n = Quat::from(n);
+            prop_assert!((p64.slerp(q64, t) - n).norm() < 1e-12, "nalgebra {:?}", n);
+        }
+        // DualQuat::sclerp is sclerp, and as nalgebra's sclerp away from a half turn.
+        let (a, b) = (dq_of::<f64>(r), dq_of::<f64>(s));
+        prop_assert_eq!(a.sclerp(b, t).unwrap(), sclerp(a, b, t).unwrap());
+        if a.real.dot(b.real).abs() > 1e-3 {
+            let na: nalgebra::UnitDualQuaternion<f64> = a.try_into().unwrap();
+            let nb: nalgebra::UnitDualQuaternion<f64> = b.try_into().unwrap();
+            let n = DualQuat::from(na.sclerp(&nb, t));
+            prop_assert!(
+                a.sclerp(b, t).unwrap().to_matrix4().max_abs_diff(&n.to_matrix4()) < 1e-9,
+                "nalgebra {:?}", n
+            );
+        }
+    }
+}
