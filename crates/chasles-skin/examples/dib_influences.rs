@@ -1,11 +1,12 @@
 //! DIB's fast path against DQS's by the number of influences a vertex has: 10⁵ synthetic
 //! vertices (54 joints) with their first 1, 2 or 4 influences kept (the first is the
-//! heaviest on average; weights scaled to sum to 1), with 2 and 4 alternating vertex by
-//! vertex (every block mixed), and the built-in characters in their first clip half-way
+//! heaviest on average; weights scaled to sum to 1), with 1 and 2 or 2 and 4 alternating
+//! vertex by vertex (every block mixed: DIB's fast path groups them by count, and they are
+//! timed without the grouping too), and the built-in characters in their first clip half-way
 //! through (each skinned as often as makes 10⁵ vertices a run); best of runs on one thread,
-//! the methods in turn, and DIB's cost in DQS's. A vertex of at most two influences stops
-//! after one update (Lemma 3: the pass that shows it converged is left out), so a block of
-//! such vertices makes one update and no second log sum. Where the processor has AVX-512F and VL,
+//! the methods in turn, and DIB's cost in DQS's. A vertex of one influence keeps DLB's
+//! start and one of two takes ScLERP in closed form (Lemma 3), so a block of such vertices
+//! makes no update at all. Where the processor has AVX-512F and VL,
 //! DIB is timed with its sixteen-vertex kernel and with the eight-vertex AVX2 kernel alone
 //! (`set_avx512(false)`), which give the same numbers
 //! (`cargo run --release -p chasles-skin --example dib_influences`).
@@ -64,18 +65,20 @@ fn line(name: &str, rig: &FastRig<4>, jt: &JointTransforms) {
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let base = synthetic::rig(RUN, 54, 7);
     let jt = synthetic::joints(54, 7);
-    let cases: [(&str, Count); 4] = [
+    let cases: [(&str, Count); 5] = [
         ("1 influence", |_| 1),
         ("2 influences", |_| 2),
         ("4 influences", |_| 4),
+        ("1 and 2 mixed", |i| 1 + i % 2),
         ("2 and 4 mixed", |i| if i % 2 == 0 { 2 } else { 4 }),
     ];
     for (name, count) in cases {
-        line(
-            name,
-            &synthetic::with_influences(&base, |i, k| k < count(i)),
-            &jt,
-        );
+        let rig = synthetic::with_influences(&base, |i, k| k < count(i));
+        line(name, &rig, &jt);
+        if rig.groups_dib() {
+            let name = format!("{name}, not grouped");
+            line(&name, &rig.without_dib_grouping(), &jt);
+        }
     }
     for m in [
         chasles_models::CESIUM_MAN,

@@ -395,6 +395,79 @@ fn bad_rigs_get_errors_naming_the_problem() {
     let _ = Vec3::<f32>::zero();
 }
 
+/// How far the fast path may stand from the reference path, relatively: rounding, but for
+/// DIB the stopping rule's reach too. The reference stops where an update's norm is below
+/// `DIB_PRECISION` (1e-5), up to twice that of a turn (a half-angle) and of a lever from the
+/// exact blend, while the fast path's SIMD kernels end nearer it (a vertex of two
+/// influences by ScLERP in closed form: `dib_of_two_influences_is_sclerp_to_rounding`).
+fn reach(method: Method) -> f32 {
+    match method {
+        Method::Dib => 3.0 * chasles_skin::skinning::DIB_PRECISION,
+        _ => 1e-5,
+    }
+}
+
+/// DIB of a vertex of two influences is ScLERP (Lemma 3): the fast path takes it in closed
+/// form, to rounding of the exact blend, where the reference path's iteration (the paper's
+/// update from DLB's start, then the pass that finds the next below `DIB_PRECISION`) ends
+/// within the stopping rule's reach. On every character's clips, each vertex of two
+/// influences against DIB in f64 to 1e-13: the fast path's normals and positions within
+/// 1e-6 (relatively). When written: 0.9e-7–4.4e-7 on the five models, where the
+/// reference's reached 1.1e-7 and 2.2e-7 on SimpleSkin and RiggedSimple, 1.1e-6 on the
+/// Fox, 1.3e-5 on RiggedFigure and 1.8e-5 on CesiumMan.
+#[test]
+fn dib_of_two_influences_is_sclerp_to_rounding() {
+    use chasles_skin::fast::{skin_pose, FastRig};
+    for (file, _, _, _) in models() {
+        let rig = gltf_load::load(&data(file)).unwrap();
+        let size = f64::from(size(&rig));
+        let fast = FastRig::<4>::new(&rig).unwrap();
+        let (mut fast_off, mut reference_off, mut pairs) = (0f64, 0f64, 0);
+        for (c, clip) in rig.animations.iter().enumerate() {
+            for step in 0..5 {
+                let pose = Pose::animated(&rig, c, clip.duration() * step as f32 / 4.0).unwrap();
+                let jt = joint_transforms(&rig, &pose).unwrap();
+                let reference = skin(&rig, &pose, Method::Dib).unwrap();
+                let mut out = vec![[0f32; 6]; rig.mesh.positions.len()];
+                skin_pose(&fast, &jt, Method::Dib, &mut out, false).unwrap();
+                for (v, o) in out.iter().enumerate() {
+                    let influences: Vec<(usize, f32)> = rig.influences.of(v).collect();
+                    if influences.len() != 2 {
+                        continue;
+                    }
+                    let q: Vec<chasles::DualQuat<f64>> = influences
+                        .iter()
+                        .map(|&(j, _)| jt.dual_quats[j].cast::<f64>().normalize().unwrap())
+                        .collect();
+                    let w: Vec<f64> = influences.iter().map(|&(_, w)| f64::from(w)).collect();
+                    let sum: f64 = w.iter().sum();
+                    let w: Vec<f64> = w.iter().map(|x| x / sum).collect();
+                    let (b, _) = chasles::blend::dib::dib(&q, &w, 1e-13, 200).unwrap();
+                    let n = b.real.rotate(rig.mesh.normals[v].cast::<f64>());
+                    let n = n * (1.0 / n.norm());
+                    let p = b.transform_point(rig.mesh.positions[v].cast::<f64>());
+                    let off = |pos: Vec3<f32>, nrm: Vec3<f32>| {
+                        ((pos.cast::<f64>() - p).norm() / size).max((nrm.cast::<f64>() - n).norm())
+                    };
+                    let fast_v = off(Vec3::new(o[0], o[1], o[2]), Vec3::new(o[3], o[4], o[5]));
+                    fast_off = fast_off.max(fast_v);
+                    reference_off =
+                        reference_off.max(off(reference.positions[v], reference.normals[v]));
+                    pairs += 1;
+                }
+            }
+        }
+        if pairs == 0 {
+            continue;
+        }
+        assert!(
+            fast_off < 1e-6,
+            "{file}: {fast_off:e} (the reference {reference_off:e})"
+        );
+        eprintln!("{file}: {pairs} vertices of two influences, farthest from f64's DIB: fast {fast_off:.1e}, reference {reference_off:.1e}");
+    }
+}
+
 #[test]
 fn the_fast_path_agrees_with_the_reference() {
     use chasles_skin::fast::{clusters, dib, dqs, lbs, qlb, sbs, skin_pose, FastRig};
@@ -413,17 +486,19 @@ fn the_fast_path_agrees_with_the_reference() {
                     let mut out8 = out.clone();
                     skin_pose(&fast, &jt, method, &mut out, parallel).unwrap();
                     skin_pose(&fast8, &jt, method, &mut out8, parallel).unwrap();
+                    let reach = reach(method);
                     for (v, (o, o8)) in out.iter().zip(&out8).enumerate() {
                         let p = Vec3::new(o[0], o[1], o[2]);
                         let n = Vec3::new(o[3], o[4], o[5]);
                         assert!(
-                            (p - want.positions[v]).norm() <= 1e-5 * size,
+                            (p - want.positions[v]).norm() <= reach * size,
                             "{file} {method:?} vertex {v}: {p:?} vs {:?}",
                             want.positions[v]
                         );
                         assert!(
-                            (n - want.normals[v]).norm() <= 1e-5,
-                            "{file} {method:?} normal {v}"
+                            (n - want.normals[v]).norm() <= reach,
+                            "{file} {method:?} normal {v}: {}",
+                            (n - want.normals[v]).norm()
                         );
                         // The two layouts: equal to rounding (the SIMD kernels where the
                         // processor has them, else the scalar ones).
@@ -483,17 +558,20 @@ fn the_fast_path_agrees_with_the_reference() {
 #[test]
 fn the_skinner_takes_every_method_to_the_fast_path_or_the_reference() {
     use chasles_skin::fast::Skinner;
-    let close = |rig: &chasles_skin::Rig, a: &chasles_skin::Skinned, b: &chasles_skin::Skinned| {
-        let size = size(rig);
+    let close = |rig: &chasles_skin::Rig,
+                 a: &chasles_skin::Skinned,
+                 b: &chasles_skin::Skinned,
+                 m: Method| {
+        let (size, reach) = (size(rig), reach(m));
         for v in 0..a.positions.len() {
             assert!(
-                (a.positions[v] - b.positions[v]).norm() <= 1e-5 * size,
-                "{} {v}",
+                (a.positions[v] - b.positions[v]).norm() <= reach * size,
+                "{} {m:?} {v}",
                 rig.name
             );
             assert!(
-                (a.normals[v] - b.normals[v]).norm() <= 1e-5,
-                "{} {v}",
+                (a.normals[v] - b.normals[v]).norm() <= reach,
+                "{} {m:?} {v}",
                 rig.name
             );
         }
@@ -509,6 +587,7 @@ fn the_skinner_takes_every_method_to_the_fast_path_or_the_reference() {
                 &rig,
                 &s.skin(&rig, &jt, m).unwrap(),
                 &skin(&rig, &pose, m).unwrap(),
+                m,
             );
         }
     }

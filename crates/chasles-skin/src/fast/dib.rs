@@ -7,8 +7,8 @@
 //! exponential by series, and a second-order step to the same fixed point under the same
 //! stopping rule, which needs one update where the paper's step needs two; the two kernels
 //! both end within the stopping rule's reach of the exact blend, the SIMD one nearer
-//! it; a vertex of one influence takes no update there, one of two a single one — Lemma 3
-//! — and no pass to show it converged). Elsewhere, and for the last few
+//! it; a vertex of one influence takes no update there, and one of two takes ScLERP in
+//! closed form — Lemma 3 — to rounding of the exact blend). Elsewhere, and for the last few
 //! vertices, each vertex's influences are gathered on the stack and blended by the library's
 //! allocation-free [`dib_convex`]: the same calls in the same order as the reference path
 //! ([`crate::skinning`]), so equal numbers (a test checks it on every model and clip). A block

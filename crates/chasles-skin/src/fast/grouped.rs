@@ -2,11 +2,12 @@
 //! §4, the box "DIB"; §6, its cost in skinning), without changing the rig's order. A block
 //! of eight or sixteen vertices pays for DIB's iteration — the update and the pass of
 //! logarithms that shows it converged — wherever one of its vertices has three influences
-//! or more (`lane::dib`), and on a character such vertices are strewn along the mesh. On a
-//! rig where grouping would leave at most three quarters of the blocks of sixteen
-//! iterating ([`Groups::of`]; the Fox 26 → 5 of 108, RiggedFigure 22 → 13 of 24,
-//! CesiumMan 145 → 77 of 205; none on the synthetic meshes, whose vertices all have four),
-//! the first DIB job lays out a copy of the vertices in `crate::vertex_order`'s order
+//! or more, and for a ScLERP wherever one has two (`lane::dib`), and on a character such
+//! vertices are strewn along the mesh. On a rig where grouping takes a tenth or more off
+//! what the blocks cost ([`Groups::of`], by `cost`: blocks of sixteen that iterate, the
+//! Fox 26 → 5 of 108, RiggedFigure 22 → 13 of 24, CesiumMan 145 → 77 of 205; none on the
+//! synthetic meshes, whose vertices all have four; one and two influences in turn gain
+//! 1.2×: `examples/dib_influences`, 127.8 → 154.3 M vertices/s), the first DIB job lays out a copy of the vertices in `crate::vertex_order`'s order
 //! (sorted by count within windows of 256) and every DIB job, that one included, runs the
 //! kernels on it, a chunk a call, each vertex's result stored straight to its place in the
 //! caller's output (a scattered `Dest`: the vertex's slot read from the order, its six floats
@@ -24,7 +25,11 @@
 //! off, [`super::FastRig::without_dib_grouping`]) → grouped here → on a rig reordered once
 //! (`crate::vertex_order`, nothing to put back): the Fox 76–78 → 97.3–100.0 → 99.5–102.8,
 //! RiggedFigure 63.6–65.4 → 72.5–74.4 → 73.6–75.7, CesiumMan 66.0–67.8 → 76.3–77.5 →
-//! 78.0–79.9 — 2–3 % below the reordered rig by the ranges' middles. The first grouped path ran the kernels a
+//! 78.0–79.9 — 2–3 % below the reordered rig by the ranges' middles. Once a vertex of two
+//! influences took ScLERP in closed form (`lane::dib`; the same command, two runs): the Fox
+//! 86.1–86.5 → 131.3–134.7 → 136.3–139.9, RiggedFigure 49.5–50.8 → 72.3–74.4 → 74.4–76.4,
+//! CesiumMan 56.5–57.2 → 79.7–80.3 → 82.4–82.9 (in the rig's order RiggedFigure and
+//! CesiumMan lost 13–20 %, their blocks mixing vertices of two with vertices of more). The first grouped path ran the kernels a
 //! window of 256 at a time into a stage on the stack and put each vertex back from there:
 //! the Fox 88.6–92.8, RiggedFigure 68.3–70.2, CesiumMan 72.9–74.8 in the same runs, 7–10 %
 //! below the reordered rig, all of it in the put-back's loop (leaving the put-back out, a
@@ -53,12 +58,20 @@ pub(super) struct Groups<const K: usize> {
     order: Vec<u32>,
 }
 
-/// Blocks of sixteen that hold a vertex of three influences or more.
-fn iterating<const K: usize>(vertices: &[Vertex<K>]) -> usize {
+/// What DIB's kernels spend on `vertices`, block of sixteen by block, in units of about
+/// 0.9 ns a vertex: 5 for every block (DLB's start, the transformation, the loads and
+/// stores), 4 more where a vertex has two influences (the block's ScLERP), 18 more where
+/// one has three or more (the iteration) — from blocks of one, two and four influences
+/// alone (`examples/dib_influences`, sixteen lanes, 2026-12-05: 1.49×, 2.68× and 6.95×
+/// DQS's 3 ns a vertex).
+fn cost<const K: usize>(vertices: &[Vertex<K>]) -> usize {
     vertices
         .chunks(16)
-        .filter(|b| b.iter().any(|v| count(v) >= 3))
-        .count()
+        .map(|b| {
+            let has = |f: fn(usize) -> bool| b.iter().any(|v| f(count(v)));
+            5 + 4 * usize::from(has(|c| c == 2)) + 18 * usize::from(has(|c| c >= 3))
+        })
+        .sum()
 }
 
 /// A vertex's influences of positive weight.
@@ -67,16 +80,17 @@ fn count<const K: usize>(v: &Vertex<K>) -> usize {
 }
 
 impl<const K: usize> Groups<K> {
-    /// The grouped copy of `vertices`, where grouping leaves at most three quarters of the
-    /// blocks of sixteen that iterate (module docs); `None` where it would gain less.
+    /// The grouped copy of `vertices`, where grouping takes a tenth or more off DIB's cost
+    /// ([`cost`]; module docs); `None` where it would gain less.
     pub(super) fn of(vertices: &[Vertex<K>]) -> Option<Self> {
         if vertices.len() > u32::MAX as usize {
             return None;
         }
         let order = by_kind(vertices.len(), |v| count(&vertices[v]));
         let grouped: Vec<Vertex<K>> = order.iter().map(|&o| vertices[o as usize]).collect();
-        let (before, after) = (iterating(vertices), iterating(&grouped));
-        if before == 0 || 4 * after > 3 * before {
+        // At least a tenth less (the copy's scattered stores cost 2–3 %).
+        let before = cost(vertices);
+        if before == 0 || 10 * cost(&grouped) > 9 * before {
             return None;
         }
         // What `run`'s writes rest on: the order moves a vertex only within its window.
@@ -123,6 +137,14 @@ mod tests {
     use crate::fast::dest::Dest;
     use crate::fast::{dib, simd, FastRig, Output, Palette, SkinningJob};
     use crate::synthetic;
+
+    /// Blocks of sixteen that hold a vertex of three influences or more.
+    fn iterating<const K: usize>(vertices: &[Vertex<K>]) -> usize {
+        vertices
+            .chunks(16)
+            .filter(|b| b.iter().any(|v| count(v) >= 3))
+            .count()
+    }
 
     /// `rig` with DIB's grouping made (`true`) or refused (`false`) before any job.
     fn grouping<const K: usize>(rig: &FastRig<K>, on: bool) -> FastRig<K> {
@@ -229,7 +251,7 @@ mod tests {
         }
         let mixed: fn(usize) -> usize = |i| 1 + (i * 7919) % 4;
         let turns: fn(usize) -> usize = |i| if i % 2 == 0 { 2 } else { 4 };
-        let runs: fn(usize) -> usize = |i| if (i / 40) % 3 == 0 { 4 } else { 1 + i % 2 };
+        let runs: fn(usize) -> usize = |i| [4, 2, 1][(i / 64) % 3];
         // (2·4096 + 5: a last window merged with the vertices after it in a chunk that does
         // not start at 0.)
         for n in [
@@ -245,7 +267,8 @@ mod tests {
             2 * 4096 + 5,
             2 * 4096 + 300,
         ] {
-            // Runs of 40 of one kind are grouped enough already: the grouping is not made.
+            // Runs of 64 of one kind (whole blocks) are grouped already: the grouping is not
+            // made.
             for (count, gains) in [(mixed, true), (turns, true), (runs, false)] {
                 check::<4>(n, count, gains);
             }
@@ -356,8 +379,8 @@ mod tests {
 
     /// The grouping is made where it gains and only there: on the characters (blocks of
     /// sixteen that iterate: the Fox 26 → 5, RiggedFigure 22 → 13, CesiumMan 145 → 77) and
-    /// not on the synthetic mesh, whose vertices all have four influences, nor on a rig of
-    /// one or two influences a vertex (no block iterates).
+    /// on one and two influences in turn, not on the synthetic mesh, whose vertices all
+    /// have four influences, nor where every vertex has as many.
     #[test]
     fn groups_are_made_where_they_gain() {
         for (m, before, after) in crate::vertex_order::tests::ITERATING_BLOCKS {
@@ -371,8 +394,14 @@ mod tests {
             }
         }
         assert!(Groups::of(synthetic::rig(5000, 54, 7).vertices()).is_none());
-        let two = with_counts(&synthetic::rig(5000, 54, 7), |i| 1 + i % 2);
-        assert!(Groups::of(two.vertices()).is_none());
+        // One and two influences in turn: grouped, so that half the blocks take no ScLERP;
+        // two everywhere, or one: nothing to gain.
+        let mixed = with_counts(&synthetic::rig(5000, 54, 7), |i| 1 + i % 2);
+        assert!(Groups::of(mixed.vertices()).is_some());
+        for k in [1, 2] {
+            let same = with_counts(&synthetic::rig(5000, 54, 7), |_| k);
+            assert!(Groups::of(same.vertices()).is_none());
+        }
         assert!(Groups::<4>::of(&[]).is_none());
     }
 }

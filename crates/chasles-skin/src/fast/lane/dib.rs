@@ -18,16 +18,28 @@
 //! faster on the characters: `wide`'s module docs).
 //!
 //! **One and two influences** (the paper's own identities): DIB of one transform is that
-//! transform, so a lane of one influence keeps DLB's start and takes no update; for two,
-//! Lemma 3 shows that one update reaches the blend (ScLERP) and that the next pass only
-//! finds ‖x̂‖ = 0 — so a lane of two influences stops after its first update, the pass that
-//! would show it is left out (on one screw the second-order step is the paper's, so the
-//! lemma holds for it: [`second_order`]'s tests), and a block of lanes of at most two makes
-//! that one update alone: 1.4× faster on such meshes (`examples/dib_influences`: 27 → 38.5
-//! M vertices/s, 6.8× → 4.8× DQS's time; the Fox, 85 % of whose blocks are such, 26 → 32).
-//! Both rules look at a lane's own weights only, so a vertex's numbers do not depend on its
-//! block-mates (the kernel's tests shift every block and compare bits); the GPU shader
-//! takes ScLERP in closed form for such a vertex.
+//! transform, so a lane of one influence keeps DLB's start; DIB of two is ScLERP (Lemma 3),
+//! which a lane of two influences takes in closed form, `q̂ₐ exp(t log(q̂ₐ* q̂_b))` with
+//! the lane logarithm and exponential ([`sclerp`]: one product, one logarithm, no moments,
+//! no DLB sum to step from and no pass to show convergence); only lanes of three or more
+//! iterate, and a block with none makes no update at all. The rules look at a lane's own
+//! weights only, so a vertex's numbers do not depend on its block-mates (the kernel's tests
+//! shift every block and compare bits), and the GPU shader takes ScLERP in closed form for
+//! such a vertex too. Against DIB in f64 on the characters' clips the closed form is within
+//! 4.4e-7 (relatively) where the reference path's iteration, which stops within its rule's
+//! reach, was 1.8e-5 away on CesiumMan (`tests/models.rs`,
+//! `dib_of_two_influences_is_sclerp_to_rounding`). Before (2026-12-05), a lane of two took
+//! the update from DLB's start and stopped after it (the pass that would show convergence
+//! left out, as the lemma allows), and a block of one influence a lane computed that update
+//! too, unused. Best of 30 rounds at 10⁵ vertices, one core, sixteen lanes, the old and new
+//! builds in turn twice (`examples/dib_influences`, M vertices/s): one influence
+//! 124.8–140.5 → 203.2–234.2 (2.44–2.48× → 1.47–1.49× DQS's time), two 90.2–94.1 →
+//! 113.9–130.7 (3.60–3.69× → 2.63–2.68×), four unchanged (7.0×); the Fox 79.6–90.3 →
+//! 127.7–134.2 (3.58–3.64× → 2.34–2.43×), CesiumMan 68.1–78.7 → 78.1–80.8 (4.40–4.48× →
+//! 4.29–4.38×), RiggedFigure 59.1–67.8 → 67.1–69.7 (3.88–3.97× → 3.75–3.90×). A block that
+//! mixes lanes of two with lanes of three or more pays for both the iteration and the
+//! ScLERP (2 and 4 alternating, ungrouped: 44.5–46.4 → 41.1), so the fast path groups
+//! vertices by count where that pays (`fast::grouped`'s cost).
 //!
 //! **Subnormal numbers.** A lane of one influence never steps, but its block's passes
 //! compute its update all the same: the logarithm of `b̂* q̂` with `b̂ = q̂` to rounding,
@@ -319,50 +331,78 @@ pub(in crate::fast) fn dib<L: Lane, const K: usize>(
     }
     let mut b = normalize(&sum);
     // DIB of one transform is that transform, DLB's start already: a lane of one influence
-    // takes no update. Lemma 3: for two, one update reaches the blend (ScLERP), and the
-    // next pass only finds ‖x̂‖ = 0. So a lane of two influences stops after its first
-    // update — the pass that would show it converged is left out — and a block of lanes of
-    // at most two (in the first two slots) makes that one update and no more. Both rules
-    // count a lane's positive weights wherever they sit (a layout built by hand need not
-    // put them first), so they hold a lane whatever its block-mates do: a vertex's numbers
-    // do not depend on its neighbours. (A block of one influence a lane still computes the
-    // update it does not take: returning before it, here or in the kernel, made the
-    // iteration's code 3–5 % slower on CesiumMan.)
+    // takes no update. Lemma 3: DIB of two is ScLERP, which a lane of two influences takes
+    // in closed form (`sclerp`) rather than by an update from DLB's start and the pass that
+    // would show it converged; a lane of three or more iterates. All three rules count a
+    // lane's positive weights wherever they sit (a layout built by hand need not put them
+    // first), so they hold a lane whatever its block-mates do: a vertex's numbers do not
+    // depend on its neighbours. A block with no lane of three influences or more makes no
+    // update, and one with no lane of two no ScLERP.
+    let one = L::splat(1.0);
     let mut count = zero;
     // By index, as the other loops over `slots` here (an iterator form of this loop,
     // `take(slots).skip(2)`, left a call to `nth` in the kernel).
     #[allow(clippy::needless_range_loop)]
     for k in 0..slots {
-        count = count.add(L::select(zero.lt(w[k]), L::splat(1.0), zero));
+        count = count.add(L::select(zero.lt(w[k]), one, zero));
     }
-    let pair = count.lt(L::splat(2.5));
-    // The lanes that step: two influences or more.
-    let mut active = L::splat(1.5).lt(count);
-    // The update's weights: 0 in a lane that never steps (module docs, "Subnormal
-    // numbers").
-    let mut wu = [zero; K];
-    for k in 0..slots {
-        wu[k] = L::select(active, w[k], zero);
-    }
-    // Where a block's lanes all have two influences or fewer but some sit past slot 1 (a
-    // hand-built layout), the loop still takes its second pass, which stops every lane at
-    // once: it costs time, not bits. Capping by `count` instead made every block 4–6 %
-    // slower (2 influences 38.8 → 36.5 M vertices/s, 4 influences 16.7 → 16.1).
-    let updates = if slots <= 2 { 1 } else { DIB_UPDATES };
-    let mut last = L::splat(f32::INFINITY);
-    for _ in 0..updates {
-        let (x, spread) = update(&b, q, &wu, slots);
-        let norm = dot(&x, &x).sqrt();
-        active = L::and(active, keep_going(norm, last));
-        if !L::any(active) {
-            break;
+    // The lanes that iterate: three influences or more.
+    let mut active = L::splat(2.5).lt(count);
+    if L::any(active) {
+        // The update's weights: 0 in a lane that never steps (module docs, "Subnormal
+        // numbers").
+        let mut wu = [zero; K];
+        for k in 0..slots {
+            wu[k] = L::select(active, w[k], zero);
         }
-        last = norm;
-        let next = renormalize(&dqmul(&b, &exp(&spread.step(&x))));
-        b = eight(|c| L::select(active, next[c], b[c]));
-        active = L::and_not(pair, active);
+        let mut last = L::splat(f32::INFINITY);
+        for _ in 0..DIB_UPDATES {
+            let (x, spread) = update(&b, q, &wu, slots);
+            let norm = dot(&x, &x).sqrt();
+            active = L::and(active, keep_going(norm, last));
+            if !L::any(active) {
+                break;
+            }
+            last = norm;
+            let next = renormalize(&dqmul(&b, &exp(&spread.step(&x))));
+            b = eight(|c| L::select(active, next[c], b[c]));
+        }
+    }
+    let pair = L::and(L::splat(1.5).lt(count), count.lt(L::splat(2.5)));
+    if L::any(pair) {
+        let screw = sclerp(q, w, slots);
+        b = eight(|c| L::select(pair, screw[c], b[c]));
     }
     b
+}
+
+/// ScLERP in each lane from its first influence of positive weight `q̂ₐ` to its second
+/// `q̂_b` at the second's weight `t` (Kavan et al. eq. 4 written as the definition,
+/// `q̂ₐ exp(t log(q̂ₐ* q̂_b))`, with the lane logarithm taking `±` the relative dual
+/// quaternion with `w ≥ 0`: the shorter screw): DIB's blend of a lane of two influences
+/// (Lemma 3), whose convex weights are `1 − t` and `t`. Lanes of other counts get a number
+/// that [`dib`] does not keep.
+#[inline(always)]
+fn sclerp<L: Lane, const K: usize>(q: &[[L; 8]; K], w: &[L; K], slots: usize) -> [L; 8] {
+    let (zero, one) = (L::splat(0.0), L::splat(1.0));
+    // The first and second slots of positive weight (slots 0 and 1 in a `FastRig::new`).
+    let (mut a, mut b, mut t, mut seen) = (q[0], q[0], zero, zero);
+    for k in 0..slots {
+        let used = zero.lt(w[k]);
+        let first = L::and(used, seen.lt(L::splat(0.5)));
+        let second = L::and(used, L::and(L::splat(0.5).lt(seen), seen.lt(L::splat(1.5))));
+        a = eight(|c| L::select(first, q[k][c], a[c]));
+        b = eight(|c| L::select(second, q[k][c], b[c]));
+        t = L::select(second, w[k], t);
+        seen = seen.add(L::select(used, one, zero));
+    }
+    let minus = L::splat(-1.0);
+    let conj = eight(|c| match c {
+        0 | 4 => a[c],
+        _ => a[c].flip_by_sign_of(minus),
+    });
+    let l = log(&dqmul(&conj, &b));
+    renormalize(&dqmul(&a, &exp(&eight(|c| l[c].mul(t)))))
 }
 
 /// One DIB update at `b̂` in each lane: `x̂ = Σ wᵢ log(b̂* q̂ᵢ)` over the first `slots`
