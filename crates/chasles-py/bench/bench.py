@@ -146,7 +146,7 @@ def main():
     # A pose a call, as a loop over frames that come one at a time calls it: the free
     # function checks the arrays and lays the rig out on every call; Rig.from_arrays does it
     # once, and skin_with skins by each frame's matrices.
-    own = chasles.Rig.from_arrays(p, nn, j, wt)
+    own = chasles.Rig.from_arrays(p, nn, j, wt, joint_count=jm.shape[1])
     per_frame = lambda: [numpy_lbs(m[None], j, wt, p, nn) for m in jm]
     row(label + ", a pose a call, skin()", lambda: [chasles.skin(p, nn, j, wt, m, "lbs") for m in jm],
         per_frame, "numpy einsum", 10, lambda: None)

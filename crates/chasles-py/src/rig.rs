@@ -300,10 +300,11 @@ impl PyRig {
     /// (V, K) their weights (checked as :func:`skin` checks them), ``centres`` (J, 3) the
     /// joints' bind-pose origins (about which QLB and SBS blend rotations; default the
     /// origin). J is ``joint_count`` when given, else the number of centres, else the
-    /// largest joint index plus one. Each joint is a root node with the identity rest
-    /// transform; there are no triangles and no clips. Skin it by joint matrices with
-    /// :meth:`skin_with`: :func:`skin` does the same but lays the rig out again on every
-    /// call. Named ``name`` in messages; pickles as any rig.
+    /// largest joint index of positive weight plus one (indices of weight 0 are padding).
+    /// Each joint is a root node with the identity rest transform; there are no triangles
+    /// and no clips. Skin it by joint matrices with :meth:`skin_with`: :func:`skin` does the
+    /// same but lays the rig out again on every call. Named ``name`` in messages; pickles as
+    /// any rig.
     ///
     /// >>> import chasles, numpy as np
     /// >>> p = np.array([[1.0, 0.0, 0.0]]); n = np.array([[0.0, 0.0, 1.0]])
@@ -321,11 +322,24 @@ impl PyRig {
         joints: &Bound<'_, PyAny>,
         weights: &Bound<'_, PyAny>,
         centres: Option<&Bound<'_, PyAny>>,
-        joint_count: Option<usize>,
+        joint_count: Option<i64>,
         name: &str,
     ) -> PyResult<Self> {
-        let mut rig = rig_from_arrays(positions, normals, joints, weights, centres, joint_count)?;
-        rig.name = name.to_string();
+        let joint_count = joint_count
+            .map(|n| {
+                usize::try_from(n)
+                    .map_err(|_| value_error(format!("joint_count must be 0 or more, got {n}")))
+            })
+            .transpose()?;
+        let rig = rig_from_arrays(
+            positions,
+            normals,
+            joints,
+            weights,
+            centres,
+            joint_count,
+            name,
+        )?;
         Self::of(rig)
     }
 

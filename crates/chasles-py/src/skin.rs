@@ -224,8 +224,14 @@ pub fn skin<'py>(
     let m = self::method(method)?;
     let mats = array::<f32>(joint_matrices, "joint_matrices")?;
     let ms = mats.shape();
-    let nj = (ms.len() >= 3).then(|| ms[ms.len() - 3]);
-    let rig = rig_from_arrays(positions, normals, joints, weights, centres, nj)?;
+    if ms.len() < 3 || ms[ms.len() - 2..] != [4, 4] {
+        return Err(value_error(format!(
+            "joint_matrices must have shape (..., J, 4, 4), got {}",
+            crate::arrays::shape_text(ms)
+        )));
+    }
+    let nj = Some(ms[ms.len() - 3]);
+    let rig = rig_from_arrays(positions, normals, joints, weights, centres, nj, "arrays")?;
     let layout = Layout::of(&rig).map_err(crate::arrays::skin_error)?;
     skin_by_matrices(positions.py(), &rig, &layout, &mats, m)
 }
@@ -267,8 +273,9 @@ pub fn skin_by_matrices<'py>(
 /// Users' arrays made into a checked rig (the free [`skin`]'s and `Rig.from_arrays`'s):
 /// `positions` and `normals` (V, 3), `joints` (V, K) integers and `weights` (V, K),
 /// `centres` (J, 3) or none; J is `joint_count` when given, else the centres' count, else
-/// the largest joint index plus one. A `ValueError` names the array and its shape, or the
-/// vertex with bad influences.
+/// the largest joint index of positive weight plus one (an index of weight 0 is ignored, as
+/// padding). `name` names the rig in errors. A `ValueError` names the array and its shape,
+/// or the vertex with bad influences.
 pub fn rig_from_arrays(
     positions: &Bound<'_, PyAny>,
     normals: &Bound<'_, PyAny>,
@@ -276,6 +283,7 @@ pub fn rig_from_arrays(
     weights: &Bound<'_, PyAny>,
     centres: Option<&Bound<'_, PyAny>>,
     joint_count: Option<usize>,
+    name: &str,
 ) -> PyResult<Rig> {
     let p = array::<f32>(positions, "positions")?;
     let n = array::<f32>(normals, "normals")?;
@@ -311,13 +319,17 @@ pub fn rig_from_arrays(
     }
     let c = centres.map(|c| array::<f32>(c, "centres")).transpose()?;
     let slice = |e: numpy::AsSliceError| value_error(e.to_string());
-    let js = j.as_slice().map_err(slice)?;
+    let (js, ws) = (j.as_slice().map_err(slice)?, w.as_slice().map_err(slice)?);
     let nj = match (joint_count, &c) {
         (Some(nj), _) => nj,
         (None, Some(c)) => c.shape().first().copied().unwrap_or(0),
-        (None, None) => js.iter().max().map_or(0, |m| {
-            usize::try_from(*m).map_or(0, |m| m.saturating_add(1))
-        }),
+        (None, None) => js
+            .iter()
+            .zip(ws)
+            .filter(|(_, w)| **w > 0.0)
+            .map(|(j, _)| *j)
+            .max()
+            .map_or(0, |m| usize::try_from(m).map_or(0, |m| m.saturating_add(1))),
     };
     if let Some(c) = &c {
         if c.shape() != [nj, 3] {
@@ -332,10 +344,11 @@ pub fn rig_from_arrays(
         None => None,
     };
     rig_of_arrays(
+        name,
         p.as_slice().map_err(slice)?,
         n.as_slice().map_err(slice)?,
         js,
-        w.as_slice().map_err(slice)?,
+        ws,
         k,
         nj,
         cs,
@@ -345,7 +358,9 @@ pub fn rig_from_arrays(
 
 /// A checked rig of users' arrays: one root node per joint, inverse bind matrices that put
 /// each joint's bind origin at its centre, no triangles, no clips.
+#[allow(clippy::too_many_arguments)]
 fn rig_of_arrays(
+    name: &str,
     p: &[f32],
     n: &[f32],
     j: &[i64],
@@ -389,7 +404,7 @@ fn rig_of_arrays(
         })
         .collect();
     Rig::new(
-        "arrays".into(),
+        name.to_string(),
         Mesh {
             positions: vecs(p),
             normals: vecs(n),

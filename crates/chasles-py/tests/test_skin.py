@@ -192,6 +192,9 @@ def test_a_rig_of_arrays_made_once_skins_as_the_free_function(cesium, rng):
     assert chasles.Rig.from_arrays(p, n, j, w).joint_count == 3
     assert chasles.Rig.from_arrays(p, n, j, w, centres=np.zeros((5, 3))).joint_count == 5
     assert chasles.Rig.from_arrays(p, n, j, w, joint_count=4).joint_count == 4
+    # An index of weight 0 is padding: it does not count (nor need it exist).
+    padded = chasles.Rig.from_arrays(p, n, [[0, 1], [1, 65535], [2, 0]], w)
+    assert padded.joint_count == 3
     # More than eight influences: the reference path, as the free function takes it.
     many = rng.uniform(0.1, 1.0, size=(3, 12))
     wide = chasles.Rig.from_arrays(p, n, np.tile(np.arange(12), (3, 1)), many)
@@ -211,6 +214,11 @@ def test_bad_arrays_for_a_rig_raise(cesium, rng):
         chasles.Rig.from_arrays(p, n, j, w, centres=np.zeros((3, 3)), joint_count=4)
     with pytest.raises(ValueError, match="joint index -2 is negative"):
         chasles.Rig.from_arrays(p, n, [[0, 1], [1, -2], [2, 0]], w)
+    with pytest.raises(ValueError, match="joint_count must be 0 or more, got -3"):
+        chasles.Rig.from_arrays(p, n, j, w, joint_count=-3)
+    # The rig's name is in the messages of the checks it goes through.
+    with pytest.raises(ValueError, match="mine"):
+        chasles.Rig.from_arrays(np.full((3, 3), np.inf), n, j, w, name="mine")
     with pytest.raises(ValueError, match=r"normals must have shape \(3, 3\) like positions"):
         chasles.Rig.from_arrays(p, n[:2], j, w)
     with pytest.raises(ValueError, match="vertex 2: weight NaN for joint 2 is negative or not finite"):
@@ -309,8 +317,11 @@ def test_bad_skinning_inputs_raise(cesium, tmp_path, rng):
         chasles.skin(p, n, [[0], [-1]], [[1.0], [1.0]], eye)
     with pytest.raises(ValueError, match="joints must be integers"):
         chasles.skin(p, n, [[0.0], [1.0]], [[1.0], [1.0]], eye)
-    with pytest.raises(ValueError, match=r"joint_matrices must have shape \(\.\.\., 2, 4, 4\)"):
+    with pytest.raises(ValueError, match=r"joint_matrices must have shape \(\.\.\., J, 4, 4\)"):
         chasles.skin(p, n, [[0], [1]], [[1.0], [1.0]], np.eye(3))
+    # Matrices laid out (4, 4, J): the shape is named, before any joint index is checked.
+    with pytest.raises(ValueError, match=r"joint_matrices must have shape \(\.\.\., J, 4, 4\), got \(4, 4, 2\)"):
+        chasles.skin(p, n, [[0], [1]], [[1.0], [1.0]], np.zeros((4, 4, 2)))
     with pytest.raises(ValueError, match=r"weights must have shape \(2, 1\)"):
         chasles.skin(p, n, [[0], [1]], [[1.0, 2.0], [1.0, 1.0]], eye)
     with pytest.raises(ValueError, match="not finite"):

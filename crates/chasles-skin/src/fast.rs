@@ -70,7 +70,8 @@ pub struct Vertex<const K: usize> {
     /// them all).
     pub j: [u16; K],
     /// Weights: finite, not negative, summing to 1 within [`WEIGHT_SUM_TOLERANCE`]
-    /// ([`FastRig::from_vertices`] checks them; LBS takes them as they are).
+    /// ([`FastRig::from_vertices`] checks them; [`FastRig::new`] takes a checked rig's as
+    /// they are, as the reference path does; LBS blends by them as they are).
     pub w: [f32; K],
 }
 
@@ -103,10 +104,11 @@ pub use traffic::traffic;
 
 /// A rig laid out for the fast path. Its joint indices are checked on construction (the
 /// SIMD kernels rely on it), so the fields are private. Its vertices are the rig's, in the
-/// rig's order. Where DIB's SIMD kernels would iterate in far fewer blocks with the
-/// vertices grouped by influence count, the first DIB job makes a grouped copy of them and
-/// every DIB job runs on it, giving every vertex the same bits in the rig's order (module
-/// `grouped`: the built-in characters 1.11–1.32× as fast);
+/// rig's order. Where DIB's SIMD kernels would cost a tenth less or more with the vertices
+/// grouped by influence count (fewer blocks that iterate or take a ScLERP), the first DIB
+/// job makes a grouped copy of them and every DIB job runs on it, giving every vertex the
+/// same bits in the rig's order (module `grouped`: the built-in characters 1.39–1.56× as
+/// fast);
 /// [`FastRig::without_dib_grouping`] forgoes the copy, and a rig reordered once by
 /// [`crate::vertex_order`] needs none.
 #[derive(Debug, Clone)]
@@ -161,7 +163,9 @@ impl<const K: usize> FastRig<K> {
                 }
             })
             .collect();
-        Self::from_vertices(vertices, joint_centres(&rig.inverse_bind))
+        // The rig's weights were checked by `Rig::new` (`Influences::check`) and are taken
+        // as they are, as the reference path takes them.
+        Self::laid_out(vertices, joint_centres(&rig.inverse_bind))
     }
 
     /// A rig from laid-out vertices and the bind-pose origin of each joint (see
@@ -171,6 +175,14 @@ impl<const K: usize> FastRig<K> {
     /// ([`SkinError::BadWeights`]: scale them first, as [`crate::Influences`] does); a
     /// position too far out ([`crate::reach`]).
     pub fn from_vertices(vertices: Vec<Vertex<K>>, centres: Vec<Vec3<f32>>) -> Result<Self> {
+        for (vertex, v) in vertices.iter().enumerate() {
+            check_weights(vertex, v)?;
+        }
+        Self::laid_out(vertices, centres)
+    }
+
+    /// [`FastRig::from_vertices`] without the weights' check: joint indices and positions.
+    fn laid_out(vertices: Vec<Vertex<K>>, centres: Vec<Vec3<f32>>) -> Result<Self> {
         let joints = centres.len();
         if let Some((i, v)) = vertices
             .iter()
@@ -183,9 +195,6 @@ impl<const K: usize> FastRig<K> {
                 joint,
                 joints,
             });
-        }
-        for (vertex, v) in vertices.iter().enumerate() {
-            check_weights(vertex, v)?;
         }
         let positions: Vec<Vec3<f32>> = vertices.iter().map(|v| Vec3::from_array(v.p)).collect();
         crate::reach::check_positions(crate::error::FAST_RIG, &positions)?;

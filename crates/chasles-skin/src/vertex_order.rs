@@ -2,8 +2,8 @@
 //! its cost in skinning). The fast path skins vertices in blocks of eight or sixteen, one
 //! vertex a lane (`fast::lane::dib`), and a block pays for DIB's iteration — an update and
 //! the pass of logarithms that shows it converged — wherever one of its lanes has three
-//! influences or more; a block whose lanes all have one or two makes one update (Lemma 3)
-//! and no second pass. On a character the vertices of few and many influences are mixed
+//! influences or more; a block whose lanes all have one or two makes no update (a lane of
+//! two takes ScLERP in closed form, Lemma 3). On a character the vertices of few and many influences are mixed
 //! along the mesh, so many blocks iterate for one or two of their lanes.
 //!
 //! [`by_influence_count`] gives the order that sorts the vertices by their influence count

@@ -388,7 +388,7 @@ fn cpu_and_gpu_reject_the_same_poses() {
 }
 
 /// DIB on the GPU (ScLERP in closed form for a vertex of at most two influences, Lemma 3)
-/// and on the CPU's fast path (one update for such a vertex, the iteration for the others)
+/// and on the CPU's fast path (ScLERP in closed form there too, the iteration for the others)
 /// agree within the stopping rule's reach on a mesh of one to four influences a vertex, in
 /// any slots (weights of 0 between them too), with every other joint's dual quaternion
 /// negated (the same transform: the closed form's hemisphere test), some joints turned by

@@ -151,7 +151,7 @@ mod tests {
 
     /// Each vertex gets the eight-vertex kernel's bits from the sixteen-vertex one: 4 and 8
     /// influences, counts 1 to K mixed within blocks and in runs of blocks (a run of
-    /// sixteen of at most two takes one update, a mixed one the iteration), at 60° poses
+    /// sixteen of at most two takes no update, a mixed one the iteration), at 60° poses
     /// and at every angle, meshes of 16k, 16k + 8 (a last block by eight) and odd lengths,
     /// every vertex a lane of every position (the mesh shifted by 0–15, so that blocks of
     /// sixteen whose halves need different passes come up), and a used NaN joint (NaN out

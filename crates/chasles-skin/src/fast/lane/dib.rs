@@ -41,8 +41,10 @@
 //! ScLERP (2 and 4 alternating, ungrouped: 44.5–46.4 → 41.1), so the fast path groups
 //! vertices by count where that pays (`fast::grouped`'s cost).
 //!
-//! **Subnormal numbers.** A lane of one influence never steps, but its block's passes
-//! compute its update all the same: the logarithm of `b̂* q̂` with `b̂ = q̂` to rounding,
+//! **Subnormal numbers.** A lane of one influence never steps, but in a block with a lane
+//! of three influences or more its block's passes compute its update all the same (and in
+//! one with a lane of two, a ScLERP from its joint to itself at t = 0, which it does not
+//! keep either): the logarithm of `b̂* q̂` with `b̂ = q̂` to rounding,
 //! a logarithm whose vector parts are of 1e-15 and dual ones of 1e-28 where cancellations
 //! leave that little (the Fox, RiggedFigure). The moments' and the exponential's
 //! products of those are subnormal numbers, for which an x86 core takes microcode assists
