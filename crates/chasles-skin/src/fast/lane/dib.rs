@@ -39,7 +39,11 @@
 //! 4.29–4.38×), RiggedFigure 59.1–67.8 → 67.1–69.7 (3.88–3.97× → 3.75–3.90×). A block that
 //! mixes lanes of two with lanes of three or more pays for both the iteration and the
 //! ScLERP (2 and 4 alternating, ungrouped: 44.5–46.4 → 41.1), so the fast path groups
-//! vertices by count where that pays (`fast::grouped`'s cost).
+//! vertices by count where that pays (`fast::grouped`'s cost). A block whose lanes all have
+//! two influences makes no DLB start either (its lanes do not read it): two influences
+//! 126.9–128.4 → 128.0–132.4 M vertices/s on sixteen lanes and 86.0–87.4 → 95.7–98.3 on
+//! eight, RiggedSimple 154.9–159.6 → 170.9–175.1, the other characters within 3 % (the
+//! same command, the builds in turn twice).
 //!
 //! **Subnormal numbers.** A lane of one influence never steps, but in a block with a lane
 //! of three influences or more its block's passes compute its update all the same (and in
@@ -319,19 +323,6 @@ pub(in crate::fast) fn dib<L: Lane, const K: usize>(
     slots: usize,
 ) -> [L; 8] {
     let zero = L::splat(0.0);
-    // DLB against the pivot: the first of the heaviest (slot 0 in a `FastRig::new`).
-    let (mut pivot, mut heaviest) = (q[0], w[0]);
-    for k in 1..slots {
-        let more = heaviest.lt(w[k]);
-        pivot = eight(|c| L::select(more, q[k][c], pivot[c]));
-        heaviest = L::select(more, w[k], heaviest);
-    }
-    let mut sum = [zero; 8];
-    for k in 0..slots {
-        let wk = w[k].neg_where(dot(&q[k][..4], &pivot[..4]).lt(zero));
-        sum = eight(|c| wk.madd(q[k][c], sum[c]));
-    }
-    let mut b = normalize(&sum);
     // DIB of one transform is that transform, DLB's start already: a lane of one influence
     // takes no update. Lemma 3: DIB of two is ScLERP, which a lane of two influences takes
     // in closed form (`sclerp`) rather than by an update from DLB's start and the pass that
@@ -339,7 +330,7 @@ pub(in crate::fast) fn dib<L: Lane, const K: usize>(
     // lane's positive weights wherever they sit (a layout built by hand need not put them
     // first), so they hold a lane whatever its block-mates do: a vertex's numbers do not
     // depend on its neighbours. A block with no lane of three influences or more makes no
-    // update, and one with no lane of two no ScLERP.
+    // update, one with no lane of two no ScLERP, and one whose lanes all have two no DLB.
     let one = L::splat(1.0);
     let mut count = zero;
     // By index, as the other loops over `slots` here (an iterator form of this loop,
@@ -348,8 +339,14 @@ pub(in crate::fast) fn dib<L: Lane, const K: usize>(
     for k in 0..slots {
         count = count.add(L::select(zero.lt(w[k]), one, zero));
     }
+    let pair = L::and(L::splat(1.5).lt(count), count.lt(L::splat(2.5)));
     // The lanes that iterate: three influences or more.
     let mut active = L::splat(2.5).lt(count);
+    let mut b = if L::any(L::and_not(pair, zero.le(zero))) {
+        dlb(q, w, slots)
+    } else {
+        q[0]
+    };
     if L::any(active) {
         // The update's weights: 0 in a lane that never steps (module docs, "Subnormal
         // numbers").
@@ -370,12 +367,30 @@ pub(in crate::fast) fn dib<L: Lane, const K: usize>(
             b = eight(|c| L::select(active, next[c], b[c]));
         }
     }
-    let pair = L::and(L::splat(1.5).lt(count), count.lt(L::splat(2.5)));
     if L::any(pair) {
         let screw = sclerp(q, w, slots);
         b = eight(|c| L::select(pair, screw[c], b[c]));
     }
     b
+}
+
+/// DLB in each lane against its pivot, the first of the heaviest (slot 0 in a
+/// `FastRig::new`): DIB's start.
+#[inline(always)]
+fn dlb<L: Lane, const K: usize>(q: &[[L; 8]; K], w: &[L; K], slots: usize) -> [L; 8] {
+    let zero = L::splat(0.0);
+    let (mut pivot, mut heaviest) = (q[0], w[0]);
+    for k in 1..slots {
+        let more = heaviest.lt(w[k]);
+        pivot = eight(|c| L::select(more, q[k][c], pivot[c]));
+        heaviest = L::select(more, w[k], heaviest);
+    }
+    let mut sum = [zero; 8];
+    for k in 0..slots {
+        let wk = w[k].neg_where(dot(&q[k][..4], &pivot[..4]).lt(zero));
+        sum = eight(|c| wk.madd(q[k][c], sum[c]));
+    }
+    normalize(&sum)
 }
 
 /// ScLERP in each lane from its first influence of positive weight `q̂ₐ` to its second
