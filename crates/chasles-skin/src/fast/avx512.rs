@@ -39,8 +39,8 @@
 //!   slower, the characters unchanged. Tried again once blocks of one and two influences
 //!   no longer iterated (2026-12-05, `examples/dib_influences`, two rounds): eight lanes
 //!   unchanged or a little faster (four influences 29.4–30.0 → 30.4–33.0), but sixteen
-//!   three times slower (45.0–45.2 → 14.4–15.0; CesiumMan 68.4–78.7 → 33.0–33.5), the
-//!   third inlined copy of the update evidently more than the compiler kept in registers.
+//!   three times slower (45.0–45.2 → 14.4–15.0; CesiumMan 68.4–78.7 → 33.0–33.5), with a
+//!   third inlined copy of the update; why, not looked into.
 //!
 //! Where the time goes (2026-12-05, a 2-core Intel Xeon with AVX-512F, best of 20 runs
 //! over 10⁵ synthetic vertices of four influences, one core, M vertices/s). The processor
