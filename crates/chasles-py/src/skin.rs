@@ -274,8 +274,10 @@ pub fn skin_by_matrices<'py>(
 /// `positions` and `normals` (V, 3), `joints` (V, K) integers and `weights` (V, K),
 /// `centres` (J, 3) or none; J is `joint_count` when given, else the centres' count, else
 /// the largest joint index of positive weight plus one (an index of weight 0 is ignored, as
-/// padding). `name` names the rig in errors. A `ValueError` names the array and its shape,
-/// or the vertex with bad influences.
+/// padding). `name` names the rig in errors. The rig has one root node per joint, inverse
+/// bind matrices that put each joint's bind origin at its centre, no triangles and no
+/// clips, and is checked by `Rig::new`. A `ValueError` names the array and its shape, or
+/// the vertex with bad influences.
 pub fn rig_from_arrays(
     positions: &Bound<'_, PyAny>,
     normals: &Bound<'_, PyAny>,
@@ -339,65 +341,41 @@ pub fn rig_from_arrays(
             )));
         }
     }
-    let cs = match &c {
-        Some(c) => Some(c.as_slice().map_err(slice)?),
-        None => None,
-    };
-    rig_of_arrays(
-        name,
-        p.as_slice().map_err(slice)?,
-        n.as_slice().map_err(slice)?,
-        js,
-        ws,
-        k,
-        nj,
-        cs,
-    )
-    .map_err(crate::arrays::skin_error)
-}
-
-/// A checked rig of users' arrays: one root node per joint, inverse bind matrices that put
-/// each joint's bind origin at its centre, no triangles, no clips.
-#[allow(clippy::too_many_arguments)]
-fn rig_of_arrays(
-    name: &str,
-    p: &[f32],
-    n: &[f32],
-    j: &[i64],
-    w: &[f32],
-    k: usize,
-    joints: usize,
-    centres: Option<&[f32]>,
-) -> Result<Rig, SkinError> {
-    let v = p.len() / 3;
-    if let Some(at) = j.iter().position(|&joint| joint < 0) {
-        return Err(SkinError::BadWeights {
+    let cs = c
+        .as_ref()
+        .map(|c| c.as_slice())
+        .transpose()
+        .map_err(slice)?;
+    let err = crate::arrays::skin_error;
+    // The influences row by row, with no list a vertex (`Influences::from_rows`).
+    if let Some(at) = js.iter().position(|&joint| joint < 0) {
+        return Err(err(SkinError::BadWeights {
             vertex: at / k.max(1),
-            reason: format!("joint index {} is negative", j[at]),
-        });
+            reason: format!("joint index {} is negative", js[at]),
+        }));
     }
     let row = |vertex: usize| {
-        let (js, ws) = (&j[vertex * k..][..k], &w[vertex * k..][..k]);
-        js.iter()
-            .zip(ws)
+        let (j, w) = (&js[vertex * k..][..k], &ws[vertex * k..][..k]);
+        j.iter()
+            .zip(w)
             .map(|(&joint, &weight)| (joint as usize, weight))
     };
-    let influences = Influences::from_rows((0..v).map(row), joints)?;
+    let influences = Influences::from_rows((0..v).map(row), nj).map_err(err)?;
     let vecs = |a: &[f32]| -> Vec<Vec3<f32>> {
         a.chunks_exact(3)
             .map(|c| Vec3::new(c[0], c[1], c[2]))
             .collect()
     };
-    let nodes = (0..joints)
+    let nodes = (0..nj)
         .map(|i| Node {
             name: format!("joint {i}"),
             parent: None,
             rest: Default::default(),
         })
         .collect();
-    let inverse_bind = (0..joints)
+    let inverse_bind = (0..nj)
         .map(|i| {
-            let c = centres.map_or(Vec3::zero(), |c| {
+            let c = cs.map_or(Vec3::zero(), |c| {
                 Vec3::new(c[3 * i], c[3 * i + 1], c[3 * i + 2])
             });
             Mat4::from_rotation_translation(&chasles::Mat3::identity(), -c)
@@ -406,14 +384,15 @@ fn rig_of_arrays(
     Rig::new(
         name.to_string(),
         Mesh {
-            positions: vecs(p),
-            normals: vecs(n),
+            positions: vecs(p.as_slice().map_err(slice)?),
+            normals: vecs(n.as_slice().map_err(slice)?),
             triangles: Vec::new(),
         },
         nodes,
-        (0..joints).collect(),
+        (0..nj).collect(),
         inverse_bind,
         influences,
         Vec::new(),
     )
+    .map_err(err)
 }

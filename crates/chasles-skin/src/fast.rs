@@ -66,8 +66,8 @@ pub struct Vertex<const K: usize> {
     /// it; a layout built by hand pivots on whatever it puts there (which changes a blend
     /// only where the joints' quaternions, each taken into the pivot's hemisphere, are not
     /// all in one hemisphere with one another: joints turned far apart, near 180°), and
-    /// DIB finds the heaviest itself. Every slot's joint must exist, weight 0 or not (the kernels read
-    /// them all).
+    /// DIB finds the heaviest itself. Every slot's joint must exist, weight 0 or not (the
+    /// kernels read them all).
     pub j: [u16; K],
     /// Weights: finite, not negative, summing to 1 within [`WEIGHT_SUM_TOLERANCE`]
     /// ([`FastRig::from_vertices`] checks them; [`FastRig::new`] takes a checked rig's as
@@ -260,14 +260,8 @@ pub const WEIGHT_SUM_TOLERANCE: f32 = 1e-3;
 /// A laid-out vertex's weights: finite, not negative, summing to 1 within
 /// [`WEIGHT_SUM_TOLERANCE`].
 fn check_weights<const K: usize>(vertex: usize, v: &Vertex<K>) -> Result<()> {
-    if let Some(k) = v.w.iter().position(|w| !(w.is_finite() && *w >= 0.0)) {
-        return Err(SkinError::BadWeights {
-            vertex,
-            reason: format!(
-                "weight {} for joint {} is negative or not finite",
-                v.w[k], v.j[k]
-            ),
-        });
+    for (&j, &w) in v.j.iter().zip(&v.w) {
+        crate::rig::check_weight(vertex, usize::from(j), w)?;
     }
     let sum: f32 = v.w.iter().sum();
     if (sum - 1.0).abs() > WEIGHT_SUM_TOLERANCE {

@@ -76,6 +76,18 @@ pub struct Influences {
     pub weights: Vec<f32>,
 }
 
+/// A weight of a vertex's influence on `joint`: finite and not negative. The one check of a
+/// weight, for [`Influences`] and for the fast path's layouts built by hand.
+pub(crate) fn check_weight(vertex: usize, joint: usize, w: f32) -> Result<()> {
+    if w.is_finite() && w >= 0.0 {
+        return Ok(());
+    }
+    Err(SkinError::BadWeights {
+        vertex,
+        reason: format!("weight {w} for joint {joint} is negative or not finite"),
+    })
+}
+
 /// One vertex's influences checked — every weight finite and not negative, every joint below
 /// `joints` (with `every_joint` false, only those of a positive weight) — and their sum,
 /// which must be above 0.
@@ -87,12 +99,7 @@ fn checked_sum(
 ) -> Result<f64> {
     let mut sum = 0.0f64;
     for (joint, w) in pairs {
-        if !w.is_finite() || w < 0.0 {
-            return Err(SkinError::BadWeights {
-                vertex,
-                reason: format!("weight {w} for joint {joint} is negative or not finite"),
-            });
-        }
+        check_weight(vertex, joint, w)?;
         if (every_joint || w > 0.0) && joint >= joints {
             return Err(SkinError::JointOutOfRange {
                 vertex,

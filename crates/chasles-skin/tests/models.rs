@@ -258,6 +258,21 @@ fn influences_from_rows_of_slots_are_those_from_lists() {
     let by_rows = Influences::from_rows((0..200).map(row), 11).unwrap();
     assert_eq!(by_rows, Influences::from_lists(&lists, 11).unwrap());
     assert_eq!(by_rows.vertices(), 200);
+    // (`from_lists` calls `from_rows`: the values themselves, made here.) Each vertex's
+    // positive weights, heaviest first (ties in slot order), divided by their f64 sum.
+    let mut zeros = 0;
+    for (v, list) in lists.iter().enumerate() {
+        let mut kept: Vec<(usize, f32)> = list.iter().copied().filter(|p| p.1 > 0.0).collect();
+        zeros += list.len() - kept.len();
+        kept.sort_by(|a, b| b.1.total_cmp(&a.1));
+        let sum: f64 = kept.iter().map(|p| f64::from(p.1)).sum();
+        let want: Vec<(usize, f32)> = kept
+            .iter()
+            .map(|&(j, w)| (j, (f64::from(w) / sum) as f32))
+            .collect();
+        assert_eq!(by_rows.of(v).collect::<Vec<_>>(), want, "vertex {v}");
+    }
+    assert!(zeros > 50, "{zeros} weights of 0 dropped");
     // The same errors, naming the same vertex.
     let bad = |v: usize| {
         let w = if v == 150 { f32::NAN } else { 1.0 };

@@ -7,11 +7,12 @@
 //! what the blocks cost ([`Groups::of`], by `cost`: blocks of sixteen that iterate, the
 //! Fox 26 → 5 of 108, RiggedFigure 22 → 13 of 24, CesiumMan 145 → 77 of 205; none on the
 //! synthetic meshes, whose vertices all have four; one and two influences in turn gain
-//! 1.2×: `examples/dib_influences`, 127.8 → 154.3 M vertices/s), the first DIB job lays out a copy of the vertices in `crate::vertex_order`'s order
-//! (sorted by count within windows of 256) and every DIB job, that one included, runs the
-//! kernels on it, a chunk a call, each vertex's result stored straight to its place in the
-//! caller's output (a scattered `Dest`: the vertex's slot read from the order, its six floats
-//! by its own stores, in any of the three layouts). The kernels give every vertex the same
+//! 1.2×: `examples/dib_influences`, 127.8 → 154.3 M vertices/s), the first DIB job lays
+//! out a copy of the vertices in `crate::vertex_order`'s order (sorted by count within
+//! windows of 256) and every DIB job, that one included, runs the kernels on it, a chunk a
+//! call, each vertex's result stored straight to its place in the caller's output (a
+//! scattered `Dest`: the vertex's slot read from the order, its six floats by its own
+//! stores, in any of the three layouts). The kernels give every vertex the same
 //! bits whatever its block-mates (their tests shift every block and compare), so the output
 //! is the ungrouped kernels', bit for bit (tested on every layout).
 //!
@@ -29,8 +30,9 @@
 //! influences took ScLERP in closed form (`lane::dib`; the same command, two runs): the Fox
 //! 86.1–86.5 → 131.3–134.7 → 136.3–139.9, RiggedFigure 49.5–50.8 → 72.3–74.4 → 74.4–76.4,
 //! CesiumMan 56.5–57.2 → 79.7–80.3 → 82.4–82.9 (in the rig's order RiggedFigure and
-//! CesiumMan lost 13–20 %, their blocks mixing vertices of two with vertices of more). The first grouped path ran the kernels a
-//! window of 256 at a time into a stage on the stack and put each vertex back from there:
+//! CesiumMan lost 13–20 %, their blocks mixing vertices of two with vertices of more). The
+//! first grouped path ran the kernels a window of 256 at a time into a stage on the stack
+//! and put each vertex back from there:
 //! the Fox 88.6–92.8, RiggedFigure 68.3–70.2, CesiumMan 72.9–74.8 in the same runs, 7–10 %
 //! below the reordered rig, all of it in the put-back's loop (leaving the put-back out, a
 //! wrong output, ran as fast as the reordered rig; the loop was 17 instructions a vertex, and 13

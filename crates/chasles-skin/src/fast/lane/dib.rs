@@ -342,7 +342,8 @@ pub(in crate::fast) fn dib<L: Lane, const K: usize>(
     let pair = L::and(L::splat(1.5).lt(count), count.lt(L::splat(2.5)));
     // The lanes that iterate: three influences or more.
     let mut active = L::splat(2.5).lt(count);
-    let mut b = if L::any(L::and_not(pair, zero.le(zero))) {
+    // DLB's start, read by the lanes of one influence and those that iterate.
+    let mut b = if L::any(count.lt(L::splat(1.5))) || L::any(active) {
         dlb(q, w, slots)
     } else {
         q[0]
@@ -413,13 +414,18 @@ fn sclerp<L: Lane, const K: usize>(q: &[[L; 8]; K], w: &[L; K], slots: usize) ->
         t = L::select(second, w[k], t);
         seen = seen.add(L::select(used, one, zero));
     }
-    let minus = L::splat(-1.0);
-    let conj = eight(|c| match c {
-        0 | 4 => a[c],
-        _ => a[c].flip_by_sign_of(minus),
-    });
-    let l = log(&dqmul(&conj, &b));
+    let l = log(&dqmul(&conjugate(&a), &b));
     renormalize(&dqmul(&a, &exp(&eight(|c| l[c].mul(t)))))
+}
+
+/// `q̂*`, the quaternion conjugate of both parts (the vector parts negated), in each lane.
+#[inline(always)]
+fn conjugate<L: Lane>(q: &[L; 8]) -> [L; 8] {
+    let minus = L::splat(-1.0);
+    eight(|c| match c {
+        0 | 4 => q[c],
+        _ => q[c].flip_by_sign_of(minus),
+    })
 }
 
 /// One DIB update at `b̂` in each lane: `x̂ = Σ wᵢ log(b̂* q̂ᵢ)` over the first `slots`
@@ -438,11 +444,7 @@ fn update<L: Lane, const K: usize>(
     w: &[L; K],
     slots: usize,
 ) -> ([L; 8], Spread<L>) {
-    let minus = L::splat(-1.0);
-    let conj = eight(|c| match c {
-        0 | 4 => Wide([b[c]; 2]),
-        _ => Wide([b[c].flip_by_sign_of(minus); 2]),
-    });
+    let conj = conjugate(b).map(|c| Wide([c; 2]));
     let mut x = [L::splat(0.0); 8];
     let mut spread = Spread::default();
     // Up to K, known when compiled, rather than `slots`: 3–4 % faster on sixteen lanes, the
