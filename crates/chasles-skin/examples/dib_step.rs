@@ -3,11 +3,14 @@
 //! ends from the exact blend: the figures quoted in that module's docs
 //! (`cargo run --release -p chasles-skin --example dib_step`). The step is written here
 //! again in f64 with the library's dual quaternions, independently of the lanes' f32 code,
-//! as a check of the derivation itself.
+//! as a check of the derivation itself. Last, the built-in characters' vertices of three
+//! influences or more over their first clip at five times, and their blocks of sixteen in
+//! `vertex_order`'s order (the most a block's lanes need): what the SIMD kernel's
+//! iterating blocks do on a real rig (`fast::avx512`'s docs).
 
 use chasles::blend::dlb::dlb;
 use chasles::{DualQuat, Quat, Vec3};
-use chasles_skin::synthetic;
+use chasles_skin::{gltf_load, joint_transforms, synthetic, vertex_order, Pose};
 
 /// The stopping rule's precision, the skinning's.
 const PRECISION: f64 = chasles_skin::skinning::DIB_PRECISION as f64;
@@ -157,4 +160,56 @@ fn main() {
             );
         }
     }
+    for m in [
+        chasles_models::CESIUM_MAN,
+        chasles_models::RIGGED_FIGURE,
+        chasles_models::FOX,
+    ] {
+        characters(m);
+    }
+}
+
+/// A character's vertices of three influences or more by the second-order step's updates,
+/// its first clip at five times, and its blocks of sixteen in `vertex_order`'s order by the
+/// most their lanes need (vertices of one or two need none: `lane::dib` takes them in
+/// closed form).
+fn characters(m: chasles_models::Model) {
+    let rig = gltf_load::load_slice(m.bytes, m.file).expect("a built-in character");
+    let clip = &rig.animations[0];
+    let order = vertex_order::by_influence_count(&rig).expect("a valid rig");
+    let (mut vertices, mut blocks) = (Vec::new(), Vec::new());
+    for t in [0.1, 0.3, 0.5, 0.7, 0.9] {
+        let pose = Pose::animated(&rig, 0, clip.duration() * t).expect("a clip");
+        let jt = joint_transforms(&rig, &pose).expect("a pose");
+        let updates: Vec<usize> = order
+            .iter()
+            .map(|&v| {
+                let used: Vec<(usize, f32)> = rig
+                    .influences
+                    .of(v as usize)
+                    .filter(|&(_, w)| w > 0.0)
+                    .collect();
+                if used.len() < 3 {
+                    return 0;
+                }
+                let sum: f32 = used.iter().map(|&(_, w)| w).sum();
+                // The joints made unit in f64, as the kernels make them unit in f32.
+                let q: Vec<DualQuat<f64>> = used
+                    .iter()
+                    .map(|&(j, _)| jt.dual_quats[j].cast().normalize().expect("unit"))
+                    .collect();
+                let w: Vec<f64> = used.iter().map(|&(_, x)| f64::from(x / sum)).collect();
+                let n = dib(&q, &w, true).0;
+                vertices.push(n);
+                n
+            })
+            .collect();
+        blocks.extend(updates.chunks(16).map(|c| *c.iter().max().unwrap_or(&0)));
+    }
+    println!(
+        "{}, first clip at five times, second-order: vertices of three influences or more by updates {:?}, blocks of sixteen (vertex_order) by updates {:?}",
+        rig.name,
+        histogram(&vertices),
+        histogram(&blocks)
+    );
 }

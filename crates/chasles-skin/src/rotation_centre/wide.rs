@@ -8,7 +8,7 @@
 //! f32 in the lanes (`pick`'s test, one lane at a time from the stored lanes, had taken
 //! about a third of the eight-lane solve).
 
-use super::{solve, Motion, Motions, Num};
+use super::{solve, Motions, Num, Priors, FIELDS};
 use chasles::Vec3;
 use std::arch::x86_64::*;
 use std::ops::{Add, Div, Mul, Sub};
@@ -44,9 +44,9 @@ op!(W8, Sub, sub, _mm512_sub_pd);
 op!(W8, Mul, mul, _mm512_mul_pd);
 op!(W8, Div, div, _mm512_div_pd);
 
-/// [`Num`] for a lane type: `splat` by `$set1`, `at_least_one` by `$max` with 1.
+/// [`Num`] for a lane type: `splat` by `$set1`, `at_most_one` by `$min` with 1.
 macro_rules! num {
-    ($w:ident, $set1:ident, $max:ident) => {
+    ($w:ident, $set1:ident, $min:ident) => {
         impl Num for $w {
             #[inline(always)]
             fn splat(x: f64) -> Self {
@@ -54,19 +54,19 @@ macro_rules! num {
                 $w(unsafe { $set1(x) })
             }
             #[inline(always)]
-            fn at_least_one(self) -> Self {
-                // n ≥ 0, never NaN: the same as `f64::max(n, 1)`.
+            fn at_most_one(self) -> Self {
+                // n − 1 for a joint count n, never NaN: the same as `f64::min(n − 1, 1)`.
                 // SAFETY: as for the operators.
-                $w(unsafe { $max(self.0, $set1(1.0)) })
+                $w(unsafe { $min(self.0, $set1(1.0)) })
             }
         }
     };
 }
-num!(W, _mm256_set1_pd, _mm256_max_pd);
-num!(W8, _mm512_set1_pd, _mm512_max_pd);
+num!(W, _mm256_set1_pd, _mm256_min_pd);
+num!(W8, _mm512_set1_pd, _mm512_min_pd);
 
-/// Each of `N` clusters' sums over its joints of their motions' 24 fields, in `R` registers
-/// of `L` lanes (`L R = 24`): `add(a, m)` adds the `L` fields `m` of a motion to `a`. One
+/// Each of `N` clusters' sums over its joints of their motions' 16 fields, in `R` registers
+/// of `L` lanes (`L R = 16`): `add(a, m)` adds the `L` fields `m` of a motion to `a`. One
 /// cluster after the other: all four clusters' 24 accumulators at once spilled to the
 /// stack at every joint.
 #[inline(always)]
@@ -76,12 +76,12 @@ fn sums<V: Copy, const N: usize, const R: usize, const L: usize>(
     zero: V,
     add: impl Fn(V, &[f64; L]) -> V,
 ) -> [[V; R]; N] {
-    const { assert!(L * R == 24) };
+    const { assert!(L * R == FIELDS) };
     let mut s = [[zero; R]; N];
     for (s, joints) in s.iter_mut().zip(joints) {
         let mut acc = [zero; R];
-        for j in joints {
-            let m: &Motion = &motions.0[usize::from(*j)].0;
+        for &j in joints {
+            let m = motions.of(j);
             for (a, m) in acc.iter_mut().zip(m.as_chunks::<L>().0) {
                 *a = add(*a, m);
             }
@@ -91,20 +91,25 @@ fn sums<V: Copy, const N: usize, const R: usize, const L: usize>(
     s
 }
 
-/// The centres of four clusters: each one's sums over its joints in six registers,
-/// transposed into one register per field, then `solve` on the registers.
+/// The centres of four clusters about their priors (x, y, z, four lanes each): each one's
+/// sums over its joints in four registers, transposed into one register per field, then
+/// `solve` on the registers.
 ///
 /// # Safety
 /// The processor must have AVX2.
 #[target_feature(enable = "avx2")]
-pub(super) unsafe fn four(joints: [&[u16]; 4], motions: &Motions) -> [Vec3<f32>; 4] {
+pub(super) unsafe fn four(
+    joints: [&[u16]; 4],
+    motions: &Motions,
+    priors: &[[f32; 4]; 3],
+) -> [Vec3<f32>; 4] {
     chasles::frame::align_frame();
-    let s: [[__m256d; 6]; 4] = sums(joints, motions, _mm256_setzero_pd(), |a, m: &[f64; 4]| {
+    let s: [[__m256d; 4]; 4] = sums(joints, motions, _mm256_setzero_pd(), |a, m: &[f64; 4]| {
         // SAFETY: `m` holds the four f64 loaded.
         _mm256_add_pd(a, unsafe { _mm256_loadu_pd(m.as_ptr()) })
     });
-    let mut f = [W(_mm256_setzero_pd()); 24];
-    for r in 0..6 {
+    let mut f = [W(_mm256_setzero_pd()); FIELDS];
+    for r in 0..4 {
         let t0 = _mm256_unpacklo_pd(s[0][r], s[1][r]);
         let t1 = _mm256_unpackhi_pd(s[0][r], s[1][r]);
         let t2 = _mm256_unpacklo_pd(s[2][r], s[3][r]);
@@ -116,7 +121,9 @@ pub(super) unsafe fn four(joints: [&[u16]; 4], motions: &Motions) -> [Vec3<f32>;
     }
     let n = joints.map(|j| j.len() as f64);
     let n = W(_mm256_setr_pd(n[0], n[1], n[2], n[3]));
-    let (x, prior, det) = solve(|i| f[i], n);
+    // SAFETY: each row holds four f32.
+    let prior = priors.map(|p| W(_mm256_cvtps_pd(unsafe { _mm_loadu_ps(p.as_ptr()) })));
+    let (x, det) = solve(|i| f[i], n, prior);
     pick4(x, prior, det)
 }
 
@@ -186,20 +193,25 @@ fn transpose8(a: [__m512d; 8]) -> [__m512d; 8] {
     ]
 }
 
-/// The centres of eight clusters, as [`four`] on AVX-512F's eight lanes: each one's sums
-/// over its joints in three registers, transposed into one register per field.
+/// The centres of eight clusters about their priors, as [`four`] on AVX-512F's eight
+/// lanes: each one's sums over its joints in two registers, transposed into one register
+/// per field.
 ///
 /// # Safety
 /// The processor must have AVX-512F.
 #[target_feature(enable = "avx512f")]
-pub(super) unsafe fn eight(joints: [&[u16]; 8], motions: &Motions) -> [Vec3<f32>; 8] {
+pub(super) unsafe fn eight(
+    joints: [&[u16]; 8],
+    motions: &Motions,
+    priors: &Priors,
+) -> [Vec3<f32>; 8] {
     chasles::frame::align_frame();
-    let s: [[__m512d; 3]; 8] = sums(joints, motions, _mm512_setzero_pd(), |a, m: &[f64; 8]| {
+    let s: [[__m512d; 2]; 8] = sums(joints, motions, _mm512_setzero_pd(), |a, m: &[f64; 8]| {
         // SAFETY: `m` holds the eight f64 loaded.
         _mm512_add_pd(a, unsafe { _mm512_loadu_pd(m.as_ptr()) })
     });
-    let mut f = [W8(_mm512_setzero_pd()); 24];
-    for r in 0..3 {
+    let mut f = [W8(_mm512_setzero_pd()); FIELDS];
+    for r in 0..2 {
         let rows = transpose8(core::array::from_fn(|c| s[c][r]));
         for (k, row) in rows.into_iter().enumerate() {
             f[8 * r + k] = W8(row);
@@ -208,7 +220,9 @@ pub(super) unsafe fn eight(joints: [&[u16]; 8], motions: &Motions) -> [Vec3<f32>
     let n = joints.map(|j| j.len() as f64);
     // SAFETY: `n` holds eight f64.
     let n = W8(unsafe { _mm512_loadu_pd(n.as_ptr()) });
-    let (x, prior, det) = solve(|i| f[i], n);
+    // SAFETY: each row holds eight f32.
+    let prior = priors.map(|p| W8(_mm512_cvtps_pd(unsafe { _mm256_loadu_ps(p.as_ptr()) })));
+    let (x, det) = solve(|i| f[i], n, prior);
     pick8(x, prior, det)
 }
 

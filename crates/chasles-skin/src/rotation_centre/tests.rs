@@ -1,0 +1,330 @@
+use super::*;
+use chasles::Quat;
+
+#[test]
+fn clusters_group_equal_joint_sets() {
+    let sets: [&[u16]; 5] = [&[3, 1], &[1, 3], &[2], &[1, 3, 3], &[0, 2]];
+    let c = Clusters::new(sets.len(), |v| sets[v].iter().copied());
+    assert_eq!(c.len(), 3);
+    assert_eq!(c.of_vertex(), &[0, 0, 1, 0, 2]);
+    assert_eq!(c.joints(0), &[1, 3]);
+    assert_eq!(c.joints(2), &[0, 2]);
+}
+
+/// Sixteen joints, each turned and moved its own way, and their bind origins.
+fn sixteen_joints() -> (Vec<DualQuat<f32>>, Vec<Vec3<f32>>) {
+    let d = (0..16)
+        .map(|j| {
+            let q = Quat::from_axis_angle(Vec3::new(1.0, j as f32, 2.0), 0.3 * j as f32);
+            DualQuat::from_rotation_translation(q.unwrap(), Vec3::new(j as f32, 1.0, 0.5))
+        })
+        .collect();
+    let bind = (0..16).map(|j| Vec3::new(0.0, j as f32, 1.0)).collect();
+    (d, bind)
+}
+
+/// Asserts that `got` is the centre of `joints` solved alone, bit for bit (`what` says
+/// where it came from).
+fn assert_alone(got: Vec3<f32>, joints: &[u16], m: &Motions, what: &str) {
+    let want = rotation_centre(joints, m);
+    assert_eq!(
+        got.to_array().map(f32::to_bits),
+        want.to_array().map(f32::to_bits),
+        "{joints:?} {what}"
+    );
+}
+
+/// The priors of `sets` side by side, as the lanes take them.
+fn priors<const N: usize>(sets: &[&[u16]], bind: &[Vec3<f32>]) -> [[f32; N]; 3] {
+    core::array::from_fn(|i| core::array::from_fn(|k| prior(sets[k], bind).get(i)))
+}
+
+/// Every motion starts a cache line, wherever the allocator puts the vector, so no
+/// 64-byte load of the eight-lane sums straddles two.
+#[test]
+fn motions_sit_on_whole_cache_lines() {
+    let (d, bind) = sixteen_joints();
+    for _ in 0..4 {
+        let m = Motions::new(&d, &bind);
+        assert_eq!(m.lines.len(), 16);
+        for x in &m.lines {
+            assert_eq!(std::ptr::from_ref(x) as usize % 64, 0);
+        }
+        assert_eq!(size_of::<Lines>(), size_of::<Motion>(), "no padding");
+        assert_eq!(align_of::<Lines>(), 64);
+        // Another allocation between poses, so the next vector may start elsewhere.
+        std::hint::black_box(vec![0u8; 24]);
+    }
+}
+
+/// A motion is its dual quaternion's rigid motion in f64, normalized there: `RᵀR = I`
+/// to f64's rounding (what lets the solve take `Σ RᵀR` as `n I`) even from an f32
+/// dual quaternion off unit length, `Rᵀt` made from them; one that cannot be
+/// normalized is NaN (its clusters take their prior).
+#[test]
+fn motions_are_rigid_to_f64s_rounding() {
+    let (mut d, mut bind) = sixteen_joints();
+    d[3] = DualQuat::new(d[3].real * 1.001, d[3].dual * 1.001);
+    d.push(DualQuat::new(Quat::new(0.0, 0.0, 0.0, 0.0), d[0].dual));
+    d.push(DualQuat::new(d[0].real, Quat::new(f32::NAN, 0.0, 0.0, 0.0)));
+    bind.extend([Vec3::zero(); 2]);
+    let m = Motions::new(&d, &bind);
+    for (j, d) in d.iter().enumerate().take(16) {
+        let x = m.of(j as u16);
+        let r = |i: usize, k: usize| x[R + 3 * i + k];
+        for i in 0..3 {
+            for k in 0..3 {
+                let g: f64 = (0..3).map(|l| r(l, i) * r(l, k)).sum();
+                let want = if i == k { 1.0 } else { 0.0 };
+                assert!((g - want).abs() < 1e-15, "joint {j}: (RᵀR)[{i}][{k}] = {g}");
+            }
+            let t = d.cast::<f64>().normalize().unwrap().translation().get(i);
+            assert!((x[T + i] - t).abs() < 1e-12, "joint {j}");
+            let u: f64 = (0..3).map(|l| r(l, i) * x[T + l]).sum();
+            assert_eq!(x[U + i], u, "joint {j}");
+        }
+        assert_eq!(x[FIELDS - 1], 0.0);
+    }
+    assert!(m.of(16).iter().all(|x| x.is_nan()), "a zero real part");
+    assert!(m.of(17).iter().all(|x| x.is_nan()), "a NaN");
+}
+
+#[test]
+fn many_clusters_solve_alike_on_all_threads() {
+    // The 560 sets of 3 of 16 joints: over the threshold for threads.
+    let (d, bind) = sixteen_joints();
+    let sets: Vec<[u16; 3]> = (0..16u16)
+        .flat_map(|a| (a + 1..16).flat_map(move |b| (b + 1..16).map(move |c| [a, b, c])))
+        .collect();
+    let c = Clusters::new(sets.len(), |v| sets[v]);
+    assert!(c.len() >= PARALLEL, "{}", c.len());
+    assert_eq!(c.centres(&d, &bind, true), c.centres(&d, &bind, false));
+}
+
+/// Every cluster's centre is its own, solved alone, bit for bit, whatever the count
+/// (the eights, fours and last few of `centres_into`'s chunks) and on all threads or
+/// one (in the widest lanes here: `fast::set_avx512` is the process's, which tests
+/// running beside this one count on; the widths are compared in the test below).
+#[test]
+fn every_cluster_gets_its_own_centre() {
+    let (d, bind) = sixteen_joints();
+    let m = Motions::new(&d, &bind);
+    // Sets of 1 to 5 joints in a mixed order (equal sets make one cluster).
+    let sets: Vec<Vec<u16>> = (0..PARALLEL as u16 + 13)
+        .map(|i| (0..1 + i % 5).map(|k| (i * 7 + k * 3) % 16).collect())
+        .collect();
+    for n in (1..=20).chain([PARALLEL + 13]) {
+        let c = Clusters::new(n, |v| sets[v].iter().copied());
+        for parallel in [false, true] {
+            let got = c.centres(&d, &bind, parallel);
+            for (i, got) in got.iter().enumerate() {
+                let what = format!("n {n} cluster {i} parallel {parallel}");
+                assert_alone(*got, c.joints(i), &m, &what);
+            }
+        }
+    }
+}
+
+/// Four clusters at once (AVX2 lanes, where the processor has them) give each one's
+/// centre bit for bit: clusters of 1 to 4 joints side by side, one
+/// with a non-finite joint (the prior), equal rotations (the prior by the determinant).
+#[test]
+fn four_at_once_are_each_alone_bit_for_bit() {
+    let mut d: Vec<DualQuat<f32>> = (0..12)
+        .map(|j| {
+            let q = Quat::from_axis_angle(Vec3::new(1.0, j as f32, -2.0), 0.37 * j as f32);
+            DualQuat::from_rotation_translation(q.unwrap(), Vec3::new(0.5, j as f32, -1.0))
+        })
+        .collect();
+    d[11].real.w = f32::NAN;
+    d[10] = d[9];
+    let bind: Vec<Vec3<f32>> = (0..12).map(|j| Vec3::new(j as f32, 1.0, -0.5)).collect();
+    let m = Motions::new(&d, &bind);
+    let sets: [&[u16]; 8] = [
+        &[0, 3, 5, 7],
+        &[2],
+        &[1, 4, 6],
+        &[8, 9],
+        &[0, 11],
+        &[9, 10],
+        &[3, 4, 5, 6],
+        &[7],
+    ];
+    let avx2 = Lanes::allowed(true, false).avx2;
+    for g in sets.chunks(4) {
+        let got = four([g[0], g[1], g[2], g[3]], &m, &priors(g, &bind), avx2);
+        for (set, got) in g.iter().zip(got) {
+            assert_alone(got, set, &m, "");
+        }
+    }
+    if !avx2 {
+        eprintln!("no AVX2 here: four at once ran one by one");
+    }
+}
+
+/// Eight clusters at once (AVX-512F's lanes, where the processor has them and they are
+/// allowed; nothing elsewhere) give each cluster's centre alone bit for bit: clusters of
+/// 1 to 8 joints side by side, with a non-finite joint (the prior) and equal rotations
+/// (the prior by the determinant) among them, every set in every lane.
+#[test]
+fn eight_at_once_are_each_alone_bit_for_bit() {
+    let mut d: Vec<DualQuat<f32>> = (0..20)
+        .map(|j| {
+            let axis = Vec3::new(1.0, j as f32, -2.0 + 0.1 * j as f32);
+            let q = Quat::from_axis_angle(axis, 0.29 * j as f32).unwrap();
+            DualQuat::from_rotation_translation(q, Vec3::new(0.5, j as f32, -1.0))
+        })
+        .collect();
+    d[19].real.w = f32::INFINITY;
+    d[18] = d[17];
+    let bind: Vec<Vec3<f32>> = (0..20).map(|j| Vec3::new(j as f32, 1.0, -0.5)).collect();
+    let m = Motions::new(&d, &bind);
+    let sets: [&[u16]; 11] = [
+        &[0, 3, 5, 7, 9, 11, 13, 15],
+        &[2],
+        &[1, 4, 6],
+        &[8, 9],
+        &[0, 19],
+        &[17, 18],
+        &[3, 4, 5, 6, 12],
+        &[7, 8, 10, 14, 16, 2, 1],
+        &[10, 11, 12, 13, 14, 15],
+        &[16, 17, 18, 19],
+        &[5, 6],
+    ];
+    // Each width allowed in turn (`Lanes::allowed` keeps those this processor has).
+    for widths in [(false, false), (true, false), (true, true)] {
+        let lanes = Lanes::allowed(widths.0, widths.1);
+        for shift in 0..sets.len() {
+            let group: [&[u16]; 8] = core::array::from_fn(|k| sets[(k + shift) % sets.len()]);
+            let Some(got) = eight(group, &m, &priors(&group, &bind), lanes) else {
+                assert!(!lanes.avx512, "eight at once where AVX-512 is allowed");
+                continue;
+            };
+            assert!(lanes.avx512);
+            for (set, got) in group.iter().zip(got) {
+                let what = format!("shift {shift} lanes ({}, {})", lanes.avx2, lanes.avx512);
+                assert_alone(got, set, &m, &what);
+            }
+        }
+    }
+    if !Lanes::allowed(true, true).avx512 {
+        eprintln!("no AVX-512F here: eight at once did not run (fours do)");
+    }
+}
+
+#[test]
+fn the_centre_is_the_common_fixed_point() {
+    // Joints rotating about different axes through the point x (and then all moved by
+    // one offset): x is the point they all map to the same place.
+    let x = Vec3::new(0.3f32, -1.2, 2.0);
+    let q = [
+        Quat::from_axis_angle(Vec3::new(1.0, 0.0, 0.0), 0.7).unwrap(),
+        Quat::from_axis_angle(Vec3::new(0.0, 1.0, 1.0), -1.1).unwrap(),
+        Quat::from_axis_angle(Vec3::new(1.0, -2.0, 0.5), 0.4).unwrap(),
+    ];
+    let d = q.map(|q| {
+        DualQuat::from_rotation_translation(q, x - q.rotate(x) + Vec3::new(0.5, 0.0, 0.1))
+    });
+    let bind = [
+        Vec3::zero(),
+        Vec3::new(5.0, 5.0, 5.0),
+        Vec3::new(1.0, 0.0, 4.0),
+    ];
+    // Three joints: x, and only x.
+    let r = Clusters::new(1, |_| [0u16, 1, 2]).centres(&d, &bind, false)[0];
+    assert!((r - x).norm() < 1e-4, "{r:?}");
+    // Two joints agree on the whole line through x along the axis u of their relative
+    // rotation; the Tikhonov term picks its point nearest the prior (the mean of the
+    // bind origins).
+    let two = Clusters::new(1, |_| [0u16, 1]);
+    let r = two.centres(&d, &bind, false)[0];
+    let u = (q[1].conjugate() * q[0]).vector().normalize().unwrap();
+    let prior = Vec3::new(2.5, 2.5, 2.5);
+    let want = x + u * (prior - x).dot(u);
+    assert!((r - want).norm() < 1e-3, "{r:?} vs {want:?}");
+    // Equal rotations (rank 0): the prior itself.
+    let r = two.centres(&[d[0], d[0], d[0]], &bind, false)[0];
+    assert!((r - prior).norm() < 1e-4, "{r:?}");
+    // One joint: the prior, its own origin.
+    let one = Clusters::new(1, |_| [2u16]);
+    assert!((one.centres(&d, &bind, false)[0] - bind[2]).norm() < 1e-6);
+}
+
+/// The normal equations summed over the pairs, as defined: `Σ_{a<b} DᵀD` and `−Σ DᵀE`
+/// with `D = R_a − R_b`, `E = t_a − t_b` (before the Tikhonov term), of the joints'
+/// motions in f64 (their dual quaternions normalized in f64, as [`Motions`] takes them).
+fn pairwise(joints: &[u16], d: &[DualQuat<f32>]) -> ([[f64; 3]; 3], [f64; 3]) {
+    let m: Vec<Mat4<f64>> = d
+        .iter()
+        .map(|d| d.cast::<f64>().normalize().unwrap().to_matrix4())
+        .collect();
+    let (mut a, mut b) = ([[0f64; 3]; 3], [0f64; 3]);
+    for (i, ja) in joints.iter().enumerate() {
+        for jb in &joints[i + 1..] {
+            let (ma, mb) = (&m[usize::from(*ja)], &m[usize::from(*jb)]);
+            let dd = |r: usize, c: usize| ma.m[r][c] - mb.m[r][c];
+            for (r, (ar, br)) in a.iter_mut().zip(&mut b).enumerate() {
+                for (c, arc) in ar.iter_mut().enumerate() {
+                    *arc += (0..3).map(|k| dd(k, r) * dd(k, c)).sum::<f64>();
+                }
+                *br -= (0..3).map(|k| dd(k, r) * dd(k, 3)).sum::<f64>();
+            }
+        }
+    }
+    (a, b)
+}
+
+proptest::proptest! {
+    /// The O(n) sums give the pairs' normal equations, and so their solution: the
+    /// centre's residual gradient `A r − b` (with the Tikhonov term) vanishes, for 1 to 8
+    /// joints of any rotations, some nearly equal.
+    #[test]
+    fn the_centre_solves_the_pairwise_normal_equations(
+        n in 1usize..=8,
+        seed in proptest::prelude::any::<u64>(),
+        spread in proptest::prop_oneof![proptest::prelude::Just(1e-3f32), 0.01f32..3.0],
+    ) {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand::rngs::StdRng::seed_from_u64(seed);
+        let mut v = || Vec3::new(rng.random_range(-1.0f32..1.0), rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0));
+        let base = Quat::from_axis_angle(v() + Vec3::new(0.0, 0.0, 2.0), 0.8).unwrap();
+        let d: Vec<DualQuat<f32>> = (0..n)
+            .map(|_| {
+                let axis = v() + Vec3::new(2.0, 0.0, 0.0);
+                let q = base * Quat::from_axis_angle(axis, spread * v().x).unwrap();
+                DualQuat::from_rotation_translation(q, v() * 3.0)
+            })
+            .collect();
+        let joints: Vec<u16> = (0..n as u16).collect();
+        let bind: Vec<Vec3<f32>> = (0..n).map(|_| v()).collect();
+        let r = rotation_centre(&joints, &Motions::new(&d, &bind)).cast::<f64>().to_array();
+        let (a, b) = pairwise(&joints, &d);
+        let lambda = 1e-6 * (a[0][0] + a[1][1] + a[2][2]) + 1e-12;
+        let mean = bind.iter().fold(Vec3::zero(), |s, o| s + o.cast::<f64>()) * (1.0 / n as f64);
+        let p = mean.to_array();
+        let scale = a.iter().flatten().fold(lambda, |m, x| m.max(x.abs()));
+        for i in 0..3 {
+            let g: f64 = (0..3).map(|k| a[i][k] * r[k]).sum::<f64>() + lambda * (r[i] - p[i]) - b[i];
+            // f32 centre, f32 inputs: the gradient is small against A's size times |r|;
+            // and the O(n) sums `n² I − SᵀS`, `n U − SᵀT` cancel terms of the size of n²
+            // and U (n |t|, |t| < 6) to A's and b's in f64: for joints
+            // within 1e-6 rad of each other (A ~ 1e-12) that rounding is what is left.
+            let far = 1.0 + r.iter().fold(0f64, |m, x| m.max(x.abs()));
+            let size = scale * far;
+            let sums = 16.0 * n as f64 * f64::EPSILON * far * 7.0;
+            proptest::prop_assert!(g.abs() <= 1e-5 * size + sums, "row {i}: {g} vs {size}, {sums}");
+        }
+    }
+}
+
+#[test]
+fn joint_centres_invert_the_bind_matrices() {
+    let origin = Vec3::new(1.0f32, 2.0, -3.0);
+    let q = Quat::from_axis_angle(Vec3::new(0.0, 0.0, 1.0), 0.4).unwrap();
+    let bind = DualQuat::from_rotation_translation(q, origin).to_matrix4();
+    let ib = chasles::blend::log::inverse_rigid(&bind);
+    let c = joint_centres(&[ib, Mat4::from_rows([[0.0; 4]; 4])]);
+    assert!((c[0] - origin).norm() < 1e-5, "{:?}", c[0]);
+    assert_eq!(c[1], Vec3::zero(), "a singular matrix gives the origin");
+}
