@@ -21,7 +21,7 @@ pub enum Device {
 /// Where skinning runs, set up for one rig.
 pub enum Engine {
     /// On the CPU, the rig laid out for the fast path.
-    Cpu(Skinner),
+    Cpu(Box<Skinner>),
     /// On the GPU, the mesh uploaded.
     #[cfg(feature = "gpu")]
     Gpu(Box<chasles_skin::gpu::GpuSkinner>),
@@ -49,7 +49,7 @@ pub fn quiet_vulkan_loader() {
 impl Engine {
     /// The engine for `rig` and `method` under `device`.
     pub fn new(device: Device, rig: &Rig, method: Method) -> Result<Self> {
-        let cpu = || Ok(Engine::Cpu(Skinner::new(rig)?));
+        let cpu = || Ok(Engine::Cpu(Box::new(Skinner::new(rig)?)));
         if device == Device::Cpu {
             return cpu();
         }

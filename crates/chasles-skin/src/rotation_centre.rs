@@ -8,7 +8,7 @@
 //!   point r whose images under the cluster's joint transforms agree best,
 //!   `min Σ_{a<b} ‖(R_a − R_b) r + t_a − t_b‖²`. The 3×3 normal equations are solved in f64
 //!   with a small Tikhonov term (1e-6 of the trace, at least 1e-12) pulling r towards the
-//!   mean of the cluster's joint origins ([`prior`]), where the problem is rank-deficient
+//!   mean of the cluster's joint origins (`prior`), where the problem is rank-deficient
 //!   (the paper takes the SVD's pseudo-inverse; along a deficient direction the blend does
 //!   not depend on r). A cluster of one joint moves rigidly, about any centre: its prior.
 //!
@@ -23,8 +23,12 @@
 //! made in f64 from its dual quaternion normalized in f64 ([`Motions`]), so `RᵀR = I` to
 //! f64's rounding (the test `motions_are_rigid_to_f64s_rounding`: within 1e-15) and the
 //! solve takes `n² I − SᵀS`: the null direction of two joints (their relative rotation's
-//! axis) keeps an eigenvalue of f64's rounding, far below the Tikhonov term. For one
-//! joint that rounding is all of A, and A is made exactly 0 (the centre is the prior).
+//! axis) keeps an eigenvalue of f64's rounding (about n²·1e-16), below the Tikhonov term
+//! (at least 1e-12). For one joint that rounding is all of A, and A is made exactly 0 (the
+//! centre is the prior). Where n ≥ 2 joints turn alike, A is all rounding too, and the
+//! centre lands off the prior by about n²·1e-4 (|prior| + |t|) (the old sums of G left
+//! about a quarter of that): harmless, as the blend of equal rotations does not depend on
+//! the centre, nor does it along a free axis.
 //! Until 2026-12-05 the motions were the f32 matrices of the dual quaternions, orthogonal
 //! only to f32's rounding, where `n² I − SᵀS` would give that direction an eigenvalue of
 //! about 1e-7 — as large as the Tikhonov term — so each motion carried its `RᵀR` and the
@@ -35,9 +39,9 @@
 //! 867–945 → 764–824 µs and, on a quieter machine, 845–868 → 746–770 (best of 30, three
 //! rounds, the builds in turn three times and twice), SBS's whole pose 1627–1725 →
 //! 1532–1592 and 1526–1561 → 1425–1486 µs, DQS 4.31–4.78× → 4.01–4.50× and 4.60–4.86× →
-//! 4.24–4.41× SBS (DQS 322–400 µs in those runs). Each motion sits on whole cache lines (the sums' 64-byte loads
-//! straddled two lines wherever the allocator put the vector, and the solve took 1.2
-//! times as long in those runs), and the system is solved by its
+//! 4.24–4.41× SBS (DQS 322–400 µs in those runs). Each motion sits on whole cache lines
+//! (the sums' 64-byte loads straddled two lines wherever the allocator put the vector, and
+//! the solve took 1.2 times as long in those runs), and the system is solved by its
 //! adjugate with one division — four clusters at once in AVX2's f64 lanes where the
 //! processor has them (module `wide`: 20 ns a cluster against 35 one by one, on a rig of
 //! 3·10⁵ clusters), eight in AVX-512F's, with the same operations in the same order, so
@@ -103,7 +107,9 @@ pub struct Clusters {
     /// The sorted joints of cluster c: `joints[start[c]..start[c + 1]]`.
     start: Vec<u32>,
     joints: Vec<u16>,
-    /// Each cluster's prior ([`prior`]) for the bind origins of the first solve, made then
+    /// One past the highest joint index in `joints` (0 for none; at most 2¹⁶).
+    top: u32,
+    /// Each cluster's prior (`prior`) for the bind origins of the first solve, made then
     /// (the bind origins of a rig do not change from pose to pose); boxed, so that a
     /// clustering not yet solved stays small.
     priors: OnceLock<Box<PriorTable>>,
@@ -112,8 +118,8 @@ pub struct Clusters {
 /// Clusters are equal where they group the vertices alike (the priors made are a cache).
 impl PartialEq for Clusters {
     fn eq(&self, other: &Self) -> bool {
-        (&self.of_vertex, &self.start, &self.joints)
-            == (&other.of_vertex, &other.start, &other.joints)
+        (&self.of_vertex, &self.start, &self.joints, self.top)
+            == (&other.of_vertex, &other.start, &other.joints, other.top)
     }
 }
 
@@ -140,6 +146,7 @@ impl Clusters {
             of_vertex: Vec::with_capacity(vertices),
             start: vec![0],
             joints: Vec::new(),
+            top: 0,
             priors: OnceLock::new(),
         };
         for v in 0..vertices {
@@ -154,17 +161,25 @@ impl Clusters {
             });
             out.of_vertex.push(c);
         }
+        out.top = out.joints.iter().max().map_or(0, |&j| u32::from(j) + 1);
         out
     }
 
     /// The number of clusters.
     pub fn len(&self) -> usize {
-        self.start.len() - 1
+        // `Clusters::default()` has no `start` at all.
+        self.start.len().saturating_sub(1)
     }
 
     /// Whether there are no clusters (no vertices).
     pub fn is_empty(&self) -> bool {
         self.len() == 0
+    }
+
+    /// One past the highest joint index any cluster names (0 for none): the joint
+    /// transforms a solve needs at least.
+    pub fn joint_count(&self) -> usize {
+        self.top as usize
     }
 
     /// The cluster of each vertex.
@@ -210,13 +225,13 @@ impl Clusters {
         put: impl Fn(Vec3<f32>) -> O + Sync,
     ) {
         assert_eq!(out.len(), self.len(), "one centre a cluster");
-        let motions = Motions::new(d, bind);
+        let motions = Motions::new(d);
         // The priors made on the first solve, or made again for other bind origins.
         let (made_for, made) = &**self
             .priors
             .get_or_init(|| Box::new((bind.to_vec(), self.prior_table(bind))));
         let other;
-        let priors: &[Priors] = if made_for == bind {
+        let priors: &[Priors] = if same_bits(made_for, bind) {
             made
         } else {
             other = self.prior_table(bind);
@@ -282,13 +297,20 @@ impl Clusters {
     }
 }
 
+/// Whether `a` and `b` hold the same points bit for bit (a NaN origin is its own, and
+/// −0 is not +0: each gives its own priors' bits).
+fn same_bits(a: &[Vec3<f32>], b: &[Vec3<f32>]) -> bool {
+    let bits = |v: &Vec3<f32>| v.to_array().map(f32::to_bits);
+    a.len() == b.len() && a.iter().zip(b).all(|(a, b)| bits(a) == bits(b))
+}
+
 /// The point a cluster's centre is pulled towards along the directions its joints leave
 /// free: the mean of its joints' bind origins (in f64, in the joints' order, then rounded
 /// to f32); the origin for no joints.
 ///
 /// # Panics
-/// If a joint index is not below `bind.len()`.
-pub fn prior(joints: &[u16], bind: &[Vec3<f32>]) -> Vec3<f32> {
+/// If a joint index is not below `bind.len()` (the callers check rigs first).
+pub(crate) fn prior(joints: &[u16], bind: &[Vec3<f32>]) -> Vec3<f32> {
     let sum = joints
         .iter()
         .fold(Vec3::<f64>::zero(), |s, &j| s + bind[usize::from(j)].cast());
@@ -310,7 +332,7 @@ const T: usize = 9;
 const U: usize = 12;
 
 /// The lower triangle of `MᵀM` and `Mᵀt` for a 3×3 matrix M given by its rows, by one
-/// order of operations (so a cluster of one joint sums to exactly zero).
+/// order of operations (so a cluster of one joint gets `b = SᵀT − n U` exactly 0).
 #[inline(always)]
 fn gram<X: Num>(m: [X; 9], t: [X; 3]) -> ([X; 6], [X; 3]) {
     let dot = |i: usize, x: [X; 3]| m[i] * x[0] + m[3 + i] * x[1] + m[6 + i] * x[2];
@@ -351,22 +373,17 @@ impl Num for f64 {
 #[repr(C, align(64))]
 struct Lines(Motion);
 
-/// The joints of one pose as the centre solve sums them, and their bind origins.
+/// The joints of one pose as the centre solve sums them.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Motions {
-    lines: Vec<Lines>,
-    bind: Vec<Vec3<f32>>,
-}
+pub struct Motions(Vec<Lines>);
 
 impl Motions {
     /// The motions of joint transforms `d` (one per joint: `[R | t]` of each dual
-    /// quaternion, normalized in f64) with the joints' bind origins `bind`; as many as the
-    /// shorter of the two has (the callers pass one per joint in both). A dual quaternion
-    /// that cannot be normalized (non-finite, or a zero real part) gives a motion of NaN,
-    /// whose clusters take their prior.
-    pub fn new(d: &[DualQuat<f32>], bind: &[Vec3<f32>]) -> Self {
-        let n = d.len().min(bind.len());
-        let lines = d[..n]
+    /// quaternion, normalized in f64). A dual quaternion that cannot be normalized
+    /// (non-finite, or a zero real part) gives a motion of NaN, whose clusters take their
+    /// prior.
+    pub fn new(d: &[DualQuat<f32>]) -> Self {
+        let lines = d
             .iter()
             .map(|d| {
                 let Ok(unit) = d.cast::<f64>().normalize() else {
@@ -388,10 +405,7 @@ impl Motions {
                 Lines(x)
             })
             .collect();
-        Motions {
-            lines,
-            bind: bind[..n].to_vec(),
-        }
+        Motions(lines)
     }
 
     /// The motion of joint `j`.
@@ -400,19 +414,21 @@ impl Motions {
     /// If `j` is not below the number of motions.
     #[inline(always)]
     fn of(&self, j: u16) -> &Motion {
-        &self.lines[usize::from(j)].0
+        &self.0[usize::from(j)].0
     }
 }
 
-/// The rotation centre of one cluster: `min Σ_{a<b} ‖(R_a − R_b) r + t_a − t_b‖²`, with a
-/// Tikhonov pull (1e-6 of the trace) towards the mean of the joints' bind origins
-/// ([`prior`]) for the rank-deficient directions; that mean where the system cannot be
-/// solved (non-finite motions).
+/// The rotation centre of one cluster of a pose's `motions`:
+/// `min Σ_{a<b} ‖(R_a − R_b) r + t_a − t_b‖²`, with a Tikhonov pull (1e-6 of the trace, at
+/// least 1e-12) towards the prior, the mean of the joints' origins in `bind` rounded to
+/// f32, for the rank-deficient directions; that prior where the system cannot be solved
+/// (non-finite motions).
 ///
 /// # Panics
-/// If a joint index is not below the number of motions (the callers check rigs first).
-pub fn rotation_centre(joints: &[u16], motions: &Motions) -> Vec3<f32> {
-    centre_about(joints, motions, prior(joints, &motions.bind))
+/// If a joint index is not below the number of motions and of bind origins (the callers
+/// check rigs first).
+pub fn rotation_centre(joints: &[u16], motions: &Motions, bind: &[Vec3<f32>]) -> Vec3<f32> {
+    centre_about(joints, motions, prior(joints, bind))
 }
 
 /// [`rotation_centre`] with its prior given.
@@ -455,9 +471,10 @@ fn solve<X: Num>(f: impl Fn(usize) -> X, n: X, prior: [X; 3]) -> ([X; 3], X) {
         zero - sts[4],
         nn - sts[5],
     ];
-    // One joint: A = RᵀR − I is rounding alone (about 1e-16, against the Tikhonov term's
-    // floor of 1e-12), so it is made 0 (n − 1 is 0 there and at least 1 elsewhere): the
-    // centre is the prior.
+    // One joint: A = I − RᵀR is rounding alone (about 1e-16, against the Tikhonov term's
+    // floor of 1e-12), so it is made 0 (n − 1 is 0 there and at least 1 from two joints
+    // on): the centre is the prior. No joints (n − 1 = −1): A is 0 already, and the centre
+    // the prior, the origin.
     let many = (n - X::splat(1.0)).at_most_one();
     a = a.map(|x| x * many);
     let mut b = [0, 1, 2].map(|i| stt[i] - n * f(U + i));

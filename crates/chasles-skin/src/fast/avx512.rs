@@ -64,7 +64,7 @@
 //! (`fast::grouped`, [`crate::vertex_order`]) makes the characters faster and keeps the
 //! rule.
 //!
-//! On the characters no lane waits on a block-mate's second update: in f64 with the
+//! On the characters no lane should wait on a block-mate's second update: in f64 with the
 //! second-order step, every vertex of three influences or more needs one update at most
 //! over their first clips at five times (none and one: CesiumMan 1773 and 3912,
 //! RiggedFigure 713 and 322, the Fox 15 and 180; `examples/dib_step`, 2026-12-05). An

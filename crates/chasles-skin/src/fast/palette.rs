@@ -300,7 +300,8 @@ impl Palette {
     /// only what its method reads is made (no dual quaternions for LBS, no matrices kept
     /// for the others), into vectors whose capacity is reused from the last pose — no
     /// allocation once the first pose has sized them, except SBS's centre solve (the
-    /// joints' dual quaternions and per-joint sums, some kilobytes). SBS's centres are
+    /// joints' dual quaternions and per-joint sums, some kilobytes; on the first pose, each
+    /// cluster's prior, 12 bytes a cluster, kept by the rig's clusters). SBS's centres are
     /// solved on all threads when `parallel`. On an error the palette is left empty (no job
     /// takes it) rather than half filled.
     pub fn update<const K: usize>(

@@ -123,7 +123,8 @@ pub fn qlb<const K: usize>(
 /// Spherical blend skinning into `out` with the joints' unit dual quaternions: the rotation
 /// centre of each of `clusters` (made once for the rig with [`clusters`]) is solved for this
 /// pose, and each vertex is blended by QLB about its cluster's; on all threads when
-/// `parallel`.
+/// `parallel`. An error where `clusters` are not this rig's (another vertex count, or a
+/// joint past the rig's).
 pub fn sbs<const K: usize>(
     rig: &FastRig<K>,
     clusters: &Clusters,
@@ -132,6 +133,17 @@ pub fn sbs<const K: usize>(
     parallel: bool,
 ) -> Result<()> {
     check(rig, d.len(), out.len())?;
+    // Before the solve, which indexes the joints by the clusters'.
+    let (n, of_vertex) = (rig.vertices().len(), clusters.of_vertex().len());
+    same_count(FAST_RIG, "vertices in the clusters", n, of_vertex)?;
+    if clusters.joint_count() > d.len() {
+        return Err(crate::SkinError::OutOfRange {
+            rig: FAST_RIG.into(),
+            what: "joint of the clusters".into(),
+            index: clusters.joint_count() - 1,
+            count: d.len(),
+        });
+    }
     let centres = padded_centres(clusters, d, rig.centres(), parallel);
     let rows = rows(d, rig.centres());
     let (_, table) = pose_table::<K, QlbKernel>(&rows, rig.vertices().len());
@@ -293,5 +305,26 @@ mod tests {
                 assert!((got - want).norm() < 1e-4, "{got:?} vs {want:?}");
             }
         }
+    }
+
+    /// `sbs` takes clusters of its own rig only: another rig's (more joints, or other
+    /// vertices) get an error naming what does not fit, before any centre is solved.
+    #[test]
+    fn sbs_refuses_another_rigs_clusters() {
+        let small = synthetic::rig(64, 8, 3);
+        let d = synthetic::joints(8, 3).dual_quats;
+        let mut out = vec![[0f32; 6]; 64];
+        sbs(&small, &clusters(&small), &d, &mut out, false).unwrap();
+        let more_joints = clusters(&synthetic::rig(64, 54, 3));
+        assert!(more_joints.joint_count() > 8);
+        let err = sbs(&small, &more_joints, &d, &mut out, false).unwrap_err();
+        assert!(matches!(err, crate::SkinError::OutOfRange { .. }), "{err}");
+        assert!(err.to_string().contains("joint of the clusters"), "{err}");
+        let more_vertices = clusters(&synthetic::rig(65, 8, 3));
+        let err = sbs(&small, &more_vertices, &d, &mut out, false).unwrap_err();
+        assert!(
+            err.to_string().contains("vertices in the clusters"),
+            "{err}"
+        );
     }
 }

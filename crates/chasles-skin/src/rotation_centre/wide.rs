@@ -67,8 +67,8 @@ num!(W8, _mm512_set1_pd, _mm512_min_pd);
 
 /// Each of `N` clusters' sums over its joints of their motions' 16 fields, in `R` registers
 /// of `L` lanes (`L R = 16`): `add(a, m)` adds the `L` fields `m` of a motion to `a`. One
-/// cluster after the other: all four clusters' 24 accumulators at once spilled to the
-/// stack at every joint.
+/// cluster after the other: all four clusters' accumulators at once (24 registers, when a
+/// motion had 24 fields) spilled to the stack at every joint.
 #[inline(always)]
 fn sums<V: Copy, const N: usize, const R: usize, const L: usize>(
     joints: [&[u16]; N],
