@@ -39,7 +39,12 @@
 //! 867–945 → 764–824 µs and, on a quieter machine, 845–868 → 746–770 (best of 30, three
 //! rounds, the builds in turn three times and twice), SBS's whole pose 1627–1725 →
 //! 1532–1592 and 1526–1561 → 1425–1486 µs, DQS 4.31–4.78× → 4.01–4.50× and 4.60–4.86× →
-//! 4.24–4.41× SBS (DQS 322–400 µs in those runs). Each motion sits on whole cache lines
+//! 4.24–4.41× SBS (DQS 322–400 µs in those runs). Then the lanes' centres went straight
+//! from their registers into the padded table (`Clusters::centres_into`), where they had
+//! gone out a float at a time through an array of `Vec3`s and a caller's closure (a fifth
+//! of the solve's samples under `perf record`): the solve 771–789 → 697–704 µs, SBS's
+//! pose 1478–1524 → 1411–1464, DQS 4.25–4.48× → 4.16–4.34× SBS (best of 30, the builds in
+//! turn twice). Each motion sits on whole cache lines
 //! (the sums' 64-byte loads straddled two lines wherever the allocator put the vector, and
 //! the solve took 1.2 times as long in those runs), and the system is solved by its
 //! adjugate with one division — four clusters at once in AVX2's f64 lanes where the
@@ -204,25 +209,25 @@ impl Clusters {
         bind: &[Vec3<f32>],
         parallel: bool,
     ) -> Vec<Vec3<f32>> {
-        let mut out = vec![Vec3::zero(); self.len()];
-        self.centres_into(d, bind, parallel, &mut out, |c| c);
-        out
+        let mut out = vec![[0f32; 4]; self.len()];
+        self.centres_into(d, bind, parallel, &mut out);
+        out.iter().map(|c| Vec3::new(c[0], c[1], c[2])).collect()
     }
 
-    /// [`Clusters::centres`] into `out`, one entry a cluster, each centre as `put`
-    /// makes it: the fast path's palette takes them padded to four floats with no vector of
-    /// centres made on the way (on a rig of 85 582 clusters that vector and its padded copy
-    /// were 2.4 MB a pose).
+    /// [`Clusters::centres`] into `out`, one entry a cluster, each centre padded to four
+    /// floats (the fourth 0), as the fast path's palette holds them: no vector of centres
+    /// made on the way (on a rig of 85 582 clusters that vector and its padded copy were
+    /// 2.4 MB a pose), and the lanes' centres stored straight from their registers (module
+    /// docs).
     ///
     /// # Panics
     /// If `out.len()` is not `self.len()` (the callers size it so).
-    pub(crate) fn centres_into<O: Send>(
+    pub(crate) fn centres_into(
         &self,
         d: &[DualQuat<f32>],
         bind: &[Vec3<f32>],
         parallel: bool,
-        out: &mut [O],
-        put: impl Fn(Vec3<f32>) -> O + Sync,
+        out: &mut [[f32; 4]],
     ) {
         assert_eq!(out.len(), self.len(), "one centre a cluster");
         let motions = Motions::new(d);
@@ -240,35 +245,26 @@ impl Clusters {
         // The lanes where the fast path's SIMD kernels run (and not where `fast::set_simd`
         // or `fast::set_avx512` forbid them, so that the fallback is measured whole).
         let lanes = Lanes::allowed(crate::fast::uses_simd(4), crate::fast::uses_avx512(4));
-        let write = |out: &mut [O], centres: &[Vec3<f32>]| {
-            for (o, c) in out.iter_mut().zip(centres) {
-                *o = put(*c);
-            }
-        };
         // Eight clusters at a time where AVX-512 may run, else (and the last few) four at a
         // time, and the last few of those one by one.
-        let solve = |(g, out): (usize, &mut [O])| {
+        let solve = |(g, out): (usize, &mut [[f32; 4]])| {
             let c = 8 * g;
             let joints = |k: usize| self.joints(c + k);
             let p = &priors[g];
-            if out.len() == 8 {
-                if let Some(centres) = eight(core::array::from_fn(joints), &motions, p, lanes) {
-                    write(out, &centres);
+            if let Ok(out) = <&mut [[f32; 4]; 8]>::try_from(&mut *out) {
+                if eight(core::array::from_fn(joints), &motions, p, lanes, out) {
                     return;
                 }
             }
             for (h, out) in out.chunks_mut(4).enumerate() {
                 let joints = |k: usize| joints(4 * h + k);
                 let p = p.map(|x| [0, 1, 2, 3].map(|k| x[4 * h + k]));
-                if out.len() == 4 {
-                    write(
-                        out,
-                        &four([0, 1, 2, 3].map(joints), &motions, &p, lanes.avx2),
-                    );
+                if let Ok(out) = <&mut [[f32; 4]; 4]>::try_from(&mut *out) {
+                    four([0, 1, 2, 3].map(joints), &motions, &p, lanes.avx2, out);
                 } else {
                     for (k, o) in out.iter_mut().enumerate() {
                         let prior = Vec3::new(p[0][k], p[1][k], p[2][k]);
-                        *o = put(centre_about(joints(k), &motions, prior));
+                        *o = pad(centre_about(joints(k), &motions, prior));
                     }
                 }
             }
@@ -486,23 +482,32 @@ fn solve<X: Num>(f: impl Fn(usize) -> X, n: X, prior: [X; 3]) -> ([X; 3], X) {
     solve_symmetric(a, b)
 }
 
-/// Four clusters' centres about their priors (x, y, z, four lanes each): in AVX2
-/// registers where the processor has them (`avx2`, checked once by the caller:
+/// A centre padded to four floats, the fourth 0.
+#[inline(always)]
+fn pad(c: Vec3<f32>) -> [f32; 4] {
+    [c.x, c.y, c.z, 0.0]
+}
+
+/// Four clusters' centres about their priors (x, y, z, four lanes each) into `out`, padded:
+/// in AVX2 registers where the processor has them (`avx2`, checked once by the caller:
 /// [`wide::four`]), else one by one; the same numbers either way.
 fn four(
     joints: [&[u16]; 4],
     motions: &Motions,
     priors: &[[f32; 4]; 3],
     avx2: bool,
-) -> [Vec3<f32>; 4] {
+    out: &mut [[f32; 4]; 4],
+) {
     #[cfg(target_arch = "x86_64")]
     if avx2 {
         // SAFETY: the caller found AVX2 on this processor.
-        return unsafe { wide::four(joints, motions, priors) };
+        return unsafe { wide::four(joints, motions, priors, out) };
     }
     let _ = avx2;
-    let p = |k: usize| Vec3::new(priors[0][k], priors[1][k], priors[2][k]);
-    [0, 1, 2, 3].map(|k| centre_about(joints[k], motions, p(k)))
+    for (k, o) in out.iter_mut().enumerate() {
+        let p = Vec3::new(priors[0][k], priors[1][k], priors[2][k]);
+        *o = pad(centre_about(joints[k], motions, p));
+    }
 }
 
 /// Which lanes the centre solve may use, checked once a pose. Made only by
@@ -535,21 +540,23 @@ impl Lanes {
 }
 
 /// Eight clusters' centres about their priors in one AVX-512 register a field
-/// ([`wide::eight`]), where allowed; `None` elsewhere (the caller takes them four at a
-/// time: the same numbers).
+/// ([`wide::eight`]) into `out`, padded, where allowed; `false` elsewhere (the caller takes
+/// them four at a time: the same numbers).
 fn eight(
     joints: [&[u16]; 8],
     motions: &Motions,
     priors: &Priors,
     lanes: Lanes,
-) -> Option<[Vec3<f32>; 8]> {
+    out: &mut [[f32; 4]; 8],
+) -> bool {
     #[cfg(target_arch = "x86_64")]
     if lanes.avx512 {
         // SAFETY: `Lanes::allowed` found AVX-512F on this processor.
-        return Some(unsafe { wide::eight(joints, motions, priors) });
+        unsafe { wide::eight(joints, motions, priors, out) };
+        return true;
     }
-    let _ = (joints, motions, priors, lanes.avx512);
-    None
+    let _ = (joints, motions, priors, lanes.avx512, out);
+    false
 }
 
 #[cfg(target_arch = "x86_64")]

@@ -17,7 +17,7 @@
 
 use super::antipodes::Antipodes;
 use super::log::row as twist_row;
-use super::qlb::{pad, row as qlb_row};
+use super::qlb::row as qlb_row;
 use super::{simd, FastRig};
 use crate::error::{same_count, Result, FAST_RIG};
 use crate::pose::{rigid_of, JointTransforms};
@@ -357,7 +357,7 @@ impl Palette {
                 // Every entry is written: resized, not cleared.
                 let clusters = rig.clusters();
                 c.resize(clusters.len(), RotationCentre::zeroed());
-                clusters.centres_into(d, centres, parallel, c, |x| bytemuck::cast(pad(x)));
+                clusters.centres_into(d, centres, parallel, bytemuck::cast_slice_mut(c));
             }
         }
         self.sign(rig);

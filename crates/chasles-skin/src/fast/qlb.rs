@@ -197,13 +197,8 @@ pub(super) fn sbs_into<const K: usize>(
     Ok(())
 }
 
-/// A centre as the kernels read it: 4 floats, the centre first.
-pub(super) fn pad(c: chasles::Vec3<f32>) -> [f32; 4] {
-    [c.x, c.y, c.z, 0.0]
-}
-
 /// The centres of `clusters` for joints `d` with bind origins `bind`, as the kernels read
-/// them ([`pad`]).
+/// them: four floats, the centre first.
 pub(super) fn padded_centres(
     clusters: &Clusters,
     d: &[DualQuat<f32>],
@@ -211,7 +206,7 @@ pub(super) fn padded_centres(
     parallel: bool,
 ) -> Vec<[f32; 4]> {
     let mut centres = vec![[0f32; 4]; clusters.len()];
-    clusters.centres_into(d, bind, parallel, &mut centres, pad);
+    clusters.centres_into(d, bind, parallel, &mut centres);
     centres
 }
 

@@ -9,7 +9,6 @@
 //! about a third of the eight-lane solve).
 
 use super::{solve, Motions, Num, Priors, FIELDS};
-use chasles::Vec3;
 use std::arch::x86_64::*;
 use std::ops::{Add, Div, Mul, Sub};
 
@@ -102,7 +101,8 @@ pub(super) unsafe fn four(
     joints: [&[u16]; 4],
     motions: &Motions,
     priors: &[[f32; 4]; 3],
-) -> [Vec3<f32>; 4] {
+    out: &mut [[f32; 4]; 4],
+) {
     chasles::frame::align_frame();
     let s: [[__m256d; 4]; 4] = sums(joints, motions, _mm256_setzero_pd(), |a, m: &[f64; 4]| {
         // SAFETY: `m` holds the four f64 loaded.
@@ -124,27 +124,28 @@ pub(super) unsafe fn four(
     // SAFETY: each row holds four f32.
     let prior = priors.map(|p| W(_mm256_cvtps_pd(unsafe { _mm_loadu_ps(p.as_ptr()) })));
     let (x, det) = solve(|i| f[i], n, prior);
-    pick4(x, prior, det)
+    pick4(x, prior, det, out)
 }
 
-/// `pick` in four lanes (one by one, the lanes' stores and reloads and the scalar tests had
-/// taken about a third of the solve): the solution where 0 < det < ∞ (ordered: not NaN),
-/// else the prior, rounded to f32 as `as` rounds (to nearest).
+/// `pick` in four lanes, into `out` padded (one by one, the lanes' stores and reloads and
+/// the scalar tests had taken about a third of the solve): the solution where 0 < det < ∞
+/// (ordered: not NaN), else the prior, rounded to f32 as `as` rounds (to nearest), and the
+/// four centres transposed out of the lanes in registers, one store each.
 #[inline]
 #[target_feature(enable = "avx2")]
-fn pick4(x: [W; 3], prior: [W; 3], det: W) -> [Vec3<f32>; 4] {
+fn pick4(x: [W; 3], prior: [W; 3], det: W, out: &mut [[f32; 4]; 4]) {
     let ok = _mm256_and_pd(
         _mm256_cmp_pd::<_CMP_GT_OQ>(det.0, _mm256_setzero_pd()),
         _mm256_cmp_pd::<_CMP_LT_OQ>(det.0, _mm256_set1_pd(f64::INFINITY)),
     );
-    let xyz: [[f32; 4]; 3] = core::array::from_fn(|i| {
-        let v = _mm256_cvtpd_ps(_mm256_blendv_pd(prior[i].0, x[i].0, ok));
-        let mut out = [0f32; 4];
-        // SAFETY: `out` holds four f32.
-        unsafe { _mm_storeu_ps(out.as_mut_ptr(), v) };
-        out
-    });
-    core::array::from_fn(|l| Vec3::new(xyz[0][l], xyz[1][l], xyz[2][l]))
+    let [mut cx, mut cy, mut cz] =
+        [0, 1, 2].map(|i| _mm256_cvtpd_ps(_mm256_blendv_pd(prior[i].0, x[i].0, ok)));
+    let mut zero = _mm_setzero_ps();
+    _MM_TRANSPOSE4_PS(&mut cx, &mut cy, &mut cz, &mut zero);
+    for (o, c) in out.iter_mut().zip([cx, cy, cz, zero]) {
+        // SAFETY: `o` holds four f32.
+        unsafe { _mm_storeu_ps(o.as_mut_ptr(), c) };
+    }
 }
 
 /// Transposes 8 registers of 8 f64: element k of result row c is element c of input k.
@@ -204,7 +205,8 @@ pub(super) unsafe fn eight(
     joints: [&[u16]; 8],
     motions: &Motions,
     priors: &Priors,
-) -> [Vec3<f32>; 8] {
+    out: &mut [[f32; 4]; 8],
+) {
     chasles::frame::align_frame();
     let s: [[__m512d; 2]; 8] = sums(joints, motions, _mm512_setzero_pd(), |a, m: &[f64; 8]| {
         // SAFETY: `m` holds the eight f64 loaded.
@@ -223,23 +225,41 @@ pub(super) unsafe fn eight(
     // SAFETY: each row holds eight f32.
     let prior = priors.map(|p| W8(_mm512_cvtps_pd(unsafe { _mm256_loadu_ps(p.as_ptr()) })));
     let (x, det) = solve(|i| f[i], n, prior);
-    pick8(x, prior, det)
+    pick8(x, prior, det, out)
 }
 
-/// [`pick4`] in eight lanes.
+/// [`pick4`] in eight lanes: the centres transposed out of the lanes two a register, four
+/// stores. The centres went out one float at a time before (stored by lanes, reloaded as
+/// floats and stored padded), and that write took about a fifth of the eight-lane solve's
+/// time by its samples (`perf record`, 2026-12-05).
 #[inline]
 #[target_feature(enable = "avx512f")]
-fn pick8(x: [W8; 3], prior: [W8; 3], det: W8) -> [Vec3<f32>; 8] {
+fn pick8(x: [W8; 3], prior: [W8; 3], det: W8, out: &mut [[f32; 4]; 8]) {
     let ok = _mm512_cmp_pd_mask::<_CMP_GT_OQ>(det.0, _mm512_setzero_pd())
         & _mm512_cmp_pd_mask::<_CMP_LT_OQ>(det.0, _mm512_set1_pd(f64::INFINITY));
-    let xyz: [[f32; 8]; 3] = core::array::from_fn(|i| {
-        let v = _mm512_cvtpd_ps(_mm512_mask_blend_pd(ok, prior[i].0, x[i].0));
-        let mut out = [0f32; 8];
-        // SAFETY: `out` holds eight f32.
-        unsafe { _mm256_storeu_ps(out.as_mut_ptr(), v) };
-        out
-    });
-    core::array::from_fn(|l| Vec3::new(xyz[0][l], xyz[1][l], xyz[2][l]))
+    let [cx, cy, cz] =
+        [0, 1, 2].map(|i| _mm512_cvtpd_ps(_mm512_mask_blend_pd(ok, prior[i].0, x[i].0)));
+    let zero = _mm256_setzero_ps();
+    // Lanes l and l + 4 of each: (x, y) and (z, 0) pairs, then whole centres.
+    let (xy_lo, xy_hi) = (_mm256_unpacklo_ps(cx, cy), _mm256_unpackhi_ps(cx, cy));
+    let (z0_lo, z0_hi) = (_mm256_unpacklo_ps(cz, zero), _mm256_unpackhi_ps(cz, zero));
+    // c[k] holds centres k (low half) and k + 4 (high half).
+    let c = [
+        _mm256_shuffle_ps::<0x44>(xy_lo, z0_lo),
+        _mm256_shuffle_ps::<0xEE>(xy_lo, z0_lo),
+        _mm256_shuffle_ps::<0x44>(xy_hi, z0_hi),
+        _mm256_shuffle_ps::<0xEE>(xy_hi, z0_hi),
+    ];
+    let pairs = [
+        _mm256_permute2f128_ps::<0x20>(c[0], c[1]),
+        _mm256_permute2f128_ps::<0x20>(c[2], c[3]),
+        _mm256_permute2f128_ps::<0x31>(c[0], c[1]),
+        _mm256_permute2f128_ps::<0x31>(c[2], c[3]),
+    ];
+    for (o, p) in out.chunks_exact_mut(2).zip(pairs) {
+        // SAFETY: `o` holds two centres of four f32, eight f32 side by side.
+        unsafe { _mm256_storeu_ps(o.as_mut_ptr().cast::<f32>(), p) };
+    }
 }
 
 #[cfg(test)]
@@ -289,18 +309,14 @@ mod tests {
                 [0, 1, 2].map(|i| x8(shift + i)),
                 [0, 1, 2].map(|i| p8(shift + i)),
             );
-            let want: [Vec3<f32>; 8] = core::array::from_fn(|l| {
-                super::super::pick(
+            let want: [[f32; 4]; 8] = core::array::from_fn(|l| {
+                super::super::pad(super::super::pick(
                     [x[0][l], x[1][l], x[2][l]],
                     [prior[0][l], prior[1][l], prior[2][l]],
                     det[l],
-                )
+                ))
             });
-            let bits = |v: &[Vec3<f32>]| {
-                v.iter()
-                    .map(|c| c.to_array().map(f32::to_bits))
-                    .collect::<Vec<_>>()
-            };
+            let bits = |v: &[[f32; 4]]| v.iter().map(|c| c.map(f32::to_bits)).collect::<Vec<_>>();
             if have.0 {
                 for h in [0, 4] {
                     // SAFETY: the processor has AVX2; each array holds four f64 from `h`.
@@ -319,24 +335,28 @@ mod tests {
         }
     }
 
-    /// [`pick4`] on lanes `h … h + 3` of the arrays.
+    /// [`pick4`] on lanes `h … h + 3` of the arrays (into centres of NaN, all overwritten).
     #[target_feature(enable = "avx2")]
     unsafe fn four_lanes(
         x: &[[f64; 8]; 3],
         p: &[[f64; 8]; 3],
         det: &[f64; 8],
         h: usize,
-    ) -> [Vec3<f32>; 4] {
+    ) -> [[f32; 4]; 4] {
         // SAFETY: `h` is 0 or 4, so each load reads four f64 of an array of eight.
         let w = |a: &[f64; 8]| W(unsafe { _mm256_loadu_pd(a.as_ptr().add(h)) });
-        pick4(x.each_ref().map(w), p.each_ref().map(w), w(det))
+        let mut out = [[f32::NAN; 4]; 4];
+        pick4(x.each_ref().map(w), p.each_ref().map(w), w(det), &mut out);
+        out
     }
 
-    /// [`pick8`] on the arrays.
+    /// [`pick8`] on the arrays (into centres of NaN, all overwritten).
     #[target_feature(enable = "avx512f")]
-    unsafe fn eight_lanes(x: &[[f64; 8]; 3], p: &[[f64; 8]; 3], det: &[f64; 8]) -> [Vec3<f32>; 8] {
+    unsafe fn eight_lanes(x: &[[f64; 8]; 3], p: &[[f64; 8]; 3], det: &[f64; 8]) -> [[f32; 4]; 8] {
         // SAFETY: each load reads the eight f64 of an array of eight.
         let w = |a: &[f64; 8]| W8(unsafe { _mm512_loadu_pd(a.as_ptr()) });
-        pick8(x.each_ref().map(w), p.each_ref().map(w), w(det))
+        let mut out = [[f32::NAN; 4]; 8];
+        pick8(x.each_ref().map(w), p.each_ref().map(w), w(det), &mut out);
+        out
     }
 }
