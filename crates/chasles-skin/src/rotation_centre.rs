@@ -78,6 +78,11 @@
 //!   13.5–14.1 ns a cluster (2026-12-04, three runs each), its values spilled.
 //! * The division `1/n` (of the prior, before it was made once) as a multiplication, a
 //!   bound with wrong numbers: 864–883 against 870–896 µs a pose (1–2 %, 2026-12-05).
+//! * Eight groups of eight a call, every group solved up to its division before the
+//!   groups' divisions, choices and stores (a fifth of the solve's samples sat on the
+//!   instruction after the division, which ends each group's chain): 697–704 → 835–838 µs
+//!   a pose (2026-12-05, the builds in turn twice), and 939–943 while the joints' lists
+//!   were made in the AVX-512 function, where the array's `from_fn` stayed a call.
 //!
 //! SBS's pose on that rig is now about half this solve and half the skinning job, which
 //! runs at QLB's speed, half DQS's (it blends four floats of quaternion and twelve of
