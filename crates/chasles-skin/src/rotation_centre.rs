@@ -44,9 +44,14 @@
 //! gone out a float at a time through an array of `Vec3`s and a caller's closure (a fifth
 //! of the solve's samples under `perf record`): the solve 771–789 → 697–704 µs, SBS's
 //! pose 1478–1524 → 1411–1464, DQS 4.25–4.48× → 4.16–4.34× SBS (best of 30, the builds in
-//! turn twice). Each motion sits on whole cache lines
-//! (the sums' 64-byte loads straddled two lines wherever the allocator put the vector, and
-//! the solve took 1.2 times as long in those runs), and the system is solved by its
+//! turn twice). In `chasles skin --bench`'s interleaved rounds, which start each kernel
+//! with others' data in the caches: SBS 59.8–61.1 → 64.0–67.3 M vertices/s at 10⁵ vertices
+//! (three runs each in turn), but 69.7–73.9 → 68.0–72.6 at 10⁶ (302 905 clusters, four
+//! runs), where the priors' table (3.6 MB) comes from memory each pose and takes back what
+//! the arithmetic saves (a warm loop at 10⁶: the solve 3087–3242 → 2569–2580 µs). Each
+//! motion sits on whole cache lines (the sums' 64-byte loads straddled two lines wherever
+//! the allocator put the vector, and the solve took 1.2 times as long in those runs), and
+//! the system is solved by its
 //! adjugate with one division — four clusters at once in AVX2's f64 lanes where the
 //! processor has them (module `wide`: 20 ns a cluster against 35 one by one, on a rig of
 //! 3·10⁵ clusters), eight in AVX-512F's, with the same operations in the same order, so
