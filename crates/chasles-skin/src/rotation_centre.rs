@@ -26,9 +26,10 @@
 //! axis) keeps an eigenvalue of f64's rounding (about n²·1e-16), below the Tikhonov term
 //! (at least 1e-12). For one joint that rounding is all of A, and A is made exactly 0 (the
 //! centre is the prior). Where n ≥ 2 joints turn alike, A is all rounding too, and the
-//! centre lands off the prior by about n²·1e-4 (|prior| + |t|) (the old sums of G left
-//! about a quarter of that): harmless, as the blend of equal rotations does not depend on
-//! the centre, nor does it along a free axis.
+//! centre lands off the prior by about n²·1e-4 (|prior| + |t|) (the old sums of G left a
+//! sixth to a half of that, in a review's simulation of two to eight joints): harmless, as
+//! the blend of equal rotations does not depend on the centre, nor does it along a free
+//! axis.
 //! Until 2026-12-05 the motions were the f32 matrices of the dual quaternions, orthogonal
 //! only to f32's rounding, where `n² I − SᵀS` would give that direction an eigenvalue of
 //! about 1e-7 — as large as the Tikhonov term — so each motion carried its `RᵀR` and the
@@ -51,8 +52,8 @@
 //! the arithmetic saves (a warm loop at 10⁶: the solve 3087–3242 → 2569–2580 µs). Each
 //! motion sits on whole cache lines (the sums' 64-byte loads straddled two lines wherever
 //! the allocator put the vector, and the solve took 1.2 times as long in those runs), and
-//! the system is solved by its
-//! adjugate with one division — four clusters at once in AVX2's f64 lanes where the
+//! the system is solved by its adjugate with one division — four clusters at once in
+//! AVX2's f64 lanes where the
 //! processor has them (module `wide`: 20 ns a cluster against 35 one by one, on a rig of
 //! 3·10⁵ clusters), eight in AVX-512F's, with the same operations in the same order, so
 //! the same numbers; the choice of the solution or the prior and the rounding to f32 run
