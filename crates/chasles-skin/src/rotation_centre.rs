@@ -44,8 +44,9 @@
 //! from their registers into the padded table (`Clusters::centres_into`), where they had
 //! gone out a float at a time through an array of `Vec3`s and a caller's closure (a fifth
 //! of the solve's samples under `perf record`): the solve 771–789 → 697–704 µs, SBS's
-//! pose 1478–1524 → 1411–1464, DQS 4.25–4.48× → 4.16–4.34× SBS (best of 30, the builds in
-//! turn twice). In `chasles skin --bench`'s interleaved rounds, which start each kernel
+//! pose 1478–1524 → 1411–1464, DQS 4.25–4.42× → 4.16–4.34× SBS (best of 30, the builds in
+//! turn twice; the old build's first two rounds, still warming up, left out). In `chasles
+//! skin --bench`'s interleaved rounds, which start each kernel
 //! with others' data in the caches: SBS 59.8–61.1 → 64.0–67.3 M vertices/s at 10⁵ vertices
 //! (three runs each in turn), but 69.7–73.9 → 68.0–72.6 at 10⁶ (302 905 clusters, four
 //! runs), where the priors' table (3.6 MB) comes from memory each pose and takes back what
