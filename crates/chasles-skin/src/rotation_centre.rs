@@ -132,11 +132,12 @@ pub struct Clusters {
     priors: OnceLock<Box<PriorTable>>,
 }
 
-/// Clusters are equal where they group the vertices alike (the priors made are a cache).
+/// Clusters are equal where they group the vertices alike (`top` follows from the joints,
+/// and the priors made are a cache).
 impl PartialEq for Clusters {
     fn eq(&self, other: &Self) -> bool {
-        (&self.of_vertex, &self.start, &self.joints, self.top)
-            == (&other.of_vertex, &other.start, &other.joints, other.top)
+        (&self.of_vertex, &self.start, &self.joints)
+            == (&other.of_vertex, &other.start, &other.joints)
     }
 }
 

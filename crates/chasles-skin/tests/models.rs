@@ -11,6 +11,32 @@ use chasles_skin::{
 };
 use std::path::PathBuf;
 
+/// A rig of `joints` root joints (identity rest transforms and inverse bind matrices, no
+/// clips) over `mesh`, moved by `influences`.
+fn flat_rig(
+    name: &str,
+    mesh: chasles_skin::Mesh,
+    joints: usize,
+    influences: Influences,
+) -> Result<chasles_skin::Rig, SkinError> {
+    let nodes = (0..joints)
+        .map(|i| chasles_skin::Node {
+            name: format!("j{i}"),
+            parent: None,
+            rest: Default::default(),
+        })
+        .collect();
+    chasles_skin::Rig::new(
+        name.into(),
+        mesh,
+        nodes,
+        (0..joints).collect(),
+        vec![chasles::Mat4::identity(); joints],
+        influences,
+        Vec::new(),
+    )
+}
+
 /// A built-in model as a file (the tests load by path, as users do).
 fn data(name: &str) -> PathBuf {
     chasles_models::on_disk().unwrap().join(name)
@@ -337,26 +363,12 @@ fn a_layout_built_by_hand_has_its_weights_checked() {
         joints: vec![0, 1],
         weights: vec![2.0, 2.0],
     };
-    let rig = chasles_skin::Rig::new(
-        "heavy".into(),
-        chasles_skin::Mesh {
-            positions: vec![Vec3::new(1.0, 0.0, 0.0)],
-            normals: vec![Vec3::new(0.0, 0.0, 1.0)],
-            triangles: Vec::new(),
-        },
-        (0..2)
-            .map(|i| chasles_skin::Node {
-                name: format!("j{i}"),
-                parent: None,
-                rest: Default::default(),
-            })
-            .collect(),
-        vec![0, 1],
-        vec![chasles::Mat4::identity(); 2],
-        heavy,
-        Vec::new(),
-    )
-    .unwrap();
+    let mesh = chasles_skin::Mesh {
+        positions: vec![Vec3::new(1.0, 0.0, 0.0)],
+        normals: vec![Vec3::new(0.0, 0.0, 1.0)],
+        triangles: Vec::new(),
+    };
+    let rig = flat_rig("heavy", mesh, 2, heavy).unwrap();
     let f = FastRig::<4>::new(&rig).unwrap();
     assert_eq!(f.vertices()[0].w, [2.0, 2.0, 0.0, 0.0]);
 }
@@ -989,22 +1001,12 @@ fn rig_new_checks_the_parts_with_typed_errors() {
         );
     }
     // The fast layout names the influence count it cannot hold.
-    let five: Vec<Node> = (0..5)
-        .map(|i| Node {
-            name: format!("j{i}"),
-            parent: None,
-            rest: Trs::default(),
-        })
-        .collect();
     let spread: Vec<(usize, f32)> = (0..5).map(|j| (j, 0.2)).collect();
-    let wide = Rig::new(
-        "wide".into(),
+    let wide = flat_rig(
+        "wide",
         mesh(),
-        five,
-        (0..5).collect(),
-        vec![Mat4::identity(); 5],
+        5,
         Influences::from_lists(&[spread.clone(), spread.clone(), spread], 5).unwrap(),
-        vec![],
     )
     .unwrap();
     assert!(matches!(

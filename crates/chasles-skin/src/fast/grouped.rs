@@ -70,8 +70,11 @@ fn cost<const K: usize>(vertices: &[Vertex<K>]) -> usize {
     vertices
         .chunks(16)
         .map(|b| {
-            let has = |f: fn(usize) -> bool| b.iter().any(|v| f(count(v)));
-            5 + 4 * usize::from(has(|c| c == 2)) + 18 * usize::from(has(|c| c >= 3))
+            let (two, more) = b
+                .iter()
+                .map(count)
+                .fold((false, false), |(t, m), c| (t || c == 2, m || c >= 3));
+            5 + 4 * usize::from(two) + 18 * usize::from(more)
         })
         .sum()
 }

@@ -134,16 +134,7 @@ pub fn sbs<const K: usize>(
 ) -> Result<()> {
     check(rig, d.len(), out.len())?;
     // Before the solve, which indexes the joints by the clusters'.
-    let (n, of_vertex) = (rig.vertices().len(), clusters.of_vertex().len());
-    same_count(FAST_RIG, "vertices in the clusters", n, of_vertex)?;
-    if clusters.joint_count() > d.len() {
-        return Err(crate::SkinError::OutOfRange {
-            rig: FAST_RIG.into(),
-            what: "joint of the clusters".into(),
-            index: clusters.joint_count() - 1,
-            count: d.len(),
-        });
-    }
+    clusters_fit(rig, clusters, d.len())?;
     let centres = padded_centres(clusters, d, rig.centres(), parallel);
     let rows = rows(d, rig.centres());
     let (_, table) = pose_table::<K, QlbKernel>(&rows, rig.vertices().len());
@@ -163,12 +154,11 @@ pub(super) fn sbs_into<const K: usize>(
     parallel: bool,
 ) -> Result<()> {
     check(rig, rows.len(), out.vertices()?)?;
-    let (n, of_vertex) = (rig.vertices().len(), clusters.of_vertex().len());
-    same_count(FAST_RIG, "vertices in the clusters", n, of_vertex)?;
+    clusters_fit(rig, clusters, rows.len())?;
     same_count(FAST_RIG, "rotation centres", clusters.len(), centres.len())?;
     let simd = super::simd(K);
     let cluster = clusters.of_vertex();
-    let big = n >= super::STREAM_VERTICES;
+    let big = rig.vertices().len() >= super::STREAM_VERTICES;
     for_chunks(out, rig.vertices(), parallel, |first, mut o, v| {
         let cl = &cluster[first..first + v.len()];
         #[cfg(target_arch = "x86_64")]
@@ -194,6 +184,26 @@ pub(super) fn sbs_into<const K: usize>(
             o.put(i, about(v, &blend(v, rows), [c[0], c[1], c[2]]));
         }
     });
+    Ok(())
+}
+
+/// Whether `clusters` are `rig`'s with `joints` joint transforms: one cluster index a
+/// vertex and no joint past the transforms (an error naming which, else).
+fn clusters_fit<const K: usize>(
+    rig: &FastRig<K>,
+    clusters: &Clusters,
+    joints: usize,
+) -> Result<()> {
+    let (n, of_vertex) = (rig.vertices().len(), clusters.of_vertex().len());
+    same_count(FAST_RIG, "vertices in the clusters", n, of_vertex)?;
+    if clusters.joint_count() > joints {
+        return Err(crate::SkinError::OutOfRange {
+            rig: FAST_RIG.into(),
+            what: "joint of the clusters".into(),
+            index: clusters.joint_count() - 1,
+            count: joints,
+        });
+    }
     Ok(())
 }
 

@@ -23,6 +23,17 @@ fn sixteen_joints() -> (Vec<DualQuat<f32>>, Vec<Vec3<f32>>) {
     (d, bind)
 }
 
+/// `n` joints, joint j turned by `angle · j` about `axis(j)` and moved by (0.5, j, −1).
+fn turned(n: usize, axis: impl Fn(f32) -> Vec3<f32>, angle: f32) -> Vec<DualQuat<f32>> {
+    (0..n)
+        .map(|j| {
+            let j = j as f32;
+            let q = Quat::from_axis_angle(axis(j), angle * j).unwrap();
+            DualQuat::from_rotation_translation(q, Vec3::new(0.5, j, -1.0))
+        })
+        .collect()
+}
+
 /// Asserts that `got` is the centre of `joints` solved alone, padded with a 0, bit for bit
 /// (`what` says where it came from).
 fn assert_alone(got: [f32; 4], joints: &[u16], m: &Motions, bind: &[Vec3<f32>], what: &str) {
@@ -57,10 +68,11 @@ fn motions_sit_on_whole_cache_lines() {
     }
 }
 
-/// A motion is its dual quaternion's rigid motion in f64, normalized there: `RᵀR = I`
-/// to f64's rounding (what lets the solve take `Σ RᵀR` as `n I`) even from an f32
-/// dual quaternion off unit length, `Rᵀt` made from them; one that cannot be
-/// normalized is NaN (its clusters take their prior).
+/// A motion is its dual quaternion's rigid motion in f64, normalized there: R turns a
+/// vector as the quaternion does, `RᵀR = I` to f64's rounding (what lets the solve take
+/// `Σ RᵀR` as `n I`) even from an f32 dual quaternion off unit length, t is its
+/// translation and `Rᵀt` made from them; one that cannot be normalized is NaN (its
+/// clusters take their prior).
 #[test]
 fn motions_are_rigid_to_f64s_rounding() {
     let (mut d, _) = sixteen_joints();
@@ -71,13 +83,21 @@ fn motions_are_rigid_to_f64s_rounding() {
     for (j, d) in d.iter().enumerate().take(16) {
         let x = m.of(j as u16);
         let r = |i: usize, k: usize| x[R + 3 * i + k];
+        let unit = d.cast::<f64>().normalize().unwrap();
+        let v = Vec3::new(0.3, -1.7, 2.2);
+        let turned = unit.real.rotate(v);
         for i in 0..3 {
+            let rv: f64 = (0..3).map(|k| r(i, k) * v.get(k)).sum();
+            assert!(
+                (rv - turned.get(i)).abs() < 1e-14,
+                "joint {j}: (R v)[{i}] = {rv}"
+            );
             for k in 0..3 {
                 let g: f64 = (0..3).map(|l| r(l, i) * r(l, k)).sum();
                 let want = if i == k { 1.0 } else { 0.0 };
                 assert!((g - want).abs() < 1e-15, "joint {j}: (RᵀR)[{i}][{k}] = {g}");
             }
-            let t = d.cast::<f64>().normalize().unwrap().translation().get(i);
+            let t = unit.translation().get(i);
             assert!((x[T + i] - t).abs() < 1e-12, "joint {j}");
             let u: f64 = (0..3).map(|l| r(l, i) * x[T + l]).sum();
             assert_eq!(x[U + i], u, "joint {j}");
@@ -126,15 +146,10 @@ fn every_cluster_gets_its_own_centre() {
 
 /// Four clusters at once (AVX2 lanes, where the processor has them) give each one's
 /// centre bit for bit: clusters of 1 to 4 joints side by side, one
-/// with a non-finite joint (the prior), equal rotations (the prior by the determinant).
+/// with a non-finite joint (the prior), equal rotations (A all rounding: near the prior).
 #[test]
 fn four_at_once_are_each_alone_bit_for_bit() {
-    let mut d: Vec<DualQuat<f32>> = (0..12)
-        .map(|j| {
-            let q = Quat::from_axis_angle(Vec3::new(1.0, j as f32, -2.0), 0.37 * j as f32);
-            DualQuat::from_rotation_translation(q.unwrap(), Vec3::new(0.5, j as f32, -1.0))
-        })
-        .collect();
+    let mut d = turned(12, |j| Vec3::new(1.0, j, -2.0), 0.37);
     d[11].real.w = f32::NAN;
     d[10] = d[9];
     let bind: Vec<Vec3<f32>> = (0..12).map(|j| Vec3::new(j as f32, 1.0, -0.5)).collect();
@@ -171,16 +186,10 @@ fn four_at_once_are_each_alone_bit_for_bit() {
 /// Eight clusters at once (AVX-512F's lanes, where the processor has them and they are
 /// allowed; nothing elsewhere) give each cluster's centre alone bit for bit: clusters of
 /// 1 to 8 joints side by side, with a non-finite joint (the prior) and equal rotations
-/// (the prior by the determinant) among them, every set in every lane.
+/// (A all rounding: near the prior) among them, every set in every lane.
 #[test]
 fn eight_at_once_are_each_alone_bit_for_bit() {
-    let mut d: Vec<DualQuat<f32>> = (0..20)
-        .map(|j| {
-            let axis = Vec3::new(1.0, j as f32, -2.0 + 0.1 * j as f32);
-            let q = Quat::from_axis_angle(axis, 0.29 * j as f32).unwrap();
-            DualQuat::from_rotation_translation(q, Vec3::new(0.5, j as f32, -1.0))
-        })
-        .collect();
+    let mut d = turned(20, |j| Vec3::new(1.0, j, -2.0 + 0.1 * j), 0.29);
     d[19].real.w = f32::INFINITY;
     d[18] = d[17];
     let bind: Vec<Vec3<f32>> = (0..20).map(|j| Vec3::new(j as f32, 1.0, -0.5)).collect();
