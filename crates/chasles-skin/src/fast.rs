@@ -334,7 +334,7 @@ fn lbs_vertex<const K: usize>(v: &Vertex<K>, m: &[[f32; 12]]) -> Out {
 
 /// `⟨q̂, p̂⟩` of two joints' rotation quaternions (the first 4 of their N floats: the real
 /// part of a dual quaternion, or a QLB row's rotation), summed in one fixed order: the
-/// antipodality test of the scalar kernels and of the sign table alike.
+/// antipodality test of the scalar kernels and of the table of signed copies alike.
 #[inline(always)]
 fn real_dot<const N: usize>(q: &[f32; N], p: &[f32; N]) -> f32 {
     q[0] * p[0] + q[1] * p[1] + q[2] * p[2] + q[3] * p[3]

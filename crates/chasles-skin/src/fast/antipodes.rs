@@ -8,12 +8,15 @@
 //! on its 370 vertices (`examples/pose_cost`, the two builds in turn; the table was an
 //! iterator of closures before, every pair twice).
 //!
-//! Two forms. QLB and SBS read signs (`−0.0` or `+0.0`, applied by an exclusive or) from
-//! [`Antipodes::new`]. DQS reads [`Antipodes::copies`]: each joint's dual quaternion and its
-//! negation side by side, and for each (pivot, joint) the byte offset of the copy to blend,
-//! so that a vertex's blend is one load and one fused multiply-add an influence, with no
-//! sign to apply (`w·(−q̂) = (−w)·q̂` exactly, so the bits are those of a negated weight).
-//! One core, 54 joints, four influences, the AVX2 build of the DQS kernel alone
+//! The table holds signed copies: each joint beside its copy with the rotation negated, and
+//! for each (pivot, joint) the byte offset of the copy to blend, so that a vertex's blend is
+//! a load and a fused multiply-add a register of the joint, with no sign to apply
+//! (`w·(−q̂) = (−w)·q̂` exactly, so the bits are those of a negated weight). DQS's copies
+//! ([`Antipodes::copies`]) are whole dual quaternions, all 8 floats negated; QLB's and SBS's
+//! ([`Antipodes::rows`]) are their rows of 24 floats (rotation, `[R | t]`, bind origin), the
+//! rotation alone negated, as the matrices and origins blend with the plain weights.
+//!
+//! DQS: one core, 54 joints, four influences, the AVX2 build of the DQS kernel alone
 //! (`set_avx512(false)`) on the synthetic mesh, the last commit's and this one's in turn (a
 //! scratch loop, four runs of 40 passes, medians), 2026-12-04, M vertices/s: 283–286 →
 //! 339–352 at 10⁴ and 2.5·10⁴ vertices (in the second-level cache), 266–276 → 327–330 at
@@ -22,96 +25,125 @@
 //! into one broadcast of a register (xor the scalars, then broadcast: on Intel a shuffle,
 //! where the loads had cost none of the vector ports); the copies need neither. The loop
 //! issues about as many instructions a cycle as the core can take, so each one counts.
+//!
+//! QLB and SBS read signs (`−0.0` or `+0.0`, applied by an exclusive or and a mask to the
+//! rotation's lanes) until 2026-12-05; now their rows' copies. Where no pair of the pose
+//! flips (`flips` false: every two joints' quaternions have a dot product of 0 or more) they
+//! read each joint's unnegated copy without an offset, a load an influence fewer. That is
+//! most poses of a character — all but 6 of the built-in characters' 126 poses at 21 times
+//! of each clip, those 6 in the Fox's third clip — and every pose of the synthetic rig's
+//! default joints (within 60° of the identity). The copies are
+//! 32-byte aligned where the palette's rows (`Vec<QlbJoint>`) may lie anywhere: the rows
+//! read in place from the palette with no signs at all ran 560–581 µs where the aligned
+//! copies ran 533–542. The SBS job alone on the synthetic rig of 10⁵ vertices (a scratch
+//! loop of `SkinningJob::run`, best of 30, one core, the builds in turn three times):
+//! 646–650 → 550–558 µs; with every odd joint negated (antipodal pairs everywhere, the
+//! offsets read) 644–648 → 588–594; QLB 602–667 → 549–552, and with the negated joints
+//! 662–669 → 556–559. DQS reads its offsets even where none flips: its copies at `64 j`
+//! instead measured the same (313–324 against 315–320 µs a pose).
 
 // Only the x86-64 SIMD kernels read the table; elsewhere it is made empty and left unread.
 #![cfg_attr(not(target_arch = "x86_64"), allow(dead_code))]
 
 use super::real_dot;
 
-/// A pose's antipodality table, row `a` for pivot `a`: signs (QLB, SBS) or signed copies
-/// and their offsets (DQS). Empty where a table would not pay.
+/// A pose's antipodality table, row `a` for pivot `a`: each joint beside its copy with the
+/// rotation negated, and for each (pivot, joint) the offset of the copy to blend. Empty where
+/// a table would not pay.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Antipodes {
-    /// [`Antipodes::new`]'s signs: `−0.0` where the weight flips, `+0.0` where it stays.
-    pub(super) signs: Vec<f32>,
-    /// [`Antipodes::copies`]' joints: joint j's dual quaternion and its negation, one
-    /// cache line.
-    pub(super) copies: Vec<Signed>,
-    /// [`Antipodes::copies`]' byte offsets into `copies`: at `a·joints + b`, that of joint
-    /// b's copy to blend when a is the pivot, `64 b` or, where b's weight flips, `64 b + 32`
-    /// (below 2¹⁶ for [`MOST_JOINTS`] joints).
+    /// The joints' copies, 64-byte aligned: joint j's N floats, then the same with the
+    /// rotation negated (all 8 for DQS's dual quaternion, the first 4 of QLB's row), at
+    /// `8 N j` bytes: every 32-byte register's load lies within one line.
+    pub(super) copies: Vec<Line>,
+    /// Byte offsets into `copies`: at `a·joints + b`, that of joint b's copy to blend when a
+    /// is the pivot, `8 N b` or, where b's weight flips, `8 N b + 4 N` (below 2¹⁶ for
+    /// [`MOST_JOINTS`] joints).
     pub(super) at: Vec<u16>,
     /// How many joints the table is for (0: no table).
     pub(super) joints: usize,
+    /// Whether any pair's weight flips. Where none does QLB's and SBS's kernels read the
+    /// unnegated copies at `8 N j` and not the offsets: a load an influence fewer.
+    pub(super) flips: bool,
 }
 
-/// A joint's dual quaternion and its negation, in one 64-byte line, so that no load of a
-/// copy spans two lines wherever the allocator puts the table.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// 64 bytes of the copies, so that the table starts a cache line.
+#[derive(Debug, Clone, Copy, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
 #[repr(C, align(64))]
-pub(super) struct Signed(pub(super) [[f32; 8]; 2]);
+pub(super) struct Line([f32; 16]);
 
-/// Most joints for which a table is made: 128² signs are 64 KiB, about what a core's
-/// first-level caches hold beside the joints and the vertex stream (128² offsets, 32 KiB).
+/// Most joints for which a table is made: 128² offsets are 32 KiB, about what a core's
+/// first-level cache holds beside the joints and the vertex stream.
 const MOST_JOINTS: usize = 128;
-// Every offset (below 64 · MOST_JOINTS) fits the table's u16.
-const _: () = assert!(64 * MOST_JOINTS <= 1 << 16);
+// Every offset (below 8 · 24 · MOST_JOINTS, QLB's rows of 24 floats) fits the table's u16.
+const _: () = assert!(8 * 24 * MOST_JOINTS <= 1 << 16);
 
 impl Antipodes {
-    /// The sign table for joints `d` whose first 4 floats are their rotation quaternions
-    /// (QLB rows), when it pays: at most [`MOST_JOINTS`] joints and no more signs than
-    /// `vertices` to skin. Otherwise empty, and the kernel takes the dot products itself.
-    pub fn new<const N: usize>(d: &[[f32; N]], vertices: usize) -> Self {
-        let mut t = Self::default();
-        t.refill(d, vertices);
-        t
-    }
-
-    /// [`Antipodes::new`] in place, keeping the table's capacity (no allocation once a
-    /// table of this size has been made).
-    pub fn refill<const N: usize>(&mut self, d: &[[f32; N]], vertices: usize) {
-        if !self.start(d.len(), vertices) {
-            return;
-        }
-        let joints = d.len();
-        self.signs.resize(joints * joints, 0.0);
-        each_pair(d, |a, b, flips| {
-            let s = if flips { -0.0 } else { 0.0 };
-            self.signs[a * joints + b] = s;
-            self.signs[b * joints + a] = s;
-        });
-    }
-
-    /// The signed copies of dual quaternions `d` and their offsets (DQS), when it pays, as
-    /// for [`Antipodes::new`].
+    /// The signed copies of dual quaternions `d` and their offsets (DQS), when it pays: at
+    /// most [`MOST_JOINTS`] joints and no more offsets than `vertices` to skin. Otherwise
+    /// empty, and the kernel takes the dot products itself.
     pub fn copies(d: &[[f32; 8]], vertices: usize) -> Self {
         let mut t = Self::default();
         t.refill_copies(d, vertices);
         t
     }
 
-    /// [`Antipodes::copies`] in place, keeping the table's capacity.
+    /// [`Antipodes::copies`] in place, keeping the table's capacity (no allocation once a
+    /// table of this size has been made).
     pub fn refill_copies(&mut self, d: &[[f32; 8]], vertices: usize) {
+        self.fill(d, 8, vertices);
+    }
+
+    /// The signed copies of QLB's and SBS's rows (`fast::qlb::Row`: rotation quaternion,
+    /// `[R | t]`, bind origin) and their offsets, when it pays, as for
+    /// [`Antipodes::copies`]: a copy has its rotation negated and the rest as it is, since
+    /// the matrices and origins blend with the plain weights.
+    pub fn rows(rows: &[[f32; 24]], vertices: usize) -> Self {
+        let mut t = Self::default();
+        t.refill_rows(rows, vertices);
+        t
+    }
+
+    /// [`Antipodes::rows`] in place, keeping the table's capacity.
+    pub fn refill_rows(&mut self, rows: &[[f32; 24]], vertices: usize) {
+        self.fill(rows, 4, vertices);
+    }
+
+    /// The table of joints `d` of N floats (a multiple of 8, so that the copies fill whole
+    /// lines), each followed by its copy with the first `negate` floats negated, and the
+    /// offsets of the copies to blend.
+    fn fill<const N: usize>(&mut self, d: &[[f32; N]], negate: usize, vertices: usize) {
+        const { assert!(N.is_multiple_of(8)) };
         if !self.start(d.len(), vertices) {
             return;
         }
         let joints = d.len();
-        self.copies
-            .extend(d.iter().map(|q| Signed([*q, q.map(|x| -x)])));
+        self.copies.resize(joints * N / 8, Line([0.0; 16]));
+        let floats: &mut [f32] = bytemuck::cast_slice_mut(&mut self.copies);
+        for (q, two) in d.iter().zip(floats.chunks_exact_mut(2 * N)) {
+            let (plain, flipped) = two.split_at_mut(N);
+            plain.copy_from_slice(q);
+            for (c, (f, x)) in flipped.iter_mut().zip(q).enumerate() {
+                *f = if c < negate { -x } else { *x };
+            }
+        }
         self.at.resize(joints * joints, 0);
-        let offset = |j: usize, flips: bool| (64 * j + 32 * usize::from(flips)) as u16;
+        let offset = |j: usize, flips: bool| (8 * N * j + 4 * N * usize::from(flips)) as u16;
+        let mut any = false;
         each_pair(d, |a, b, flips| {
+            any |= flips;
             self.at[a * joints + b] = offset(b, flips);
             self.at[b * joints + a] = offset(a, flips);
         });
+        self.flips = any;
     }
 
     /// Empties the table and says whether one is to be made for `joints` joints and
     /// `vertices` vertices (then `self.joints` is set).
     fn start(&mut self, joints: usize, vertices: usize) -> bool {
-        self.signs.clear();
         self.copies.clear();
         self.at.clear();
+        self.flips = false;
         let pays = joints <= MOST_JOINTS && joints * joints <= vertices;
         self.joints = if pays { joints } else { 0 };
         self.joints > 0
@@ -137,7 +169,7 @@ fn each_pair<const N: usize>(d: &[[f32; N]], mut f: impl FnMut(usize, usize, boo
 }
 
 /// Runs a SIMD kernel over 1003 vertices with no table (dot products) and with `table`
-/// (the pose's, made by [`Antipodes::new`] or [`Antipodes::copies`] for every vertex),
+/// (the pose's, made by [`Antipodes::copies`] or [`Antipodes::rows`] for every vertex),
 /// checks that it did the 1000 in whole blocks and that the two ways to the signs gave the
 /// same numbers bit for bit, and returns those 1000 results.
 #[cfg(all(test, target_arch = "x86_64"))]
@@ -181,60 +213,88 @@ mod tests {
         (d, f)
     }
 
-    #[test]
-    fn the_table_holds_the_signs_of_the_dot_products() {
-        let (_, f) = flipped(54);
-        let t = Antipodes::new(&f, usize::MAX);
-        assert_eq!(t.joints, 54);
-        // Unflipped, every pair is within 2 rad of rotation, so ⟨q̂_a, q̂_b⟩ > 0: a weight
-        // flips exactly when one of the two joints was negated.
-        for a in 0..54 {
-            for b in 0..54 {
-                let s = t.signs[a * 54 + b];
-                assert_eq!(s, 0.0);
-                assert_eq!(s.is_sign_negative(), (a + b) % 2 == 1, "{a} {b}");
-            }
-        }
-        // No table where it would not pay: more signs than vertices, or too many joints.
-        assert!(Antipodes::new(&f, 54 * 54 - 1).is_empty());
-        assert!(Antipodes::new(&vec![f[0]; MOST_JOINTS + 1], usize::MAX).is_empty());
+    /// QLB's rows of joints `d` (bind origins 0.25 j, 0, 1) with their dual quaternions.
+    fn rows_of(d: &[[f32; 8]]) -> Vec<[f32; 24]> {
+        let d: Vec<chasles::DualQuat<f32>> = d
+            .iter()
+            .map(|q| chasles::DualQuat::from_array(*q))
+            .collect();
+        let origins: Vec<chasles::Vec3<f32>> = (0..d.len())
+            .map(|j| chasles::Vec3::new(0.25 * j as f32, 0.0, 1.0))
+            .collect();
+        crate::fast::qlb::rows(&d, &origins)
     }
 
-    /// DQS's form: each offset names joint b's copy, negated exactly where the signs flip,
-    /// and the copies are the joints and their exact negations; the same rule for when a
-    /// table pays; a refill for fewer joints leaves nothing of the last one.
+    /// The floats of joint j's two copies in `t` (N floats each).
+    fn copies_of<const N: usize>(t: &Antipodes, j: usize) -> (&[f32], &[f32]) {
+        let floats: &[f32] = bytemuck::cast_slice(&t.copies);
+        floats[2 * N * j..2 * N * (j + 1)].split_at(N)
+    }
+
+    /// Both forms, DQS's dual quaternions (all 8 floats negated in a copy) and QLB's rows
+    /// (the rotation alone): each joint is followed by its copy, negated exactly there; each
+    /// offset names joint b's copy, negated exactly where `⟨q̂_b, q̂_a⟩ < 0`; `flips` says
+    /// whether any pair does; the same rule for when a table pays; a refill for fewer joints
+    /// leaves nothing of the last one; the largest table's offsets fit their u16.
     #[test]
-    fn the_copies_are_the_joints_signed_as_the_table_says() {
-        let (_, f) = flipped(54);
-        let signs = Antipodes::new(&f, usize::MAX);
-        let mut t = Antipodes::copies(&f, usize::MAX);
-        assert_eq!((t.joints, t.copies.len(), t.at.len()), (54, 54, 54 * 54));
-        assert_eq!(t.copies.as_ptr() as usize % 64, 0);
-        for (j, q) in f.iter().enumerate() {
-            assert_eq!(t.copies[j].0[0], *q);
+    fn the_copies_are_the_joints_signed_as_the_dot_products_say() {
+        fn check<const N: usize>(
+            make: fn(&[[f32; N]], usize) -> Antipodes,
+            refill: fn(&mut Antipodes, &[[f32; N]], usize),
+            of: fn(&[[f32; 8]]) -> Vec<[f32; N]>,
+            negate: usize,
+        ) {
+            let (d, f) = flipped(54);
+            let (plain, signed) = (of(&d), of(&f));
+            for (joints, flips) in [(&plain, false), (&signed, true)] {
+                let mut t = make(joints, usize::MAX);
+                assert_eq!((t.joints, t.at.len(), t.flips), (54, 54 * 54, flips));
+                assert_eq!(t.copies.len() * 16, 54 * 2 * N);
+                assert_eq!(t.copies.as_ptr() as usize % 64, 0);
+                for (j, q) in joints.iter().enumerate() {
+                    let (as_is, copy) = copies_of::<N>(&t, j);
+                    assert_eq!(as_is, &q[..]);
+                    for c in 0..N {
+                        let want = if c < negate { -q[c] } else { q[c] };
+                        assert_eq!(copy[c].to_bits(), want.to_bits(), "joint {j}, float {c}");
+                    }
+                }
+                // Unflipped, every pair is within 2 rad of rotation, so ⟨q̂_a, q̂_b⟩ > 0: a
+                // weight flips exactly when one of the two joints was negated.
+                for a in 0..54 {
+                    for b in 0..54 {
+                        let flips = flips && (a + b) % 2 == 1;
+                        let at = usize::from(t.at[a * 54 + b]);
+                        assert_eq!(at, 8 * N * b + if flips { 4 * N } else { 0 }, "{a} {b}");
+                    }
+                }
+                // No table where it would not pay: more offsets than vertices, or too many
+                // joints.
+                assert!(make(joints, 54 * 54 - 1).is_empty());
+                assert!(make(&[joints[0]; MOST_JOINTS + 1], usize::MAX).is_empty());
+                refill(&mut t, &joints[..3], usize::MAX);
+                assert_eq!(
+                    (t.joints, t.copies.len() * 16, t.at.len()),
+                    (3, 3 * 2 * N, 9)
+                );
+                refill(&mut t, joints, 10);
+                assert!(t.is_empty() && t.copies.is_empty() && t.at.is_empty() && !t.flips);
+            }
+            // The last joint flipped for pivot 0 in the largest table.
+            let alternate: Vec<[f32; N]> = (0..MOST_JOINTS).map(|j| signed[j % 2]).collect();
+            let most = make(&alternate, usize::MAX);
             assert_eq!(
-                t.copies[j].0[1].map(f32::to_bits),
-                q.map(|x| (-x).to_bits())
+                usize::from(most.at[MOST_JOINTS - 1]),
+                8 * N * MOST_JOINTS - 4 * N
             );
         }
-        for a in 0..54 {
-            for b in 0..54 {
-                let flips = signs.signs[a * 54 + b].is_sign_negative();
-                let at = usize::from(t.at[a * 54 + b]);
-                assert_eq!(at, 64 * b + if flips { 32 } else { 0 }, "{a} {b}");
-                assert_eq!((at % 32, at / 32), (0, 2 * b + usize::from(flips)));
-            }
-        }
-        // The largest table's offsets fit their u16 (the last joint flipped for pivot 0).
-        let alternate: Vec<[f32; 8]> = (0..MOST_JOINTS).map(|j| f[j % 2]).collect();
-        let most = Antipodes::copies(&alternate, usize::MAX);
-        assert_eq!(most.at[MOST_JOINTS - 1], (64 * MOST_JOINTS - 32) as u16);
-        assert!(Antipodes::copies(&f, 54 * 54 - 1).is_empty());
-        assert!(Antipodes::copies(&vec![f[0]; MOST_JOINTS + 1], usize::MAX).is_empty());
-        t.refill_copies(&f[..3], usize::MAX);
-        assert_eq!((t.joints, t.copies.len(), t.at.len()), (3, 3, 9));
-        t.refill_copies(&f, 10);
-        assert!(t.is_empty() && t.copies.is_empty() && t.at.is_empty());
+        check::<8>(
+            Antipodes::copies,
+            Antipodes::refill_copies,
+            |d| d.to_vec(),
+            8,
+        );
+        check::<24>(Antipodes::rows, Antipodes::refill_rows, rows_of, 4);
     }
 
     #[test]

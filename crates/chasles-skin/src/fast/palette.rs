@@ -255,16 +255,16 @@ impl Palette {
         &self.signs
     }
 
-    /// Remakes the antipodality table for the joints now held (DQS's copies, QLB's and SBS's
-    /// signs, on the SIMD path).
+    /// Remakes the antipodality table for the joints now held (DQS's copies of the dual
+    /// quaternions, QLB's and SBS's of the rows, on the SIMD path).
     fn sign<const K: usize>(&mut self, rig: &FastRig<K>) {
         let n = if simd(K) { rig.vertices().len() } else { 0 };
         match &self.joints {
             Joints::Dqs(d) => self.signs.refill_copies(bytemuck::cast_slice(d), n),
             Joints::Qlb(j) | Joints::Sbs { joints: j, .. } => {
-                self.signs.refill::<24>(bytemuck::cast_slice(j), n)
+                self.signs.refill_rows(bytemuck::cast_slice(j), n)
             }
-            _ => self.signs.refill::<8>(&[], 0),
+            _ => self.signs.refill_copies(&[], 0),
         }
     }
 

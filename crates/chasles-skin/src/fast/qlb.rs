@@ -96,7 +96,7 @@ impl<const K: usize> Kernel<K> for QlbKernel {
     type Joint = Row;
     type Table = Antipodes;
     fn table(joints: &[Row], vertices: usize) -> Antipodes {
-        Antipodes::new(joints, vertices)
+        Antipodes::rows(joints, vertices)
     }
     #[cfg(target_arch = "x86_64")]
     const AVX2: Option<super::SimdKernel<K, Row, Antipodes>> = Some(super::avx2::qlb::qlb::<K>);
@@ -271,21 +271,47 @@ mod tests {
         close(&want, &got, 1e-5);
         #[cfg(target_arch = "x86_64")]
         if super::super::simd(4) {
-            // SAFETY: AVX2 and FMA are present (`simd`), the synthetic rig's joint indices
-            // are below 54 = f.len(), the table is empty or made from `f`.
-            let table = Antipodes::new(&f, usize::MAX);
-            let looked_up = super::super::antipodes::both_ways(table, |table, out| unsafe {
-                super::super::avx2::qlb::qlb(
-                    rig.vertices(),
-                    &f,
-                    table,
-                    crate::fast::dest::Dest::packed(out),
-                    false,
-                )
-            });
-            // The two ways to the signs gave the same numbers, bit for bit (`both_ways`),
-            // and the SIMD kernel (fused multiply-adds) is the scalar one to rounding.
-            close(&looked_up, &got[..1000], 4e-6);
+            use super::super::antipodes::both_ways;
+            use crate::fast::dest::Dest;
+            let cl = clusters(&rig);
+            let centres = padded_centres(
+                &cl,
+                &synthetic::joints(54, 5).dual_quats,
+                rig.centres(),
+                false,
+            );
+            // With antipodal pairs (the table's offsets read) and without (its plain rows).
+            for (rows, flips, want) in [(&f, true, &got), (&r, false, &want)] {
+                let table = Antipodes::rows(rows, usize::MAX);
+                assert_eq!(table.flips, flips);
+                // SAFETY (both kernels): AVX2 and FMA are present (`simd`), the synthetic
+                // rig's joint indices are below 54 = rows.len(), the table is empty or made
+                // from `rows`, every cluster index is below `centres.len()`.
+                let looked_up = both_ways(table.clone(), |table, out| unsafe {
+                    super::super::avx2::qlb::qlb(
+                        rig.vertices(),
+                        rows,
+                        table,
+                        Dest::packed(out),
+                        false,
+                    )
+                });
+                both_ways(table, |table, out| unsafe {
+                    let (v, of) = (rig.vertices(), cl.of_vertex());
+                    super::super::avx2::qlb::sbs(
+                        v,
+                        rows,
+                        table,
+                        of,
+                        &centres,
+                        Dest::packed(out),
+                        false,
+                    )
+                });
+                // The ways to the signs gave the same numbers, bit for bit (`both_ways`), and
+                // the SIMD kernel (fused multiply-adds) is the scalar one to rounding.
+                close(&looked_up, &want[..1000], 4e-6);
+            }
         } else {
             eprintln!("no AVX2+FMA here: only the scalar kernel is checked");
         }

@@ -89,7 +89,7 @@ fn the_simd_kernels_take_8_influences() {
     let cl = clusters(&rig);
     let padded = qlb::padded_centres(&cl, &jt.dual_quats, rig.centres(), false);
     let mut o = vec![[f32::NAN; 6]; 1003];
-    let table = Antipodes::new(&rows, 1003);
+    let table = Antipodes::rows(&rows, 1003);
     // SAFETY: as in `both`, and every cluster index is below `padded.len()`.
     let done = unsafe {
         avx2::qlb::sbs(
@@ -205,7 +205,7 @@ fn layouts<const K: usize>(n: usize) {
         assert!(rest.clone().all(marked), "split: wrote past the blocks");
     };
     let copies = Antipodes::copies(&d8, n);
-    let qsigns = Antipodes::new(&rows, n);
+    let qsigns = Antipodes::rows(&rows, n);
     assert_eq!(
         (copies.is_empty(), qsigns.is_empty()),
         (n < 54 * 54, n < 54 * 54)

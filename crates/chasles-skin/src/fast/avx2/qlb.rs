@@ -1,8 +1,10 @@
 //! QLB and SBS (`super::super::qlb`) eight vertices at a time with AVX2 and FMA: each
-//! vertex's K joint rows are whole-register loads (three registers a row) and blended in
-//! registers — the rotation quaternions with the antipodality signs of the pivot's row of
-//! the sign table (`Antipodes`; the scalar kernel's dot products where there is no table),
-//! the matrices and origins with the plain weights — then eight blends are transposed into
+//! vertex's K joint rows are whole-register loads (three registers a row, two for SBS) and
+//! blended in registers — the rotation quaternions with the antipodality signs, from the
+//! pose's signed copies of the rows (`Antipodes::rows`: the copy named by the pivot's row of
+//! offsets, or each row's plain copy where no pair flips) or, where there is no table, the
+//! scalar kernel's dot products; the matrices and origins with the plain weights — then
+//! eight blends are transposed into
 //! lanes and moved about their centres lane-parallel, with fused multiply-adds (the scalar
 //! kernel's formulas, so the two agree to rounding).
 //!
@@ -22,39 +24,28 @@ use std::arch::x86_64::*;
 /// Floats per joint row (`super::super::qlb::Row`).
 const ROW: usize = 24;
 
-/// The antipodality sign of each influence (−0.0 to flip, +0.0 to keep, in all lanes):
-/// from the table's row for the vertex's pivot, or the scalar kernel's dot products.
-/// `inline(always)` for [`blend`]'s reason: as an `#[inline]` AVX2 function it stayed a
-/// call, one per vertex, with eight influences.
+/// The antipodality sign of each influence (−0.0 to flip, +0.0 to keep, in all lanes),
+/// from the scalar kernel's dot products: the kernel's way where the pose has no table
+/// ([`blend_heads`] reads the table's signed copies instead). `inline(always)` for
+/// [`blend`]'s reason: as an `#[inline]` AVX2 function it stayed a call, one per vertex,
+/// with eight influences.
 ///
 /// # Safety
 /// Only from AVX2+FMA code (`blocks`), with [`qlb`]'s preconditions.
 #[inline(always)]
-unsafe fn signs<const K: usize>(
-    vx: &Vertex<K>,
-    rows: &[[f32; ROW]],
-    table: &Antipodes,
-) -> [__m256; K] {
+unsafe fn signs<const K: usize>(vx: &Vertex<K>, rows: &[[f32; ROW]]) -> [__m256; K] {
     unsafe {
         if K == 4 {
-            return signs4(vx, rows, table);
+            return signs4(vx, rows);
         }
         // Eight influences: by loops, each index widened where it is used (see
         // `avx2::blend_copies`); array maps of closures stayed calls here.
         let j = |k: usize| usize::from(vx.j[k]);
         let mut s = [_mm256_setzero_ps(); K];
-        // A table's signs, else the dot products (no table, or one of copies alone).
-        if table.signs.is_empty() {
-            let pivot = rows.get_unchecked(j(0));
-            for (k, s) in s.iter_mut().enumerate() {
-                let neg = real_dot(rows.get_unchecked(j(k)), pivot) < 0.0;
-                *s = _mm256_set1_ps(if neg { -0.0 } else { 0.0 });
-            }
-        } else {
-            let row = table.signs.as_ptr().add(j(0) * table.joints);
-            for (k, s) in s.iter_mut().enumerate() {
-                *s = _mm256_broadcast_ss(&*row.add(j(k)));
-            }
+        let pivot = rows.get_unchecked(j(0));
+        for (k, s) in s.iter_mut().enumerate() {
+            let neg = real_dot(rows.get_unchecked(j(k)), pivot) < 0.0;
+            *s = _mm256_set1_ps(if neg { -0.0 } else { 0.0 });
         }
         s
     }
@@ -65,23 +56,14 @@ unsafe fn signs<const K: usize>(
 /// ran 150 → 140 M vertices/s at 2.5·10⁴ vertices).
 #[inline]
 #[target_feature(enable = "avx2,fma")]
-unsafe fn signs4<const K: usize>(
-    vx: &Vertex<K>,
-    rows: &[[f32; ROW]],
-    table: &Antipodes,
-) -> [__m256; K] {
+unsafe fn signs4<const K: usize>(vx: &Vertex<K>, rows: &[[f32; ROW]]) -> [__m256; K] {
     unsafe {
         let j = vx.j.map(usize::from);
-        if table.signs.is_empty() {
-            let pivot = rows.get_unchecked(j[0]);
-            j.map(|j| {
-                let neg = real_dot(rows.get_unchecked(j), pivot) < 0.0;
-                _mm256_set1_ps(if neg { -0.0 } else { 0.0 })
-            })
-        } else {
-            let row = table.signs.as_ptr().add(j[0] * table.joints);
-            j.map(|j| _mm256_broadcast_ss(&*row.add(j)))
-        }
+        let pivot = rows.get_unchecked(j[0]);
+        j.map(|j| {
+            let neg = real_dot(rows.get_unchecked(j), pivot) < 0.0;
+            _mm256_set1_ps(if neg { -0.0 } else { 0.0 })
+        })
     }
 }
 
@@ -95,12 +77,11 @@ unsafe fn signs4<const K: usize>(
 unsafe fn blend<const K: usize, const SBS: bool>(
     vx: &Vertex<K>,
     rows: &[[f32; ROW]],
-    table: &Antipodes,
 ) -> [__m256; 3] {
     unsafe {
         let rb = rows.as_ptr() as *const f32;
         let low = _mm256_setr_ps(-0.0, -0.0, -0.0, -0.0, 0.0, 0.0, 0.0, 0.0);
-        let s = signs(vx, rows, table);
+        let s = signs(vx, rows);
         let mut out = [_mm256_setzero_ps(); 3];
         // By index: zipped iterators over the three arrays compiled to slower code.
         #[allow(clippy::needless_range_loop)]
@@ -110,6 +91,50 @@ unsafe fn blend<const K: usize, const SBS: bool>(
             // The sign touches the quaternion's four lanes only.
             let sw = _mm256_xor_ps(w, _mm256_and_ps(s[k], low));
             out[0] = _mm256_fmadd_ps(sw, _mm256_loadu_ps(r), out[0]);
+            out[1] = _mm256_fmadd_ps(w, _mm256_loadu_ps(r.add(8)), out[1]);
+            if !SBS {
+                out[2] = _mm256_fmadd_ps(w, _mm256_loadu_ps(r.add(16)), out[2]);
+            }
+        }
+        out
+    }
+}
+
+/// [`blend`] from the pose's signed copies of the rows (`Antipodes::rows`): the pivot's row
+/// of offsets names, for each joint, its row as it is or with its rotation negated, so each
+/// influence is a broadcast weight, the offset and the row's registers (two with `SBS`)
+/// with a fused multiply-add each, and no sign to apply: the bits of [`blend`]'s signed
+/// weights (`w·(−q) = (−w)·q` exactly). The pivot is never negated; where no pair flips
+/// (`PLAIN`) no offset is read. The copies start a cache line and are 32-byte aligned, so
+/// no load spans two lines, where the palette's rows may lie anywhere.
+///
+/// # Safety
+/// As for [`blend`], with `copies` and `at` those of a table made from the rows
+/// (`joints` of them), and `PLAIN` only where none of its pairs flips.
+#[inline(always)]
+unsafe fn blend_copies<const K: usize, const SBS: bool, const PLAIN: bool>(
+    vx: &Vertex<K>,
+    copies: *const u8,
+    at: *const u16,
+    joints: usize,
+) -> [__m256; 3] {
+    unsafe {
+        // A joint's row and its copy: 2 · 24 floats.
+        const STRIDE: usize = 2 * ROW * 4;
+        let j = |k: usize| usize::from(vx.j[k]);
+        let row = at.add(j(0) * joints);
+        let mut out = [_mm256_setzero_ps(); 3];
+        // By index, as in `blend`.
+        #[allow(clippy::needless_range_loop)]
+        for k in 0..K {
+            let offset = if PLAIN || k == 0 {
+                j(k) * STRIDE
+            } else {
+                usize::from(*row.add(j(k)))
+            };
+            let r = copies.add(offset) as *const f32;
+            let w = _mm256_broadcast_ss(&vx.w[k]);
+            out[0] = _mm256_fmadd_ps(w, _mm256_loadu_ps(r), out[0]);
             out[1] = _mm256_fmadd_ps(w, _mm256_loadu_ps(r.add(8)), out[1]);
             if !SBS {
                 out[2] = _mm256_fmadd_ps(w, _mm256_loadu_ps(r.add(16)), out[2]);
@@ -134,7 +159,18 @@ pub unsafe fn qlb<const K: usize>(
     o: Dest<'_>,
     stream: bool,
 ) -> usize {
-    unsafe { by_target!(o, S => blocks::<K, false, S>(v, rows, table, &[], &[], o, stream)) }
+    unsafe {
+        if table.at.is_empty() {
+            by_target!(o, S => blocks::<K, false, S>(v, &[], &[], o, stream, #[inline(always)] |vx| blend::<K, false>(vx, rows)))
+        } else {
+            let (copies, at) = (table.copies.as_ptr() as *const u8, table.at.as_ptr());
+            if table.flips {
+                by_target!(o, S => blocks::<K, false, S>(v, &[], &[], o, stream, #[inline(always)] |vx| blend_copies::<K, false, false>(vx, copies, at, table.joints)))
+            } else {
+                by_target!(o, S => blocks::<K, false, S>(v, &[], &[], o, stream, #[inline(always)] |vx| blend_copies::<K, false, true>(vx, copies, at, table.joints)))
+            }
+        }
+    }
 }
 
 /// SBS for the first `v.len() / 8 * 8` vertices, each about its cluster's centre
@@ -153,7 +189,18 @@ pub unsafe fn sbs<const K: usize>(
     o: Dest<'_>,
     stream: bool,
 ) -> usize {
-    unsafe { by_target!(o, S => blocks::<K, true, S>(v, rows, table, cluster, centres, o, stream)) }
+    unsafe {
+        if table.at.is_empty() {
+            by_target!(o, S => blocks::<K, true, S>(v, cluster, centres, o, stream, #[inline(always)] |vx| blend::<K, true>(vx, rows)))
+        } else {
+            let (copies, at) = (table.copies.as_ptr() as *const u8, table.at.as_ptr());
+            if table.flips {
+                by_target!(o, S => blocks::<K, true, S>(v, cluster, centres, o, stream, #[inline(always)] |vx| blend_copies::<K, true, false>(vx, copies, at, table.joints)))
+            } else {
+                by_target!(o, S => blocks::<K, true, S>(v, cluster, centres, o, stream, #[inline(always)] |vx| blend_copies::<K, true, true>(vx, copies, at, table.joints)))
+            }
+        }
+    }
 }
 
 /// The body over whole blocks of eight: each vertex's blended row, and its centre — its
@@ -167,12 +214,11 @@ pub unsafe fn sbs<const K: usize>(
 #[inline(always)]
 unsafe fn blocks<const K: usize, const SBS: bool, S: Store>(
     v: &[Vertex<K>],
-    rows: &[[f32; ROW]],
-    table: &Antipodes,
     cluster: &[u32],
     centres: &[[f32; 4]],
     mut o: Dest<'_>,
     stream: bool,
+    blend: impl Fn(&Vertex<K>) -> [__m256; 3],
 ) -> usize {
     chasles::frame::align_frame();
     unsafe {
@@ -195,7 +241,7 @@ unsafe fn blocks<const K: usize, const SBS: bool, S: Store>(
             let r = eight(
                 #[inline(always)]
                 |l| {
-                    let [a, b, c] = blend::<K, SBS>(v.get_unchecked(i + l), rows, table);
+                    let [a, b, c] = blend(v.get_unchecked(i + l));
                     if SBS {
                         let c = centres.get_unchecked(*cluster.get_unchecked(i + l) as usize);
                         [a, b, _mm256_castps128_ps256(_mm_loadu_ps(c.as_ptr()))]
