@@ -24,9 +24,9 @@
 //! q0 would change nothing, because the point transform uses only the vector part of
 //! `qε q0*`, which that component does not touch. And since every term of the transform is
 //! quadratic in the blend, that normalization is one factor 2/‖q0‖² (no square root). The
-//! antipodality signs depend only on the pair (pivot joint, joint), so the SIMD kernel
-//! looks them up in a table made once per pose (`antipodes`; for DQS, as which of each
-//! joint's two signed copies to blend).
+//! antipodality signs depend only on the pair (pivot joint, joint), so the SIMD kernels of
+//! DQS, QLB and SBS look them up in a table made once per pose (`antipodes`), as which of
+//! each joint's two signed copies to blend.
 //!
 //! The quaternion and dual-quaternion algebra the kernels share — cross products, rotation
 //! by an unnormalized quaternion, DQS's transformation, products, Horner's rule, Log's

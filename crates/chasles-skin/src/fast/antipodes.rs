@@ -28,15 +28,16 @@
 //!
 //! QLB and SBS read signs (`−0.0` or `+0.0`, applied by an exclusive or and a mask to the
 //! rotation's lanes) until 2026-12-05; now their rows' copies. Where no pair of the pose
-//! flips (`flips` false: every two joints' quaternions have a dot product of 0 or more) they
+//! flips (`flips` false: no two joints' quaternions have a negative dot product) they
 //! read each joint's unnegated copy without an offset, a load an influence fewer. That is
 //! most poses of a character — all but 6 of the built-in characters' 126 poses at 21 times
 //! of each clip, those 6 in the Fox's third clip — and every pose of the synthetic rig's
 //! default joints (within 60° of the identity). The copies are
-//! 32-byte aligned where the palette's rows (`Vec<QlbJoint>`) may lie anywhere: the rows
-//! read in place from the palette with no signs at all ran 560–581 µs where the aligned
-//! copies ran 533–542. The SBS job alone on the synthetic rig of 10⁵ vertices (a scratch
-//! loop of `SkinningJob::run`, best of 30, one core, the builds in turn three times):
+//! 32-byte aligned where the palette's rows (`Vec<QlbJoint>`) may lie anywhere: SBS's job
+//! reading the palette's rows in place with no signs at all ran 560–581 µs where the
+//! aligned copies ran 533–542 (the setting below, a first pair of builds in turn three
+//! times). The SBS job alone on the synthetic rig of 10⁵ vertices (a scratch loop of
+//! `SkinningJob::run`, best of 30, one core, the builds in turn three times):
 //! 646–650 → 550–558 µs; with every odd joint negated (antipodal pairs everywhere, the
 //! offsets read) 644–648 → 588–594; QLB 602–667 → 549–552, and with the negated joints
 //! 662–669 → 556–559. DQS reads its offsets even where none flips: its copies at `64 j`
@@ -73,10 +74,9 @@ pub struct Antipodes {
 pub(super) struct Line([f32; 16]);
 
 /// Most joints for which a table is made: 128² offsets are 32 KiB, about what a core's
-/// first-level cache holds beside the joints and the vertex stream.
+/// first-level cache holds beside the joints and the vertex stream (and the copies, 16 KiB
+/// of dual quaternions or 24 KiB of QLB's rows).
 const MOST_JOINTS: usize = 128;
-// Every offset (below 8 · 24 · MOST_JOINTS, QLB's rows of 24 floats) fits the table's u16.
-const _: () = assert!(8 * 24 * MOST_JOINTS <= 1 << 16);
 
 impl Antipodes {
     /// The signed copies of dual quaternions `d` and their offsets (DQS), when it pays: at
@@ -113,7 +113,8 @@ impl Antipodes {
     /// lines), each followed by its copy with the first `negate` floats negated, and the
     /// offsets of the copies to blend.
     fn fill<const N: usize>(&mut self, d: &[[f32; N]], negate: usize, vertices: usize) {
-        const { assert!(N.is_multiple_of(8)) };
+        // Whole lines, and every offset (below 8 N MOST_JOINTS) in the table's u16.
+        const { assert!(N.is_multiple_of(8) && 8 * N * MOST_JOINTS <= 1 << 16) };
         if !self.start(d.len(), vertices) {
             return;
         }
@@ -147,6 +148,16 @@ impl Antipodes {
         let pays = joints <= MOST_JOINTS && joints * joints <= vertices;
         self.joints = if pays { joints } else { 0 };
         self.joints > 0
+    }
+
+    /// How many floats a joint of the table has (8 for DQS's copies, 24 for QLB's rows;
+    /// 0 without a table): the kernels check that a table is of the form they read.
+    pub(super) fn floats(&self) -> usize {
+        if self.joints == 0 {
+            0
+        } else {
+            self.copies.len() * 16 / (2 * self.joints)
+        }
     }
 
     /// Whether there is a table (the kernels look at the part they read).
@@ -253,7 +264,8 @@ mod tests {
                 assert_eq!(t.copies.as_ptr() as usize % 64, 0);
                 for (j, q) in joints.iter().enumerate() {
                     let (as_is, copy) = copies_of::<N>(&t, j);
-                    assert_eq!(as_is, &q[..]);
+                    let bits = |x: &[f32]| x.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                    assert_eq!(bits(as_is), bits(q), "joint {j}");
                     for c in 0..N {
                         let want = if c < negate { -q[c] } else { q[c] };
                         assert_eq!(copy[c].to_bits(), want.to_bits(), "joint {j}, float {c}");
@@ -277,9 +289,15 @@ mod tests {
                     (t.joints, t.copies.len() * 16, t.at.len()),
                     (3, 3 * 2 * N, 9)
                 );
+                // Joints 1 and 2 of the negated ones flip against each other.
+                assert_eq!((t.flips, t.floats()), (flips, N));
                 refill(&mut t, joints, 10);
                 assert!(t.is_empty() && t.copies.is_empty() && t.at.is_empty() && !t.flips);
             }
+            // A table remade for joints with no antipodal pair after one with them.
+            let mut t = make(&signed, usize::MAX);
+            refill(&mut t, &plain, usize::MAX);
+            assert!(!t.flips && t.at.iter().all(|&at| usize::from(at) % (8 * N) == 0));
             // The last joint flipped for pivot 0 in the largest table.
             let alternate: Vec<[f32; N]> = (0..MOST_JOINTS).map(|j| signed[j % 2]).collect();
             let most = make(&alternate, usize::MAX);

@@ -231,7 +231,11 @@ pub unsafe fn dqs<const K: usize>(
 ) -> usize {
     unsafe {
         let db = d.as_ptr() as *const f32;
-        // A table's offsets, else the dot products (no table, or one of signs alone).
+        // A table's offsets, else the dot products (no table).
+        debug_assert!(
+            antipodes.at.is_empty() || antipodes.floats() == 8,
+            "DQS's copies"
+        );
         if antipodes.at.is_empty() {
             by_target!(o, S => dqs_blocks::<K, S>(v, o, stream, |vx| blend_one(vx, db)))
         } else {

@@ -355,18 +355,22 @@ impl<const K: usize> SkinningJob<'_, K> {
             parallel,
         } = self;
         // run_with and sbs_into check the palette and the output before writing.
-        let signs = palette.signs();
+        let antipodes = palette.antipodes();
         match palette.data() {
             Joints::Lbs(a) => run_with::<K, LbsKernel>(rig, cast_slice(a), &(), output, parallel),
-            Joints::Dqs(d) => run_with::<K, DqsKernel>(rig, cast_slice(d), signs, output, parallel),
+            Joints::Dqs(d) => {
+                run_with::<K, DqsKernel>(rig, cast_slice(d), antipodes, output, parallel)
+            }
             Joints::Dib(d) => run_with::<K, DibKernel>(rig, cast_slice(d), &(), output, parallel),
             Joints::Log(t) => run_with::<K, LogKernel>(rig, cast_slice(t), &(), output, parallel),
-            Joints::Qlb(j) => run_with::<K, QlbKernel>(rig, cast_slice(j), signs, output, parallel),
+            Joints::Qlb(j) => {
+                run_with::<K, QlbKernel>(rig, cast_slice(j), antipodes, output, parallel)
+            }
             Joints::Sbs { joints, centres } => sbs_into(
                 rig,
                 rig.clusters(),
                 cast_slice(joints),
-                signs,
+                antipodes,
                 cast_slice(centres),
                 output,
                 parallel,

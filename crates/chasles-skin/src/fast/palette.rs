@@ -150,12 +150,12 @@ impl Joints {
 }
 
 /// A pose's [`Joints`] for one method, with what its kernel derives from them once per
-/// pose (the antipodality table against each pivot joint: DQS's signed copies, QLB's and
-/// SBS's signs).
+/// pose (the antipodality table against each pivot joint: the signed copies of DQS's dual
+/// quaternions, or of QLB's and SBS's rows).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Palette {
     joints: Joints,
-    signs: Antipodes,
+    antipodes: Antipodes,
 }
 
 impl Palette {
@@ -163,7 +163,7 @@ impl Palette {
     pub fn new(method: Method) -> Self {
         Palette {
             joints: Joints::new(method),
-            signs: Antipodes::default(),
+            antipodes: Antipodes::default(),
         }
     }
 
@@ -229,9 +229,9 @@ impl Palette {
         }
         let mut p = Palette {
             joints,
-            signs: Antipodes::default(),
+            antipodes: Antipodes::default(),
         };
-        p.sign(rig);
+        p.tabulate(rig);
         Ok(p)
     }
 
@@ -251,20 +251,20 @@ impl Palette {
     }
 
     /// The antipodality table the SIMD kernels read (empty where it would not pay).
-    pub(super) fn signs(&self) -> &Antipodes {
-        &self.signs
+    pub(super) fn antipodes(&self) -> &Antipodes {
+        &self.antipodes
     }
 
     /// Remakes the antipodality table for the joints now held (DQS's copies of the dual
     /// quaternions, QLB's and SBS's of the rows, on the SIMD path).
-    fn sign<const K: usize>(&mut self, rig: &FastRig<K>) {
+    fn tabulate<const K: usize>(&mut self, rig: &FastRig<K>) {
         let n = if simd(K) { rig.vertices().len() } else { 0 };
         match &self.joints {
-            Joints::Dqs(d) => self.signs.refill_copies(bytemuck::cast_slice(d), n),
+            Joints::Dqs(d) => self.antipodes.refill_copies(bytemuck::cast_slice(d), n),
             Joints::Qlb(j) | Joints::Sbs { joints: j, .. } => {
-                self.signs.refill_rows(bytemuck::cast_slice(j), n)
+                self.antipodes.refill_rows(bytemuck::cast_slice(j), n)
             }
-            _ => self.signs.refill_copies(&[], 0),
+            _ => self.antipodes.refill_copies(&[], 0),
         }
     }
 
@@ -360,7 +360,7 @@ impl Palette {
                 clusters.centres_into(d, centres, parallel, bytemuck::cast_slice_mut(c));
             }
         }
-        self.sign(rig);
+        self.tabulate(rig);
         Ok(())
     }
 }

@@ -238,7 +238,7 @@ mod tests {
 
     /// QLB rows of random joints, and the same with every odd joint's quaternion negated
     /// (the same rotations: antipodal pairs everywhere).
-    fn flipped(rig: &FastRig<4>) -> (Vec<Row>, Vec<Row>) {
+    fn flipped<const K: usize>(rig: &FastRig<K>) -> (Vec<Row>, Vec<Row>) {
         let r = rows(
             &synthetic::joints(rig.joints(), 5).dual_quats,
             rig.centres(),
@@ -250,36 +250,50 @@ mod tests {
         (r, f)
     }
 
+    /// Joints with antipodal pairs skin as the same joints without, on the scalar kernel and
+    /// the SIMD ones, with 4 and 8 influences: QLB's and SBS's SIMD kernels give the same
+    /// bits from the table's offsets (antipodal pairs), from its plain copies (none) and from
+    /// the dot products (`both_ways`), and the scalar kernel's numbers to rounding.
     #[test]
     fn negated_quaternions_skin_the_same_on_every_kernel() {
-        let rig = synthetic::rig(1003, 54, 5);
+        check::<4>(synthetic::rig(1003, 54, 5));
+        check::<8>(synthetic::rig_with(1003, 54, 5));
+    }
+
+    fn check<const K: usize>(rig: FastRig<K>) {
         let (r, f) = flipped(&rig);
-        let scalar = |rows: &[Row]| -> Vec<Out> {
-            rig.vertices()
-                .iter()
-                .map(|v| QlbKernel::vertex(v, rows))
-                .collect()
+        let cl = clusters(&rig);
+        let centres = padded_centres(
+            &cl,
+            &synthetic::joints(54, 5).dual_quats,
+            rig.centres(),
+            false,
+        );
+        let scalar = |rows: &[Row]| -> [Vec<Out>; 2] {
+            let v = rig.vertices();
+            let sbs = v.iter().zip(cl.of_vertex()).map(|(v, c)| {
+                let [x, y, z, _] = centres[*c as usize];
+                about(v, &blend(v, rows), [x, y, z])
+            });
+            [
+                v.iter().map(|v| QlbKernel::vertex(v, rows)).collect(),
+                sbs.collect(),
+            ]
         };
-        let (want, got) = (scalar(&r), scalar(&f));
         let close = |a: &[Out], b: &[Out], tol: f32| {
             for (a, b) in a.iter().zip(b) {
                 for k in 0..6 {
-                    assert!((a[k] - b[k]).abs() < tol, "{a:?} {b:?}");
+                    assert!((a[k] - b[k]).abs() < tol, "K = {K}: {a:?} {b:?}");
                 }
             }
         };
-        close(&want, &got, 1e-5);
+        let (want, got) = (scalar(&r), scalar(&f));
+        close(&want[0], &got[0], 1e-5);
+        close(&want[1], &got[1], 1e-5);
         #[cfg(target_arch = "x86_64")]
-        if super::super::simd(4) {
+        if super::super::simd(K) {
             use super::super::antipodes::both_ways;
             use crate::fast::dest::Dest;
-            let cl = clusters(&rig);
-            let centres = padded_centres(
-                &cl,
-                &synthetic::joints(54, 5).dual_quats,
-                rig.centres(),
-                false,
-            );
             // With antipodal pairs (the table's offsets read) and without (its plain rows).
             for (rows, flips, want) in [(&f, true, &got), (&r, false, &want)] {
                 let table = Antipodes::rows(rows, usize::MAX);
@@ -287,30 +301,19 @@ mod tests {
                 // SAFETY (both kernels): AVX2 and FMA are present (`simd`), the synthetic
                 // rig's joint indices are below 54 = rows.len(), the table is empty or made
                 // from `rows`, every cluster index is below `centres.len()`.
-                let looked_up = both_ways(table.clone(), |table, out| unsafe {
-                    super::super::avx2::qlb::qlb(
-                        rig.vertices(),
-                        rows,
-                        table,
-                        Dest::packed(out),
-                        false,
-                    )
+                let qlb = both_ways(table.clone(), |table, out| unsafe {
+                    let v = rig.vertices();
+                    super::super::avx2::qlb::qlb(v, rows, table, Dest::packed(out), false)
                 });
-                both_ways(table, |table, out| unsafe {
+                let sbs = both_ways(table, |table, out| unsafe {
                     let (v, of) = (rig.vertices(), cl.of_vertex());
-                    super::super::avx2::qlb::sbs(
-                        v,
-                        rows,
-                        table,
-                        of,
-                        &centres,
-                        Dest::packed(out),
-                        false,
-                    )
+                    let o = Dest::packed(out);
+                    super::super::avx2::qlb::sbs(v, rows, table, of, &centres, o, false)
                 });
                 // The ways to the signs gave the same numbers, bit for bit (`both_ways`), and
-                // the SIMD kernel (fused multiply-adds) is the scalar one to rounding.
-                close(&looked_up, &want[..1000], 4e-6);
+                // the SIMD kernels (fused multiply-adds) are the scalar ones to rounding.
+                close(&qlb, &want[0][..1000], 4e-6);
+                close(&sbs, &want[1][..1000], 4e-6);
             }
         } else {
             eprintln!("no AVX2+FMA here: only the scalar kernel is checked");

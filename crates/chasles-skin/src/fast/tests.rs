@@ -120,7 +120,7 @@ fn the_simd_kernels_take_8_influences() {
 /// layout — 7, 8 and 11) and split arrays, bit for bit; in those it writes each vertex's
 /// six floats and nothing else (the other floats of a vertex, and everything past the
 /// blocks, keep their marks). With 4 and 8 influences, and with the antipodality signs
-/// from dot products (1003 vertices: too few for a sign table of 54 joints) and from the
+/// from dot products (1003 vertices: too few for a table of 54 joints) and from the
 /// table (4099).
 #[test]
 fn every_layout_gets_the_stored_output_and_nothing_else_is_written() {
@@ -205,22 +205,22 @@ fn layouts<const K: usize>(n: usize) {
         assert!(rest.clone().all(marked), "split: wrote past the blocks");
     };
     let copies = Antipodes::copies(&d8, n);
-    let qsigns = Antipodes::rows(&rows, n);
+    let qcopies = Antipodes::rows(&rows, n);
     assert_eq!(
-        (copies.is_empty(), qsigns.is_empty()),
+        (copies.is_empty(), qcopies.is_empty()),
         (n < 54 * 54, n < 54 * 54)
     );
     // SAFETY (each kernel): the processor has AVX2 and FMA (`simd`), the synthetic rig's joint
-    // indices are below 54 = every joint table's length, the sign tables are made from the
-    // joints they are used with, outputs are as long as the vertices, and a streamed output
+    // indices are below 54 = every joint table's length, the antipodality tables are made
+    // from the joints they are used with, outputs are as long as the vertices, and a streamed output
     // starts 32-byte aligned (`simd_start`).
     let v = rig.vertices();
     run(&|o, s| unsafe { avx2::lbs(v, &m12, &(), o, s) });
     run(&|o, s| unsafe { avx2::dqs(v, &d8, &copies, o, s) });
     run(&|o, s| unsafe { avx2::log::log(v, &t, &(), o, s) });
-    run(&|o, s| unsafe { avx2::qlb::qlb(v, &rows, &qsigns, o, s) });
+    run(&|o, s| unsafe { avx2::qlb::qlb(v, &rows, &qcopies, o, s) });
     run(&|o, s| unsafe { avx2::dib::dib(v, &d8, &(), o, s) });
-    run(&|o, s| sbs(v, &rows, &qsigns, o, s));
+    run(&|o, s| sbs(v, &rows, &qcopies, o, s));
     let units = vec![(); 54];
     run(&|o, s| unsafe { avx2::traffic::traffic(v, &units, &(), o, s) });
 }

@@ -1,12 +1,11 @@
 //! QLB and SBS (`super::super::qlb`) eight vertices at a time with AVX2 and FMA: each
 //! vertex's K joint rows are whole-register loads (three registers a row, two for SBS) and
 //! blended in registers — the rotation quaternions with the antipodality signs, from the
-//! pose's signed copies of the rows (`Antipodes::rows`: the copy named by the pivot's row of
-//! offsets, or each row's plain copy where no pair flips) or, where there is no table, the
-//! scalar kernel's dot products; the matrices and origins with the plain weights — then
-//! eight blends are transposed into
-//! lanes and moved about their centres lane-parallel, with fused multiply-adds (the scalar
-//! kernel's formulas, so the two agree to rounding).
+//! pose's signed copies of the rows (`Antipodes::rows`: the copy named by the pivot's row
+//! of offsets, or each row's plain copy where no pair flips) or, where there is no table,
+//! the scalar kernel's dot products; the matrices and origins with the plain weights — then
+//! eight blends are transposed into lanes and moved about their centres lane-parallel, with
+//! fused multiply-adds (the scalar kernel's formulas, so the two agree to rounding).
 //!
 //! Tried and not kept (2026-12-04, the job alone at 2.5·10⁴ and 10⁵ synthetic vertices,
 //! one core, old and new binaries in turn four times): the centres (four floats a vertex)
@@ -26,7 +25,7 @@ const ROW: usize = 24;
 
 /// The antipodality sign of each influence (−0.0 to flip, +0.0 to keep, in all lanes),
 /// from the scalar kernel's dot products: the kernel's way where the pose has no table
-/// ([`blend_heads`] reads the table's signed copies instead). `inline(always)` for
+/// ([`blend_copies`] reads the table's signed copies instead). `inline(always)` for
 /// [`blend`]'s reason: as an `#[inline]` AVX2 function it stayed a call, one per vertex,
 /// with eight influences.
 ///
@@ -38,8 +37,8 @@ unsafe fn signs<const K: usize>(vx: &Vertex<K>, rows: &[[f32; ROW]]) -> [__m256;
         if K == 4 {
             return signs4(vx, rows);
         }
-        // Eight influences: by loops, each index widened where it is used (see
-        // `avx2::blend_copies`); array maps of closures stayed calls here.
+        // Eight influences: by loops, each index widened where it is used (as in
+        // `blend_copies`); array maps of closures stayed calls here.
         let j = |k: usize| usize::from(vx.j[k]);
         let mut s = [_mm256_setzero_ps(); K];
         let pivot = rows.get_unchecked(j(0));
@@ -159,6 +158,10 @@ pub unsafe fn qlb<const K: usize>(
     o: Dest<'_>,
     stream: bool,
 ) -> usize {
+    debug_assert!(
+        table.at.is_empty() || table.floats() == ROW,
+        "QLB's rows' copies"
+    );
     unsafe {
         if table.at.is_empty() {
             by_target!(o, S => blocks::<K, false, S>(v, &[], &[], o, stream, #[inline(always)] |vx| blend::<K, false>(vx, rows)))
@@ -189,6 +192,10 @@ pub unsafe fn sbs<const K: usize>(
     o: Dest<'_>,
     stream: bool,
 ) -> usize {
+    debug_assert!(
+        table.at.is_empty() || table.floats() == ROW,
+        "QLB's rows' copies"
+    );
     unsafe {
         if table.at.is_empty() {
             by_target!(o, S => blocks::<K, true, S>(v, cluster, centres, o, stream, #[inline(always)] |vx| blend::<K, true>(vx, rows)))
@@ -205,8 +212,9 @@ pub unsafe fn sbs<const K: usize>(
 
 /// The body over whole blocks of eight: each vertex's blended row, and its centre — its
 /// cluster's with `SBS` (`centres[cluster[i]]`), else the blend of its joints' origins.
-/// Generic over `SBS` rather than taking the blend as a closure: the closure stayed a call;
-/// and over the output's layout `S`.
+/// Generic over `SBS` (a closure choosing the centre stayed a call) and over the output's
+/// layout `S`; the blend, [`blend`] or [`blend_copies`], comes as an `#[inline(always)]`
+/// closure, as DQS's does (`avx2::dqs_blocks`).
 ///
 /// # Safety
 /// Only from AVX2+FMA code (`by_target!`'s builds, each its own copy, or `by_layout!` in
