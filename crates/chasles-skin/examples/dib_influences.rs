@@ -3,7 +3,8 @@
 //! heaviest on average; weights scaled to sum to 1), with 1 and 2 or 2 and 4 alternating
 //! vertex by vertex (every block mixed: DIB's fast path groups them by count, and they are
 //! timed without the grouping too), and the built-in characters in their first clip half-way
-//! through (each skinned as often as makes 10⁵ vertices a run); best of runs on one thread,
+//! through (each skinned as often as makes 10⁵ vertices a run), and CesiumMan's vertices cut
+//! to their first one, two and three influences; best of runs on one thread,
 //! the methods in turn, and DIB's cost in DQS's. A vertex of one influence keeps DLB's
 //! start and one of two takes ScLERP in closed form (Lemma 3), so a block of such vertices
 //! makes no update at all. Where the processor has AVX-512F and VL,
@@ -92,7 +93,17 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             None => Pose::rest(&rig),
         };
         let jt = chasles_skin::joint_transforms(&rig, &pose)?;
-        line(&rig.name, &FastRig::<4>::new(&rig)?, &jt);
+        let fast = FastRig::<4>::new(&rig)?;
+        line(&rig.name, &fast, &jt);
+        if m.file == chasles_models::CESIUM_MAN.file {
+            // Where its time goes: its vertices cut to their first one, two or three
+            // influences (weights scaled to sum to 1), so that the differences give the cost
+            // of each count.
+            for most in 1..=3 {
+                let cut = synthetic::with_influences(&fast, |_, k| k < most);
+                line(&format!("{}, at most {most}", rig.name), &cut, &jt);
+            }
+        }
     }
     Ok(())
 }

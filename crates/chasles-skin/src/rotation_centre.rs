@@ -90,10 +90,17 @@
 //!   instruction after the division, which ends each group's chain): 697–704 → 835–838 µs
 //!   a pose (2026-12-05, the builds in turn twice), and 939–943 while the joints' lists
 //!   were made in the AVX-512 function, where the array's `from_fn` stayed a call.
+//! * The priors' table in rows aligned to 32 bytes, so that no load of eight priors spans
+//!   two lines: 603–628 against 611–629 µs (2026-12-05, five runs each in turn).
 //!
-//! SBS's pose on that rig is now about half this solve and half the skinning job, which
-//! runs at QLB's speed, half DQS's (it blends four floats of quaternion and twelve of
-//! matrix a joint where DQS blends eight); so DQS stays about 4× SBS at 10⁵ vertices.
+//! SBS's pose on that rig is now a little more this solve (about 640 µs) than the skinning
+//! job (about 550, since it reads the pose's signed copies of the rows, `fast/antipodes.rs`;
+//! DQS about 320), both at QLB's speed or near it (the job blends four floats of quaternion
+//! and twelve of matrix a joint where DQS blends eight): DQS 3.7–4.0× SBS at 10⁵ vertices
+//! in `chasles skin --bench`'s rounds. A sixth of the solve's samples sit on the
+//! instruction after its one division (an f64 division of eight lanes, 23 cycles' latency
+//! at the end of each group's chain); a reciprocal by Newton's steps would take as long and
+//! give other bits than the scalar solve.
 //!
 //! The reference and fast paths share this code, so their centres are the same numbers.
 //! (Past 500 lines for these docs: what was measured and tried, kept beside the code.)

@@ -36,7 +36,8 @@
 //!   side (in case one block's chain of dependent steps — index, offset, copy, blend,
 //!   transpose, norm, division, rotation — left the core idle): slower, 63 → 66 µs a pose
 //!   at 2·10⁴ vertices and 316–334 → 322–352 µs at 10⁵ (a scratch loop of the job alone,
-//!   three runs each).
+//!   three runs each); again on 2026-12-05 with the two blocks' transforms as one `Wide`
+//!   lane (each operation on both in turn): 302–319 → 326–338 µs at 10⁵ (four runs each).
 
 use super::dest::Dest;
 use super::lane::{rotate, transform, two_over_norm2};

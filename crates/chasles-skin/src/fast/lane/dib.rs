@@ -293,7 +293,10 @@ fn keep_going<L: Lane>(norm: L, last: L) -> L::Mask {
 /// A vertex's weights `raw` (in slots of K) as DIB takes them: the positive ones scaled to
 /// sum to 1 (in the scalar kernel's order), the others 0; which slots are used; and how
 /// many slots count — trailing slots unused in every lane are left out (in a mesh, vertices
-/// side by side tend to have as many influences): their terms would be exact zeros.
+/// side by side tend to have as many influences): their terms would be exact zeros. (One
+/// reciprocal of the sum and K products instead of K divisions measured the same on
+/// CesiumMan, 12.65–13.43 against 12.75–13.46 ns a vertex, three runs each in turn,
+/// 2026-12-05: the divisions do not bound the kernel.)
 #[inline(always)]
 pub(in crate::fast) fn convex<L: Lane, const K: usize>(
     raw: [L; K],
