@@ -292,8 +292,9 @@ pub(in crate::fast) mod tests {
     /// closed form, Lemma 3; three or more: the iteration), so it keeps its numbers whatever
     /// its block-mates need: the kernel on the mesh and on the
     /// mesh without its first 1–7 vertices (every block made of other vertices) gives each
-    /// vertex the same bits. Influence counts 1–4 mixed in blocks, and runs of blocks of one
-    /// and two only.
+    /// vertex the same bits. Influence counts 1–4 mixed in blocks, runs of blocks of one
+    /// and two only, and runs of two alone (whose blocks take their ScLERP's two joints from
+    /// the first two slots as they are, `lane::dib::sclerp`).
     #[test]
     fn a_vertex_is_skinned_alike_whatever_its_block_mates() {
         if !simd(4) {
@@ -302,10 +303,10 @@ pub(in crate::fast) mod tests {
         }
         let rig = with_counts(&synthetic::rig(1200, 54, 5), |i| {
             let h = (i * 7919) % 13;
-            if (i / 40) % 2 == 0 {
-                1 + h % 2
-            } else {
-                1 + h % 4
+            match (i / 40) % 3 {
+                0 => 1 + h % 2,
+                1 => 1 + h % 4,
+                _ => 2,
             }
         });
         let d = crate::fast::dual_quats8(&synthetic::joints(54, 3));
