@@ -7,8 +7,11 @@
 //! along the mesh, so many blocks iterate for one or two of their lanes.
 //!
 //! [`by_influence_count`] gives the order that sorts the vertices by their influence count
-//! (one, two, three or more) within each window of [`WINDOW`] vertices, so that a
-//! window's vertices of three or more sit side by side; windows alternate between rising
+//! (one, two, three, four, …) within each window of [`WINDOW`] vertices, so that a
+//! window's vertices of three or more sit side by side, those of three before (or after)
+//! those of four: a block of three influences takes three logarithms a pass, one of four
+//! four (`fast::lane::dib`, `update`; until 2026-12-05 counts of three and more were one
+//! kind, when a block of three took four); windows alternate between rising
 //! and falling counts, so that neighbouring windows meet with like vertices (which matters
 //! where blocks start off a window's edge: in a job of 2¹⁸ vertices or more into a packed
 //! output, whose chunks after the first start up to seven vertices past a multiple of
@@ -57,8 +60,8 @@ pub const WINDOW: usize = 256;
 
 /// The order that groups the vertices of `rig` by influence count (module docs): `order[i]`
 /// is the index of the vertex that comes i-th. Within each window of [`WINDOW`] vertices
-/// the vertices are sorted by how many positive weights they have (1, 2, then 3 or more
-/// together), rising in even windows and falling in odd ones, and otherwise keep their
+/// the vertices are sorted by how many positive weights they have (1, 2, 3, 4, …), rising
+/// in even windows and falling in odd ones, and otherwise keep their
 /// order; every vertex stays in its window. An error where the rig's public fields were
 /// changed into an inconsistent rig ([`Rig::validate`]).
 pub fn by_influence_count(rig: &Rig) -> Result<Vec<u32>> {
@@ -71,10 +74,10 @@ pub fn by_influence_count(rig: &Rig) -> Result<Vec<u32>> {
 
 /// The order of [`by_influence_count`] for `n` vertices (at most `u32::MAX`: a rig's, whose
 /// influence rows are indexed by u32, or a fast layout's that `fast` checked) with
-/// `count(v)` influences of positive weight each (counts of 3 and more alike).
+/// `count(v)` influences of positive weight each.
 pub(crate) fn by_kind(n: usize, count: impl Fn(usize) -> usize) -> Vec<u32> {
     debug_assert!(n <= u32::MAX as usize, "vertices are named by u32 indices");
-    let kind = |v: u32| count(v as usize).min(3);
+    let kind = |v: u32| count(v as usize);
     let mut order: Vec<u32> = (0..n as u32).collect();
     for (i, window) in order.chunks_mut(WINDOW).enumerate() {
         if i % 2 == 0 {

@@ -317,8 +317,7 @@ pub(in crate::fast) fn convex<L: Lane, const K: usize>(
 /// `w` ([`convex`]), in each lane: DLB against the pivot, then the iteration of the module
 /// docs; the positive weights may sit in any of the slots. Every slot must hold a finite
 /// dual quaternion, and unused ones weight 0 in every lane (the AVX2 kernel puts the
-/// identity there): where `slots` is odd, the slot after it is computed with its pair and
-/// adds exact zeros.
+/// identity there).
 #[inline(always)]
 pub(in crate::fast) fn dib<L: Lane, const K: usize>(
     q: &[[L; 8]; K],
@@ -448,8 +447,14 @@ fn conjugate<L: Lane>(q: &[L; 8]) -> [L; 8] {
 
 /// One DIB update at `b̂` in each lane: `x̂ = Σ wᵢ log(b̂* q̂ᵢ)` over the first `slots`
 /// influences, and the logarithms' moments for the second-order step. The logarithms are
-/// taken two at a time, interleaved ([`Wide`]); where `slots` is odd the last pair's second,
-/// past `slots`, adds exact zeros (weight 0, a finite log: see [`dib`]). Testing `k < K`
+/// taken two at a time, interleaved ([`Wide`]), and where `slots` is odd the last alone.
+/// (Before 2026-12-05 the last was paired with the slot past `slots`, whose weight 0 made
+/// its terms exact zeros: a block of three influences took four logarithms a pass. Alone,
+/// with `vertex_order` sorting vertices of three apart from those of four, best of 30, one
+/// core, sixteen lanes, the builds in turn three times, `examples/dib_influences`:
+/// CesiumMan cut to three influences 4.00–4.10× → 3.72–3.83× DQS's time, CesiumMan
+/// 4.14–4.19× → 3.92–3.96×, RiggedFigure 3.62–3.64× → 3.24–3.32×; the last alone without
+/// the new order gave CesiumMan 4.09–4.11×, its blocks mixing three and four.) Testing `k < K`
 /// (known when compiled) rather than `k < slots` measured 1.1× faster. (The pass that shows
 /// the update converged does not need the moments, but a kernel that left them out there,
 /// taking the logarithms again with their moments where a lane goes on, was 3–5 % slower:
@@ -469,6 +474,13 @@ fn update<L: Lane, const K: usize>(
     // same on eight (best of runs, binaries in turn).
     for g in (0..K).step_by(2) {
         if g >= slots {
+            break;
+        }
+        if g + 1 == slots {
+            // The last of an odd count alone.
+            let l = log(&dqmul(&conjugate(b), &q[g]));
+            x = eight(|c| w[g].madd(l[c], x[c]));
+            spread.add(w[g], &l);
             break;
         }
         let at = |i: usize| (g + i).min(K - 1);
