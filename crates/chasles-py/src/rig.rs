@@ -453,7 +453,7 @@ impl PyRig {
     }
     /// The vertex order that groups the vertices by influence count (V,), int64: entry i
     /// is the vertex that comes i-th. Each window of 256 vertices is sorted by how many
-    /// influences its vertices have (1, 2, then 3 or more), rising and falling in turn, so
+    /// influences its vertices have (1, 2, 3, 4, …), rising and falling in turn, so
     /// that fewer of DIB's SIMD blocks pay for its iteration; :meth:`reordered` applies it.
     /// (The CPU's fast path groups DIB's vertices so by itself, on a copy; a rig reordered
     /// once needs no copy.)
