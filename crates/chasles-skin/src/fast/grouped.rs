@@ -65,7 +65,10 @@ pub(super) struct Groups<const K: usize> {
 /// stores), 4 more where a vertex has two influences (the block's ScLERP), 18 more where
 /// one has three or more (the iteration) — from blocks of one, two and four influences
 /// alone (`examples/dib_influences`, sixteen lanes, 2026-12-05: 1.49×, 2.68× and 6.95×
-/// DQS's 3 ns a vertex).
+/// DQS's 3 ns a vertex). Blocks of three influences now take three logarithms a pass where
+/// blocks of four take four (`lane::dib`, `update`), which this model does not see: it
+/// charges both alike, so a rig whose only mixing is of threes with fours is not grouped
+/// (none of the built-in characters; their grouping is chosen for their ones and twos).
 fn cost<const K: usize>(vertices: &[Vertex<K>]) -> usize {
     vertices
         .chunks(16)

@@ -53,7 +53,9 @@ fn the_order_sorts_each_window_by_influence_count_and_keeps_the_rest() {
             });
             assert!(sorted, "{}: window {w} is not sorted: {kinds:?}", rig.name);
             // Stable: vertices of one kind keep their order.
-            for k in 1..=8 {
+            let mut present = kinds.clone();
+            present.dedup();
+            for k in present {
                 let of_kind: Vec<u32> = window
                     .iter()
                     .copied()
@@ -86,11 +88,11 @@ fn grouped_characters_iterate_in_fewer_blocks() {
         let rig = character(m);
         let grouped = rig.reordered(&by_influence_count(&rig).unwrap()).unwrap();
         let n = rig.mesh.positions.len();
-        let threes = (0..n).filter(|&v| kind(&rig, v) >= 3).count();
+        let many = (0..n).filter(|&v| kind(&rig, v) >= 3).count();
         let (a, b) = (iterating(&rig, 16), iterating(&grouped, 16));
         assert_eq!(a, before, "{}", rig.name);
         assert!(
-            b <= threes.div_ceil(16) + n.div_ceil(WINDOW),
+            b <= many.div_ceil(16) + n.div_ceil(WINDOW),
             "{}: {a} → {b}",
             rig.name
         );

@@ -13,7 +13,8 @@
 //! `δ̂ = x̂`, the lanes step by `δ̂ = x̂ (1 + tr M / 3) − M x̂ / 3`, `M = Σ wᵢ x̂ᵢ x̂ᵢᵀ`, to
 //! the same fixed point under the same stopping rule: one update where the paper's step
 //! needs two (derivation and measurements in [`second_order`]). The influences' logarithms
-//! are taken two at a time, interleaved ([`Wide`]; measured again after the logarithm
+//! are taken two at a time, interleaved, an odd count's last alone ([`Wide`], `update`;
+//! measured again after the logarithm
 //! below lost its reduction, one at a time was 2 % slower on the synthetic mesh and 1–4 %
 //! faster on the characters: `wide`'s module docs).
 //!
@@ -316,7 +317,7 @@ pub(in crate::fast) fn convex<L: Lane, const K: usize>(
 /// The DIB blend of the first `slots` joint dual quaternions `q` with the convex weights
 /// `w` ([`convex`]), in each lane: DLB against the pivot, then the iteration of the module
 /// docs; the positive weights may sit in any of the slots. Every slot must hold a finite
-/// dual quaternion, and unused ones weight 0 in every lane (the AVX2 kernel puts the
+/// dual quaternion, and unused ones weight 0 in every lane (the SIMD kernels put the
 /// identity there).
 #[inline(always)]
 pub(in crate::fast) fn dib<L: Lane, const K: usize>(
@@ -447,15 +448,22 @@ fn conjugate<L: Lane>(q: &[L; 8]) -> [L; 8] {
 
 /// One DIB update at `b̂` in each lane: `x̂ = Σ wᵢ log(b̂* q̂ᵢ)` over the first `slots`
 /// influences, and the logarithms' moments for the second-order step. The logarithms are
-/// taken two at a time, interleaved ([`Wide`]), and where `slots` is odd the last alone.
-/// (Before 2026-12-05 the last was paired with the slot past `slots`, whose weight 0 made
-/// its terms exact zeros: a block of three influences took four logarithms a pass. Alone,
-/// with `vertex_order` sorting vertices of three apart from those of four, best of 30, one
-/// core, sixteen lanes, the builds in turn three times, `examples/dib_influences`:
-/// CesiumMan cut to three influences 4.00–4.10× → 3.72–3.83× DQS's time, CesiumMan
-/// 4.14–4.19× → 3.92–3.96×, RiggedFigure 3.62–3.64× → 3.24–3.32×; the last alone without
-/// the new order gave CesiumMan 4.09–4.11×, its blocks mixing three and four.) Testing `k < K`
-/// (known when compiled) rather than `k < slots` measured 1.1× faster. (The pass that shows
+/// taken two at a time, interleaved ([`Wide`]), and where `slots` is odd the last alone,
+/// after the pairs (one copy of it in the kernel). Before 2026-12-05 the last was paired
+/// with the slot past `slots` (the identity, weight 0 in every lane), whose terms were
+/// `+0 · log` added to the sums: a block of three influences took four logarithms a pass.
+/// Those terms could change only the sign of a sum that is exactly 0, and such a zero is
+/// read only squared (the norm), through `0 − ·`, or as a product added to +0 or to a
+/// number not 0 ([`Spread::step`]), each the same bits either way: so the results are the
+/// same bits (the bit-for-bit tests pass unchanged). A change to the step must keep that. Alone, with `vertex_order`
+/// sorting vertices of three apart from those of four (best of 30, one core, sixteen lanes,
+/// the builds in turn three times, `examples/dib_influences`): CesiumMan cut to at most
+/// three influences 4.00–4.10× → 3.72–3.83× DQS's time, CesiumMan 4.14–4.19× →
+/// 3.92–3.96×, RiggedFigure 3.62–3.64× → 3.24–3.32×; the last alone without the new order
+/// gave CesiumMan 4.09–4.11×, its blocks mixing three and four. With eight influence slots
+/// (`FastRig<8>`, 5·10⁴ synthetic vertices cut to 3, 4, 5 and 8 influences, best of 15,
+/// two runs each): 3 influences 42.2–42.3 → 46.0 M vertices/s, 5 32.1–32.7 → 34.6–35.5, 4
+/// and 8 unchanged. (The pass that shows
 /// the update converged does not need the moments, but a kernel that left them out there,
 /// taking the logarithms again with their moments where a lane goes on, was 3–5 % slower:
 /// 16.7 → 16.2 M vertices/s on four influences, 38.3 → 36.4 on two — a third copy of this
@@ -473,27 +481,23 @@ fn update<L: Lane, const K: usize>(
     // Up to K, known when compiled, rather than `slots`: 3–4 % faster on sixteen lanes, the
     // same on eight (best of runs, binaries in turn).
     for g in (0..K).step_by(2) {
-        if g >= slots {
+        if g + 1 >= slots {
             break;
         }
-        if g + 1 == slots {
-            // The last of an odd count alone.
-            let l = log(&dqmul(&conjugate(b), &q[g]));
-            x = eight(|c| w[g].madd(l[c], x[c]));
-            spread.add(w[g], &l);
-            break;
-        }
-        let at = |i: usize| (g + i).min(K - 1);
-        let q2 = eight(|c| Wide([q[at(0)][c], q[at(1)][c]]));
+        let q2 = eight(|c| Wide([q[g][c], q[g + 1][c]]));
         let l2 = log(&dqmul(&conj, &q2));
         for i in 0..2 {
-            let k = g + i;
-            if k < K {
-                let l = eight(|c| l2[c].0[i]);
-                x = eight(|c| w[k].madd(l[c], x[c]));
-                spread.add(w[k], &l);
-            }
+            let l = eight(|c| l2[c].0[i]);
+            x = eight(|c| w[g + i].madd(l[c], x[c]));
+            spread.add(w[g + i], &l);
         }
+    }
+    // The last of an odd count alone, after the pairs (one copy of it in the kernel).
+    if slots % 2 == 1 {
+        let k = slots - 1;
+        let l = log(&dqmul(&conj.map(|c| c.0[0]), &q[k]));
+        x = eight(|c| w[k].madd(l[c], x[c]));
+        spread.add(w[k], &l);
     }
     (x, spread)
 }
