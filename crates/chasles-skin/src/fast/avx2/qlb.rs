@@ -158,22 +158,7 @@ pub unsafe fn qlb<const K: usize>(
     o: Dest<'_>,
     stream: bool,
 ) -> usize {
-    debug_assert!(
-        table.at.is_empty() || table.floats() == ROW,
-        "QLB's rows' copies"
-    );
-    unsafe {
-        if table.at.is_empty() {
-            by_target!(o, S => blocks::<K, false, S>(v, &[], &[], o, stream, #[inline(always)] |vx| blend::<K, false>(vx, rows)))
-        } else {
-            let (copies, at) = (table.copies.as_ptr() as *const u8, table.at.as_ptr());
-            if table.flips {
-                by_target!(o, S => blocks::<K, false, S>(v, &[], &[], o, stream, #[inline(always)] |vx| blend_copies::<K, false, false>(vx, copies, at, table.joints)))
-            } else {
-                by_target!(o, S => blocks::<K, false, S>(v, &[], &[], o, stream, #[inline(always)] |vx| blend_copies::<K, false, true>(vx, copies, at, table.joints)))
-            }
-        }
-    }
+    unsafe { by_blend::<K, false>(v, rows, table, &[], &[], o, stream) }
 }
 
 /// SBS for the first `v.len() / 8 * 8` vertices, each about its cluster's centre
@@ -192,19 +177,39 @@ pub unsafe fn sbs<const K: usize>(
     o: Dest<'_>,
     stream: bool,
 ) -> usize {
+    unsafe { by_blend::<K, true>(v, rows, table, cluster, centres, o, stream) }
+}
+
+/// [`blocks`] with the blend the table allows: the dot products' signs ([`blend`]) where
+/// there is no table, else its copies ([`blend_copies`]), with or without offsets as a pair
+/// of the pose flips. QLB's and SBS's one dispatch.
+///
+/// # Safety
+/// Only from AVX2+FMA code ([`qlb`], [`sbs`]), with their preconditions.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+unsafe fn by_blend<const K: usize, const SBS: bool>(
+    v: &[Vertex<K>],
+    rows: &[[f32; ROW]],
+    table: &Antipodes,
+    cluster: &[u32],
+    centres: &[[f32; 4]],
+    o: Dest<'_>,
+    stream: bool,
+) -> usize {
     debug_assert!(
         table.at.is_empty() || table.floats() == ROW,
         "QLB's rows' copies"
     );
     unsafe {
         if table.at.is_empty() {
-            by_target!(o, S => blocks::<K, true, S>(v, cluster, centres, o, stream, #[inline(always)] |vx| blend::<K, true>(vx, rows)))
+            by_target!(o, S => blocks::<K, SBS, S>(v, cluster, centres, o, stream, #[inline(always)] |vx| blend::<K, SBS>(vx, rows)))
         } else {
             let (copies, at) = (table.copies.as_ptr() as *const u8, table.at.as_ptr());
             if table.flips {
-                by_target!(o, S => blocks::<K, true, S>(v, cluster, centres, o, stream, #[inline(always)] |vx| blend_copies::<K, true, false>(vx, copies, at, table.joints)))
+                by_target!(o, S => blocks::<K, SBS, S>(v, cluster, centres, o, stream, #[inline(always)] |vx| blend_copies::<K, SBS, false>(vx, copies, at, table.joints)))
             } else {
-                by_target!(o, S => blocks::<K, true, S>(v, cluster, centres, o, stream, #[inline(always)] |vx| blend_copies::<K, true, true>(vx, copies, at, table.joints)))
+                by_target!(o, S => blocks::<K, SBS, S>(v, cluster, centres, o, stream, #[inline(always)] |vx| blend_copies::<K, SBS, true>(vx, copies, at, table.joints)))
             }
         }
     }
