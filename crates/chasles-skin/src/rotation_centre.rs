@@ -96,11 +96,33 @@
 //! SBS's pose on that rig is now a little more this solve (about 640 µs) than the skinning
 //! job (about 550, since it reads the pose's signed copies of the rows, `fast/antipodes.rs`;
 //! DQS about 320), both at QLB's speed or near it (the job blends four floats of quaternion
-//! and twelve of matrix a joint where DQS blends eight): DQS 3.7–4.0× SBS at 10⁵ vertices
-//! in `chasles skin --bench`'s rounds. A sixth of the solve's samples sit on the
-//! instruction after its one division (an f64 division of eight lanes, 23 cycles' latency
-//! at the end of each group's chain); a reciprocal by Newton's steps would take as long and
-//! give other bits than the scalar solve.
+//! and twelve of matrix a joint where DQS blends eight). A sixth of the solve's samples sit
+//! on the instruction after its one division (an f64 division of eight lanes, 23 cycles'
+//! latency at the end of each group's chain); a reciprocal by Newton's steps would take as
+//! long and give other bits than the scalar solve.
+//!
+//! **In the bench's rounds** (2026-12-05). `chasles skin --bench` runs a dozen kernels
+//! between two of SBS's poses, and there the solve took 1.6 times its back-to-back time,
+//! where every other method's pose took its own within 2 % (`examples/pose_rounds`, 2·10⁵
+//! synthetic vertices, 148 263 clusters: the solve 1.88–1.97 ms in the rounds against
+//! 1.12–1.18 back to back). It walks four tables at once, 40 bytes a cluster, and the
+//! processor's prefetchers did not bring them in time once the other kernels had pushed
+//! them out of the caches. Now each group of eight asks the cache for the tables of the
+//! group 16 ahead (`Clusters::ask_ahead`; 8 and 32 ahead measured the same): the solve in
+//! the rounds 1.67–1.74 → 1.05–1.07 ms, back to back unchanged (a scratch copy of the
+//! rounds, three runs each in turn). And the centres are written once, into a table that
+//! may start uninitialized (`Clusters::centres_vec`), where a fresh palette had its
+//! 2.4 MB of centres zeroed first: the palette 1.49–1.53 → 1.27–1.31 ms in the rounds and
+//! 1.21–1.26 → 1.18–1.19 back to back (one binary, the two ways in turn three times). Both
+//! together (`examples/pose_rounds`, the builds in turn three times): SBS's solve in the
+//! rounds 1.88–1.97 → 1.29–1.39 ms and its pose 3.05–3.21 → 2.47–2.65; in `chasles skin
+//! --bench --bench-vertices 100000,200000 --bench-threads 1 --bench-rounds 31` (four runs
+//! each in turn) SBS 59.4–64.9 → 72.1–78.2 M vertices/s at 2·10⁵ and DQS 4.1–4.5× →
+//! 3.4–3.5× SBS there, 4.2–4.4× → 3.7–3.9× at 10⁵; at 10⁶ (`--bench-threads 1,2
+//! --bench-rounds 11`, one run each) 68.2 → 72.9 on one thread and 138.7 → 152.7 on two;
+//! CesiumMan unchanged (`--rig`, 153.0 and 151.2). Tried again the same day, and not kept
+//! again (see above): eight groups a call, all their sums before all their solves, 1.1 →
+//! 1.6 ms or more back to back; the motions read without bounds checks, 3 %.
 //!
 //! The reference and fast paths share this code, so their centres are the same numbers.
 //! (Past 500 lines for these docs: what was measured and tried, kept beside the code.)
@@ -108,6 +130,7 @@
 use chasles::{DualQuat, Mat4, Vec3};
 use rayon::prelude::*;
 use std::collections::HashMap;
+use std::mem::MaybeUninit;
 use std::ops::{Add, Div, Mul, Sub};
 use std::sync::OnceLock;
 
@@ -155,6 +178,14 @@ type PriorTable = (Vec<Vec3<f32>>, Vec<Priors>);
 /// The priors of eight clusters side by side (x, y, z, each of eight lanes), as the
 /// eight-lane solve loads them.
 type Priors = [[f32; 8]; 3];
+
+/// How many groups of eight clusters ahead the solve asks the cache for their tables
+/// (`Clusters::ask_ahead`; 8 and 32 measured the same).
+const AHEAD: usize = 16;
+
+/// A cluster's centre as the solve writes it, padded to four floats (the fourth 0), into a
+/// table that may start uninitialized ([`Clusters::centres_vec`]).
+type Slot = MaybeUninit<[f32; 4]>;
 
 /// Clusters at least this many are solved on all threads.
 const PARALLEL: usize = 256;
@@ -229,16 +260,47 @@ impl Clusters {
         bind: &[Vec3<f32>],
         parallel: bool,
     ) -> Vec<Vec3<f32>> {
-        let mut out = vec![[0f32; 4]; self.len()];
-        self.centres_into(d, bind, parallel, &mut out);
+        let mut out: Vec<[f32; 4]> = Vec::new();
+        self.centres_vec(d, bind, parallel, &mut out);
         out.iter().map(|c| Vec3::new(c[0], c[1], c[2])).collect()
+    }
+
+    /// [`Clusters::centres_into`] into `v`, emptied and refilled (its capacity kept), one
+    /// entry a cluster: entries of any plain type of four floats' size (the palette's
+    /// [`crate::fast::RotationCentre`], `[f32; 4]`), each written once, with no zeros
+    /// written first (at 2·10⁵ synthetic vertices, 1.5·10⁵ clusters, those zeros were 70 µs
+    /// a pose in a warm loop and 220 in `chasles skin --bench`'s rounds).
+    pub(crate) fn centres_vec<T: bytemuck::Pod>(
+        &self,
+        d: &[DualQuat<f32>],
+        bind: &[Vec3<f32>],
+        parallel: bool,
+        v: &mut Vec<T>,
+    ) {
+        const {
+            assert!(size_of::<T>() == size_of::<[f32; 4]>());
+            assert!(align_of::<T>().is_multiple_of(align_of::<[f32; 4]>()));
+        };
+        let n = self.len();
+        v.clear();
+        v.reserve(n);
+        let spare = &mut v.spare_capacity_mut()[..n];
+        // SAFETY: `MaybeUninit<T>` is laid out as `T`, which is as large as `[f32; 4]` and
+        // at least as aligned (checked above), so the n slots are n slots of
+        // `MaybeUninit<[f32; 4]>`, borrowed from `v` for this call alone.
+        let slots = unsafe { std::slice::from_raw_parts_mut(spare.as_mut_ptr().cast::<Slot>(), n) };
+        self.centres_into(d, bind, parallel, slots);
+        // SAFETY: `centres_into` wrote every one of the n slots (each group of eight, or
+        // the last few, in full), and a `T` (`Pod`) is valid for any bytes.
+        unsafe { v.set_len(n) };
     }
 
     /// [`Clusters::centres`] into `out`, one entry a cluster, each centre padded to four
     /// floats (the fourth 0), as the fast path's palette holds them: no vector of centres
     /// made on the way (on a rig of 85 582 clusters that vector and its padded copy were
     /// 2.4 MB a pose), and the lanes' centres stored straight from their registers (module
-    /// docs).
+    /// docs). Every slot is written, once, so `out` may start uninitialized
+    /// ([`Clusters::centres_vec`]).
     ///
     /// # Panics
     /// If `out.len()` is not `self.len()` (the callers size it so).
@@ -247,7 +309,7 @@ impl Clusters {
         d: &[DualQuat<f32>],
         bind: &[Vec3<f32>],
         parallel: bool,
-        out: &mut [[f32; 4]],
+        out: &mut [Slot],
     ) {
         assert_eq!(out.len(), self.len(), "one centre a cluster");
         let motions = Motions::new(d);
@@ -267,11 +329,14 @@ impl Clusters {
         let lanes = Lanes::allowed(crate::fast::uses_simd(4), crate::fast::uses_avx512(4));
         // Eight clusters at a time where AVX-512 may run, else (and the last few) four at a
         // time, and the last few of those one by one.
-        let solve = |(g, out): (usize, &mut [[f32; 4]])| {
+        // Every slot of `out` is written once, straight from the lanes (it may start
+        // uninitialized: no table of zeros is written first each pose).
+        let solve = |(g, out): (usize, &mut [Slot])| {
             let c = 8 * g;
+            self.ask_ahead(g, priors, out.as_ptr().cast());
             let joints = |k: usize| self.joints(c + k);
             let p = &priors[g];
-            if let Ok(out) = <&mut [[f32; 4]; 8]>::try_from(&mut *out) {
+            if let Ok(out) = <&mut [Slot; 8]>::try_from(&mut *out) {
                 if eight(core::array::from_fn(joints), &motions, p, lanes, out) {
                     return;
                 }
@@ -279,12 +344,12 @@ impl Clusters {
             for (h, out) in out.chunks_mut(4).enumerate() {
                 let joints = |k: usize| joints(4 * h + k);
                 let p = p.map(|x| [0, 1, 2, 3].map(|k| x[4 * h + k]));
-                if let Ok(out) = <&mut [[f32; 4]; 4]>::try_from(&mut *out) {
+                if let Ok(out) = <&mut [Slot; 4]>::try_from(&mut *out) {
                     four([0, 1, 2, 3].map(joints), &motions, &p, lanes.avx2, out);
                 } else {
                     for (k, o) in out.iter_mut().enumerate() {
                         let prior = Vec3::new(p[0][k], p[1][k], p[2][k]);
-                        *o = pad(centre_about(joints(k), &motions, prior));
+                        o.write(pad(centre_about(joints(k), &motions, prior)));
                     }
                 }
             }
@@ -294,6 +359,42 @@ impl Clusters {
         } else {
             out.chunks_mut(8).enumerate().for_each(solve);
         }
+    }
+
+    /// Asks the cache for what the solve of group `g + AHEAD` (eight clusters a group) reads
+    /// and writes — its priors, its starts in the joint list, its first joints and its
+    /// centres' slots (`out` being group g's) — so that the solve finds them there. It
+    /// walks four tables at once, 40 bytes a cluster (a start 4, joints 8, a prior 12, a
+    /// centre 16), at some 7 ns a cluster, and the processor's own prefetchers did not keep
+    /// them coming: with the tables out of the cache (as in `chasles skin --bench`'s rounds,
+    /// where a dozen kernels run between two of SBS's poses) the solve took 1.6 times its
+    /// time in a warm loop, and with these requests the same time (module docs). Harmless
+    /// where the tables are in the cache; nothing on targets without a prefetch here.
+    #[inline(always)]
+    fn ask_ahead(&self, g: usize, priors: &[Priors], out: *const [f32; 4]) {
+        #[cfg(target_arch = "x86_64")]
+        {
+            use std::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
+            let line = |p: *const u8| {
+                // SAFETY: a prefetch of any address is harmless; the pointer is never read.
+                unsafe { _mm_prefetch::<_MM_HINT_T0>(p.cast()) }
+            };
+            let c = 8 * (g + AHEAD);
+            // A group's priors (96 bytes) and centres (128) span two lines; its starts (32)
+            // and joints (2 bytes each, some 64 a group) mostly one.
+            let priors = priors.as_ptr().wrapping_add(g + AHEAD).cast::<u8>();
+            let out = out.wrapping_add(8 * AHEAD).cast::<u8>();
+            for at in [0, 64] {
+                line(priors.wrapping_add(at));
+                line(out.wrapping_add(at));
+            }
+            line(self.start.as_ptr().wrapping_add(c).cast());
+            if let Some(&j) = self.start.get(c) {
+                line(self.joints.as_ptr().wrapping_add(j as usize).cast());
+            }
+        }
+        #[cfg(not(target_arch = "x86_64"))]
+        let _ = (g, priors, out);
     }
 
     /// Every cluster's [`prior`] for the bind origins `bind`, eight clusters a row (the last
@@ -516,7 +617,7 @@ fn four(
     motions: &Motions,
     priors: &[[f32; 4]; 3],
     avx2: bool,
-    out: &mut [[f32; 4]; 4],
+    out: &mut [Slot; 4],
 ) {
     #[cfg(target_arch = "x86_64")]
     if avx2 {
@@ -526,7 +627,7 @@ fn four(
     let _ = avx2;
     for (k, o) in out.iter_mut().enumerate() {
         let p = Vec3::new(priors[0][k], priors[1][k], priors[2][k]);
-        *o = pad(centre_about(joints[k], motions, p));
+        o.write(pad(centre_about(joints[k], motions, p)));
     }
 }
 
@@ -567,7 +668,7 @@ fn eight(
     motions: &Motions,
     priors: &Priors,
     lanes: Lanes,
-    out: &mut [[f32; 4]; 8],
+    out: &mut [Slot; 8],
 ) -> bool {
     #[cfg(target_arch = "x86_64")]
     if lanes.avx512 {
@@ -581,6 +682,22 @@ fn eight(
 
 #[cfg(target_arch = "x86_64")]
 mod wide;
+
+/// Slots holding centres of NaN, for the tests to have written over.
+#[cfg(test)]
+fn nan_slots<const N: usize>() -> [Slot; N] {
+    [Slot::new([f32::NAN; 4]); N]
+}
+
+/// The centres in `slots`.
+///
+/// # Safety
+/// Every slot must hold a value (as those of [`nan_slots`] do, written over or not).
+#[cfg(test)]
+unsafe fn read_slots<const N: usize>(slots: [Slot; N]) -> [[f32; 4]; N] {
+    // SAFETY: the caller's.
+    slots.map(|s| unsafe { s.assume_init() })
+}
 
 /// x with `A x = b` for a symmetric 3×3 A given by its lower triangle (00, 10, 11, 20, 21,
 /// 22), by the adjugate and one division, and the determinant (x is of use only where it

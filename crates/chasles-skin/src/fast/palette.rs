@@ -354,13 +354,13 @@ impl Palette {
                     }
                 };
                 refill(joints, d.iter().zip(centres).map(|(d, c)| qlb_joint(d, *c)));
-                // Every entry is written: resized, not cleared. (Left unwritten instead, a fresh
-                // palette's zeros measured nothing: `skin_pose` of SBS at 10⁵ synthetic
-                // vertices 1179–1200 µs zeroed, 1190–1197 not; at 2·10⁵ 2169–2183 and
-                // 2169–2194; 2026-12-05.)
-                let clusters = rig.clusters();
-                c.resize(clusters.len(), RotationCentre::zeroed());
-                clusters.centres_into(d, centres, parallel, bytemuck::cast_slice_mut(c));
+                // Every entry written once, with no zeros first (`centres_vec`): the zeros of a
+                // fresh palette's 2.4 MB of centres cost nothing measurable back to back
+                // (`skin_pose` of SBS at 10⁵ synthetic vertices, 1179–1200 µs zeroed,
+                // 1190–1197 not), but 220 µs of SBS's pose at 2·10⁵ in `chasles skin
+                // --bench`'s rounds, once the solve asked for its tables ahead
+                // (`rotation_centre`'s module docs; 2026-12-05).
+                rig.clusters().centres_vec(d, centres, parallel, c);
             }
         }
         self.tabulate(rig);

@@ -215,8 +215,8 @@ pub(super) fn padded_centres(
     bind: &[chasles::Vec3<f32>],
     parallel: bool,
 ) -> Vec<[f32; 4]> {
-    let mut centres = vec![[0f32; 4]; clusters.len()];
-    clusters.centres_into(d, bind, parallel, &mut centres);
+    let mut centres = Vec::new();
+    clusters.centres_vec(d, bind, parallel, &mut centres);
     centres
 }
 

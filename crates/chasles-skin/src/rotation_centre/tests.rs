@@ -144,6 +144,43 @@ fn every_cluster_gets_its_own_centre() {
     }
 }
 
+/// `centres_vec` writes every entry once, whatever the vector held: refilled from a vector
+/// of NaN longer than the clusters (its capacity reused, no zeros written first), and from
+/// an empty one, it holds each cluster's padded centre (fourth float 0), bit for bit as
+/// `centres` gives them, for every count (the eights, fours and last few) and on one
+/// thread or all, in the palette's entry type and in `[f32; 4]`.
+#[test]
+fn centres_vec_writes_every_entry() {
+    let (d, bind) = sixteen_joints();
+    let sets: Vec<Vec<u16>> = (0..PARALLEL as u16 + 13)
+        .map(|i| (0..1 + i % 5).map(|k| (i * 5 + k * 3) % 16).collect())
+        .collect();
+    let bits = |c: &[f32; 4]| c.map(f32::to_bits);
+    for n in (1..=20).chain([PARALLEL + 13]) {
+        let c = Clusters::new(n, |v| sets[v].iter().copied());
+        for parallel in [false, true] {
+            let want: Vec<[u32; 4]> = c
+                .centres(&d, &bind, parallel)
+                .iter()
+                .map(|p| bits(&pad(*p)))
+                .collect();
+            let mut stale = vec![[f32::NAN; 4]; c.len() + 9];
+            let cap = stale.capacity();
+            c.centres_vec(&d, &bind, parallel, &mut stale);
+            assert_eq!(stale.capacity(), cap, "n {n}: the capacity reused");
+            let got: Vec<[u32; 4]> = stale.iter().map(bits).collect();
+            assert_eq!(got, want, "n {n} parallel {parallel}");
+            let mut fresh: Vec<crate::fast::RotationCentre> = Vec::new();
+            c.centres_vec(&d, &bind, parallel, &mut fresh);
+            let got: Vec<[u32; 4]> = fresh
+                .iter()
+                .map(|r| bits(&[r.centre[0], r.centre[1], r.centre[2], r.pad]))
+                .collect();
+            assert_eq!(got, want, "n {n} parallel {parallel}, fresh");
+        }
+    }
+}
+
 /// Four clusters at once (AVX2 lanes, where the processor has them) give each one's
 /// centre bit for bit: clusters of 1 to 4 joints side by side, one
 /// with a non-finite joint (the prior), equal rotations (A all rounding: near the prior).
@@ -166,7 +203,7 @@ fn four_at_once_are_each_alone_bit_for_bit() {
     ];
     let avx2 = Lanes::allowed(true, false).avx2;
     for g in sets.chunks(4) {
-        let mut got = [[f32::NAN; 4]; 4];
+        let mut got = nan_slots();
         four(
             [g[0], g[1], g[2], g[3]],
             &m,
@@ -174,6 +211,8 @@ fn four_at_once_are_each_alone_bit_for_bit() {
             avx2,
             &mut got,
         );
+        // SAFETY: the slots of `nan_slots` hold values.
+        let got = unsafe { read_slots(got) };
         for (set, got) in g.iter().zip(got) {
             assert_alone(got, set, &m, &bind, "");
         }
@@ -212,12 +251,14 @@ fn eight_at_once_are_each_alone_bit_for_bit() {
         let lanes = Lanes::allowed(widths.0, widths.1);
         for shift in 0..sets.len() {
             let group: [&[u16]; 8] = core::array::from_fn(|k| sets[(k + shift) % sets.len()]);
-            let mut got = [[f32::NAN; 4]; 8];
+            let mut got = nan_slots();
             if !eight(group, &m, &priors(&group, &bind), lanes, &mut got) {
                 assert!(!lanes.avx512, "eight at once where AVX-512 is allowed");
                 continue;
             }
             assert!(lanes.avx512);
+            // SAFETY: the slots of `nan_slots` hold values.
+            let got = unsafe { read_slots(got) };
             for (set, got) in group.iter().zip(got) {
                 let what = format!("shift {shift} lanes ({}, {})", lanes.avx2, lanes.avx512);
                 assert_alone(got, set, &m, &bind, &what);

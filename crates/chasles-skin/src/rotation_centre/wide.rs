@@ -8,7 +8,7 @@
 //! f32 in the lanes (`pick`'s test, one lane at a time from the stored lanes, had taken
 //! about a third of the eight-lane solve).
 
-use super::{solve, Motions, Num, Priors, FIELDS};
+use super::{solve, Motions, Num, Priors, Slot, FIELDS};
 use std::arch::x86_64::*;
 use std::ops::{Add, Div, Mul, Sub};
 
@@ -101,7 +101,7 @@ pub(super) unsafe fn four(
     joints: [&[u16]; 4],
     motions: &Motions,
     priors: &[[f32; 4]; 3],
-    out: &mut [[f32; 4]; 4],
+    out: &mut [Slot; 4],
 ) {
     chasles::frame::align_frame();
     let s: [[__m256d; 4]; 4] = sums(joints, motions, _mm256_setzero_pd(), |a, m: &[f64; 4]| {
@@ -133,7 +133,7 @@ pub(super) unsafe fn four(
 /// four centres transposed out of the lanes in registers, one store each.
 #[inline]
 #[target_feature(enable = "avx2")]
-fn pick4(x: [W; 3], prior: [W; 3], det: W, out: &mut [[f32; 4]; 4]) {
+fn pick4(x: [W; 3], prior: [W; 3], det: W, out: &mut [Slot; 4]) {
     let ok = _mm256_and_pd(
         _mm256_cmp_pd::<_CMP_GT_OQ>(det.0, _mm256_setzero_pd()),
         _mm256_cmp_pd::<_CMP_LT_OQ>(det.0, _mm256_set1_pd(f64::INFINITY)),
@@ -144,7 +144,7 @@ fn pick4(x: [W; 3], prior: [W; 3], det: W, out: &mut [[f32; 4]; 4]) {
     _MM_TRANSPOSE4_PS(&mut cx, &mut cy, &mut cz, &mut zero);
     for (o, c) in out.iter_mut().zip([cx, cy, cz, zero]) {
         // SAFETY: `o` holds four f32.
-        unsafe { _mm_storeu_ps(o.as_mut_ptr(), c) };
+        unsafe { _mm_storeu_ps(o.as_mut_ptr().cast::<f32>(), c) };
     }
 }
 
@@ -205,7 +205,7 @@ pub(super) unsafe fn eight(
     joints: [&[u16]; 8],
     motions: &Motions,
     priors: &Priors,
-    out: &mut [[f32; 4]; 8],
+    out: &mut [Slot; 8],
 ) {
     chasles::frame::align_frame();
     let s: [[__m512d; 2]; 8] = sums(joints, motions, _mm512_setzero_pd(), |a, m: &[f64; 8]| {
@@ -234,7 +234,7 @@ pub(super) unsafe fn eight(
 /// time by its samples (`perf record`, 2026-12-05).
 #[inline]
 #[target_feature(enable = "avx512f")]
-fn pick8(x: [W8; 3], prior: [W8; 3], det: W8, out: &mut [[f32; 4]; 8]) {
+fn pick8(x: [W8; 3], prior: [W8; 3], det: W8, out: &mut [Slot; 8]) {
     let ok = _mm512_cmp_pd_mask::<_CMP_GT_OQ>(det.0, _mm512_setzero_pd())
         & _mm512_cmp_pd_mask::<_CMP_LT_OQ>(det.0, _mm512_set1_pd(f64::INFINITY));
     let [cx, cy, cz] =
@@ -345,9 +345,10 @@ mod tests {
     ) -> [[f32; 4]; 4] {
         // SAFETY: `h` is 0 or 4, so each load reads four f64 of an array of eight.
         let w = |a: &[f64; 8]| W(unsafe { _mm256_loadu_pd(a.as_ptr().add(h)) });
-        let mut out = [[f32::NAN; 4]; 4];
+        let mut out = super::super::nan_slots();
         pick4(x.each_ref().map(w), p.each_ref().map(w), w(det), &mut out);
-        out
+        // SAFETY: the slots of `nan_slots` hold values.
+        unsafe { super::super::read_slots(out) }
     }
 
     /// [`pick8`] on the arrays (into centres of NaN, all overwritten).
@@ -355,8 +356,9 @@ mod tests {
     unsafe fn eight_lanes(x: &[[f64; 8]; 3], p: &[[f64; 8]; 3], det: &[f64; 8]) -> [[f32; 4]; 8] {
         // SAFETY: each load reads the eight f64 of an array of eight.
         let w = |a: &[f64; 8]| W8(unsafe { _mm512_loadu_pd(a.as_ptr()) });
-        let mut out = [[f32::NAN; 4]; 8];
+        let mut out = super::super::nan_slots();
         pick8(x.each_ref().map(w), p.each_ref().map(w), w(det), &mut out);
-        out
+        // SAFETY: the slots of `nan_slots` hold values.
+        unsafe { super::super::read_slots(out) }
     }
 }
