@@ -3,14 +3,15 @@
 //! vertices, where nearly every vertex is its own SBS cluster), one core, rounds of every
 //! kernel the bench times — each method's palette (`Palette::from_joint_transforms`, SBS's
 //! centre solve being nearly all of its) and skinning job, the glam and nalgebra baselines,
-//! the copy bound and the loads and stores alone — in a new order each round, then each
-//! method's palette and job again back to back; the medians in µs. A part that takes longer
+//! the copy bound and the loads and stores alone — in the bench's order for each round
+//! (`peers::order`), then each method's palette and job again back to back; the medians in
+//! µs, and a pose as the sum of its two parts' medians. A part that takes longer
 //! in the rounds waits on data that the other kernels have pushed out of the caches, or
 //! that the processor's prefetchers do not bring in time (SBS's solve took 1.6× its time
 //! in the rounds until it asked for its tables ahead, `rotation_centre`'s module docs)
 //! (`cargo run --release -p chasles-skin --example pose_rounds [-- VERTICES]`).
 
-use chasles_skin::fast::{traffic, Out, Output, Palette, SkinningJob};
+use chasles_skin::fast::{traffic, Out, Output, Palette, SkinningJob, Vertex};
 use chasles_skin::{peers, synthetic, Method};
 use std::time::Instant;
 
@@ -21,9 +22,8 @@ const ROUNDS: usize = 40;
 const RUNS: usize = 30;
 
 /// The median of `t`, in µs.
-fn median(mut t: Vec<f64>) -> f64 {
-    t.sort_by(f64::total_cmp);
-    t[t.len() / 2] * 1e6
+fn median(t: &[f64]) -> f64 {
+    peers::Spread::of(t.to_vec()).median * 1e6
 }
 
 /// The seconds `f` takes, and what it returns.
@@ -31,15 +31,6 @@ fn time<R>(f: impl FnOnce() -> R) -> (f64, R) {
     let start = Instant::now();
     let r = f();
     (start.elapsed().as_secs_f64(), r)
-}
-
-/// SplitMix64: the rounds' orders, the same in every run.
-fn mix(z: &mut u64) -> u64 {
-    *z = z.wrapping_add(0x9E37_79B9_7F4A_7C15);
-    let mut x = *z;
-    x = (x ^ (x >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-    x = (x ^ (x >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-    x ^ (x >> 31)
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -51,8 +42,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let jt = synthetic::joints(54, 7);
     let baselines = peers::Joints::of(&jt);
     let mut out: Vec<Out> = vec![[0.0; 6]; n];
-    // The copy bound's buffers: half of a vertex's 72 bytes each way.
-    let (src, mut dst) = (vec![1u8; n * 36], vec![0u8; n * 36]);
+    // The copy bound's buffers: half the bytes a vertex moves each way (its vertex in, its
+    // output out), as the bench copies them.
+    let half = (size_of::<Vertex<4>>() + size_of::<Out>()) / 2;
+    let (src, mut dst) = (vec![1u8; n * half], vec![0u8; n * half]);
     let methods = Method::ALL.len();
     let kernels = methods + peers::BASELINES.len() + 2;
     // [palette, job] of each method in the rounds and back to back.
@@ -71,13 +64,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         done?;
         Ok([made, ran])
     };
-    let mut state = 0x5EED;
     for round in 0..=ROUNDS {
-        let mut order: Vec<usize> = (0..kernels).collect();
-        for i in (1..kernels).rev() {
-            order.swap(i, (mix(&mut state) % (i as u64 + 1)) as usize);
-        }
-        for k in order {
+        // The bench's own order for the round.
+        for k in peers::order(kernels, round) {
             if k < methods {
                 let t = pose(Method::ALL[k], &mut out)?;
                 if round > 0 {
@@ -87,7 +76,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             } else if k < kernels - 2 {
                 (peers::BASELINES[k - methods].1)(rig.vertices(), &baselines, &mut out);
             } else if k == kernels - 2 {
-                peers::copy_bound(&src, &mut dst, 36, false);
+                peers::copy_bound(&src, &mut dst, half, false);
             } else {
                 traffic(&rig, Output::Packed(&mut out), false)?;
             }
@@ -105,10 +94,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     println!(
         "{n} synthetic vertices, one core: each method's pose in µs, in {ROUNDS} interleaved rounds of the bench's {kernels} kernels | back to back ({RUNS} runs); medians"
     );
-    println!("method: palette + job = pose (rounds) | palette + job = pose (back to back)");
+    println!(
+        "method: palette + job = their sum (rounds) | palette + job = their sum (back to back)"
+    );
     for (k, m) in Method::ALL.into_iter().enumerate() {
+        // The pose: the sum of the two parts' medians.
         let cell = |t: &[Vec<f64>; 2]| {
-            let (p, j) = (median(t[0].clone()), median(t[1].clone()));
+            let (p, j) = (median(&t[0]), median(&t[1]));
             format!("{p:6.0} + {j:6.0} = {:6.0}", p + j)
         };
         println!("{:>6}: {} | {}", m.name(), cell(&rounds[k]), cell(&warm[k]));

@@ -376,6 +376,20 @@ fn out_of(p: Vec3<f32>, n: Vec3<f32>) -> Out {
     [px, py, pz, nx, ny, nz]
 }
 
+/// Asks the cache for the line holding `p` (x86-64's prefetch into every level; nothing on
+/// other targets): a hint, harmless for any address, as the pointer is never read. The
+/// kernels' input ahead, SBS's centres and its solve's tables ahead take it.
+#[inline(always)]
+pub(crate) fn ask_cache<T>(p: *const T) {
+    #[cfg(target_arch = "x86_64")]
+    // SAFETY: a prefetch of any address is harmless; the pointer is never read.
+    unsafe {
+        std::arch::x86_64::_mm_prefetch::<{ std::arch::x86_64::_MM_HINT_T0 }>(p.cast())
+    };
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = p;
+}
+
 /// Vertices per chunk, the job's unit of work (`job`'s grid: the first chunk may be up to 7
 /// longer, so that the others' streamed output starts a 64-byte line, and the last up to 7
 /// longer).

@@ -24,8 +24,9 @@ use glam::{Mat3A, Vec3A, Vec4};
 
 mod rounds;
 pub use rounds::{
-    cache_notes, last_level_cache, markdown, measure, measure_posed, measure_rig, repeats, Load,
-    Role, Rotations, Row, Spread, Table, SYNTHETIC, SYNTHETIC_UNIFORM, TRAFFIC, UNGROUPED_DIB,
+    cache_notes, last_level_cache, markdown, measure, measure_posed, measure_rig, order, repeats,
+    Load, Role, Rotations, Row, Spread, Table, SYNTHETIC, SYNTHETIC_UNIFORM, TRAFFIC,
+    UNGROUPED_DIB,
 };
 
 /// Every baseline's joints for one pose.

@@ -104,8 +104,8 @@
 //! **In the bench's rounds** (2026-12-05). `chasles skin --bench` runs a dozen kernels
 //! between two of SBS's poses, and there the solve took 1.6 times its back-to-back time,
 //! where every other method's pose took its own within 2 % (`examples/pose_rounds`, 2·10⁵
-//! synthetic vertices, 148 263 clusters: the solve 1.88–1.97 ms in the rounds against
-//! 1.12–1.18 back to back). It walks four tables at once, 40 bytes a cluster, and the
+//! synthetic vertices, 148 263 clusters: SBS's palette, nearly all of it the solve,
+//! 1.88–1.97 ms in the rounds against 1.12–1.18 back to back). It walks four tables at once, 40 bytes a cluster, and the
 //! processor's prefetchers did not bring them in time once the other kernels had pushed
 //! them out of the caches. Now each group of eight asks the cache for the tables of the
 //! group 16 ahead (`Clusters::ask_ahead`; 8 and 32 ahead measured the same): the solve in
@@ -114,7 +114,7 @@
 //! may start uninitialized (`Clusters::centres_vec`), where a fresh palette had its
 //! 2.4 MB of centres zeroed first: the palette 1.49–1.53 → 1.27–1.31 ms in the rounds and
 //! 1.21–1.26 → 1.18–1.19 back to back (one binary, the two ways in turn three times). Both
-//! together (`examples/pose_rounds`, the builds in turn three times): SBS's solve in the
+//! together (`examples/pose_rounds`, the builds in turn three times): SBS's palette in the
 //! rounds 1.88–1.97 → 1.29–1.39 ms and its pose 3.05–3.21 → 2.47–2.65; in `chasles skin
 //! --bench --bench-vertices 100000,200000 --bench-threads 1 --bench-rounds 31` (four runs
 //! each in turn) SBS 59.4–64.9 → 72.1–78.2 M vertices/s at 2·10⁵ and DQS 4.1–4.5× →
@@ -268,8 +268,8 @@ impl Clusters {
     /// [`Clusters::centres_into`] into `v`, emptied and refilled (its capacity kept), one
     /// entry a cluster: entries of any plain type of four floats' size (the palette's
     /// [`crate::fast::RotationCentre`], `[f32; 4]`), each written once, with no zeros
-    /// written first (at 2·10⁵ synthetic vertices, 1.5·10⁵ clusters, those zeros were 70 µs
-    /// a pose in a warm loop and 220 in `chasles skin --bench`'s rounds).
+    /// written first (at 2·10⁵ synthetic vertices, 1.5·10⁵ clusters, those zeros cost 30–70
+    /// µs a pose back to back and about 220 in `chasles skin --bench`'s rounds: module docs).
     pub(crate) fn centres_vec<T: bytemuck::Pod>(
         &self,
         d: &[DualQuat<f32>],
@@ -369,32 +369,25 @@ impl Clusters {
     /// them coming: with the tables out of the cache (as in `chasles skin --bench`'s rounds,
     /// where a dozen kernels run between two of SBS's poses) the solve took 1.6 times its
     /// time in a warm loop, and with these requests the same time (module docs). Harmless
-    /// where the tables are in the cache; nothing on targets without a prefetch here.
+    /// where the tables are in the cache; nothing on targets without a prefetch here
+    /// ([`crate::fast::ask_cache`]).
     #[inline(always)]
     fn ask_ahead(&self, g: usize, priors: &[Priors], out: *const [f32; 4]) {
-        #[cfg(target_arch = "x86_64")]
-        {
-            use std::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
-            let line = |p: *const u8| {
-                // SAFETY: a prefetch of any address is harmless; the pointer is never read.
-                unsafe { _mm_prefetch::<_MM_HINT_T0>(p.cast()) }
-            };
-            let c = 8 * (g + AHEAD);
-            // A group's priors (96 bytes) and centres (128) span two lines; its starts (32)
-            // and joints (2 bytes each, some 64 a group) mostly one.
-            let priors = priors.as_ptr().wrapping_add(g + AHEAD).cast::<u8>();
-            let out = out.wrapping_add(8 * AHEAD).cast::<u8>();
-            for at in [0, 64] {
-                line(priors.wrapping_add(at));
-                line(out.wrapping_add(at));
-            }
-            line(self.start.as_ptr().wrapping_add(c).cast());
-            if let Some(&j) = self.start.get(c) {
-                line(self.joints.as_ptr().wrapping_add(j as usize).cast());
-            }
+        let line = |p: *const u8| crate::fast::ask_cache(p);
+        let c = 8 * (g + AHEAD);
+        // A group's priors (96 bytes) and centres (128) lie on two or three lines (the
+        // tables are 4-byte aligned), of which these are two and the next group's requests
+        // the rest; its starts (32) and joints (some 64) on one or two.
+        let priors = priors.as_ptr().wrapping_add(g + AHEAD).cast::<u8>();
+        let out = out.wrapping_add(8 * AHEAD).cast::<u8>();
+        for at in [0, 64] {
+            line(priors.wrapping_add(at));
+            line(out.wrapping_add(at));
         }
-        #[cfg(not(target_arch = "x86_64"))]
-        let _ = (g, priors, out);
+        line(self.start.as_ptr().wrapping_add(c).cast());
+        if let Some(&j) = self.start.get(c) {
+            line(self.joints.as_ptr().wrapping_add(j as usize).cast());
+        }
     }
 
     /// Every cluster's [`prior`] for the bind origins `bind`, eight clusters a row (the last

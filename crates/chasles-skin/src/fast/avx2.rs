@@ -72,9 +72,9 @@ pub(super) unsafe fn load_head<const K: usize>(v: &[Vertex<K>], i: usize) -> [__
     unsafe {
         let stride = size_of::<Vertex<K>>() / 4;
         // A prefetch past the end of the mesh is harmless; the pointer is never read.
-        let ahead = v.as_ptr().wrapping_add(i + PREFETCH) as *const i8;
+        let ahead = v.as_ptr().wrapping_add(i + PREFETCH) as *const u8;
         for line in 0..(8 * size_of::<Vertex<K>>()).div_ceil(64) {
-            _mm_prefetch::<_MM_HINT_T0>(ahead.wrapping_add(line * 64));
+            super::ask_cache(ahead.wrapping_add(line * 64));
         }
         let vb = v.as_ptr().add(i) as *const f32;
         transpose8(core::array::from_fn(|l| {

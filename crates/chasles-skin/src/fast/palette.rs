@@ -355,10 +355,9 @@ impl Palette {
                 };
                 refill(joints, d.iter().zip(centres).map(|(d, c)| qlb_joint(d, *c)));
                 // Every entry written once, with no zeros first (`centres_vec`): the zeros of a
-                // fresh palette's 2.4 MB of centres cost nothing measurable back to back
-                // (`skin_pose` of SBS at 10⁵ synthetic vertices, 1179–1200 µs zeroed,
-                // 1190–1197 not), but 220 µs of SBS's pose at 2·10⁵ in `chasles skin
-                // --bench`'s rounds, once the solve asked for its tables ahead
+                // fresh palette's 2.4 MB of centres at 2·10⁵ synthetic vertices cost 30–70 µs
+                // back to back, within the noise of a whole pose, but about 220 in `chasles
+                // skin --bench`'s rounds once the solve asked for its tables ahead
                 // (`rotation_centre`'s module docs; 2026-12-05).
                 rig.clusters().centres_vec(d, centres, parallel, c);
             }

@@ -292,7 +292,7 @@ impl<'a> Mesh<'a, 4> {
 
 /// The order of `count` kernels in round `round`: a Fisher–Yates shuffle driven by
 /// SplitMix64 from the round's number, the same in every run (no random source needed).
-fn order(count: usize, round: usize) -> Vec<usize> {
+pub fn order(count: usize, round: usize) -> Vec<usize> {
     // The round's number, mixed, starts the sequence: with a plain multiple of the
     // increment, round r + 1's draws would be round r's shifted by one.
     let mut state = mix((round as u64) << 32 | 0x5EED);

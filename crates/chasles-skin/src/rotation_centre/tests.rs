@@ -120,6 +120,26 @@ fn many_clusters_solve_alike_on_all_threads() {
     assert_eq!(c.centres(&d, &bind, true), c.centres(&d, &bind, false));
 }
 
+/// Every subset of one to four of the first twelve joints, and three of five, in a mixed
+/// order (sizes side by side): 796 distinct joint sets, more than [`PARALLEL`] (so that the
+/// threads take them) and not a multiple of eight (so that the last group is short).
+fn mixed_sets() -> Vec<Vec<u16>> {
+    let mut sets: Vec<Vec<u16>> = Vec::new();
+    for mask in 1u16..1 << 12 {
+        if mask.count_ones() <= 4 {
+            sets.push((0..12).filter(|j| mask & 1 << j != 0).collect());
+        }
+    }
+    sets.extend([
+        vec![0, 1, 2, 3, 4],
+        vec![5, 6, 7, 8, 9],
+        vec![10, 11, 12, 13, 14],
+    ]);
+    let n = sets.len();
+    // 389 is prime to 796: a permutation.
+    (0..n).map(|i| sets[i * 389 % n].clone()).collect()
+}
+
 /// Every cluster's centre is its own, solved alone, bit for bit, whatever the count
 /// (the eights, fours and last few of `centres_into`'s chunks) and on all threads or
 /// one (in the widest lanes here: `fast::set_avx512` is the process's, which tests
@@ -128,12 +148,11 @@ fn many_clusters_solve_alike_on_all_threads() {
 fn every_cluster_gets_its_own_centre() {
     let (d, bind) = sixteen_joints();
     let m = Motions::new(&d);
-    // Sets of 1 to 5 joints in a mixed order (equal sets make one cluster).
-    let sets: Vec<Vec<u16>> = (0..PARALLEL as u16 + 13)
-        .map(|i| (0..1 + i % 5).map(|k| (i * 7 + k * 3) % 16).collect())
-        .collect();
-    for n in (1..=20).chain([PARALLEL + 13]) {
+    let sets = mixed_sets();
+    assert_eq!((sets.len(), sets.len() % 8), (796, 4));
+    for n in (1..=20).chain([sets.len()]) {
         let c = Clusters::new(n, |v| sets[v].iter().copied());
+        assert_eq!(c.len(), n, "the sets are distinct");
         for parallel in [false, true] {
             let got = c.centres(&d, &bind, parallel);
             for (i, got) in got.iter().enumerate() {
@@ -145,38 +164,32 @@ fn every_cluster_gets_its_own_centre() {
 }
 
 /// `centres_vec` writes every entry once, whatever the vector held: refilled from a vector
-/// of NaN longer than the clusters (its capacity reused, no zeros written first), and from
-/// an empty one, it holds each cluster's padded centre (fourth float 0), bit for bit as
-/// `centres` gives them, for every count (the eights, fours and last few) and on one
-/// thread or all, in the palette's entry type and in `[f32; 4]`.
+/// of NaN longer than the clusters (its capacity reused, no zeros written first), each
+/// entry is its cluster's padded centre (fourth float 0) solved alone, bit for bit, for
+/// every count (the eights, fours and last few) and on one thread or all (796 clusters,
+/// past the threads' threshold); likewise into a fresh vector of the palette's entry type.
 #[test]
 fn centres_vec_writes_every_entry() {
     let (d, bind) = sixteen_joints();
-    let sets: Vec<Vec<u16>> = (0..PARALLEL as u16 + 13)
-        .map(|i| (0..1 + i % 5).map(|k| (i * 5 + k * 3) % 16).collect())
-        .collect();
-    let bits = |c: &[f32; 4]| c.map(f32::to_bits);
-    for n in (1..=20).chain([PARALLEL + 13]) {
+    let m = Motions::new(&d);
+    let sets = mixed_sets();
+    for n in (1..=20).chain([sets.len()]) {
         let c = Clusters::new(n, |v| sets[v].iter().copied());
         for parallel in [false, true] {
-            let want: Vec<[u32; 4]> = c
-                .centres(&d, &bind, parallel)
-                .iter()
-                .map(|p| bits(&pad(*p)))
-                .collect();
+            let what = |i: usize, how: &str| format!("n {n} cluster {i} parallel {parallel} {how}");
             let mut stale = vec![[f32::NAN; 4]; c.len() + 9];
             let cap = stale.capacity();
             c.centres_vec(&d, &bind, parallel, &mut stale);
-            assert_eq!(stale.capacity(), cap, "n {n}: the capacity reused");
-            let got: Vec<[u32; 4]> = stale.iter().map(bits).collect();
-            assert_eq!(got, want, "n {n} parallel {parallel}");
+            assert_eq!((stale.len(), stale.capacity()), (n, cap), "n {n}");
+            for (i, got) in stale.iter().enumerate() {
+                assert_alone(*got, c.joints(i), &m, &bind, &what(i, "stale"));
+            }
             let mut fresh: Vec<crate::fast::RotationCentre> = Vec::new();
             c.centres_vec(&d, &bind, parallel, &mut fresh);
-            let got: Vec<[u32; 4]> = fresh
-                .iter()
-                .map(|r| bits(&[r.centre[0], r.centre[1], r.centre[2], r.pad]))
-                .collect();
-            assert_eq!(got, want, "n {n} parallel {parallel}, fresh");
+            for (i, r) in fresh.iter().enumerate() {
+                let got = [r.centre[0], r.centre[1], r.centre[2], r.pad];
+                assert_alone(got, c.joints(i), &m, &bind, &what(i, "fresh"));
+            }
         }
     }
 }

@@ -247,7 +247,7 @@ unsafe fn blocks<const K: usize, const SBS: bool, S: Store>(
                     let c = centres
                         .as_ptr()
                         .wrapping_add(*cluster.get_unchecked(l) as usize);
-                    _mm_prefetch::<_MM_HINT_T0>(c as *const i8);
+                    super::super::ask_cache(c);
                 }
             }
             let [px, py, pz, nx, ny, nz, _, _] = load_head(v, i);
