@@ -375,20 +375,20 @@ impl Clusters {
     /// ([`crate::fast::ask_cache`]).
     #[inline(always)]
     fn ask_ahead(&self, g: usize, priors: &[Priors], out: *const [f32; 4]) {
-        let line = |p: *const u8| crate::fast::ask_cache(p);
-        let c = 8 * (g + AHEAD);
+        use crate::fast::ask_cache;
         // A group's priors (96 bytes) and centres (128) lie on two or three lines (the
         // tables are 4-byte aligned), of which these are two and the next group's requests
         // the rest; its starts (32) and joints (some 64) on one or two.
         let priors = priors.as_ptr().wrapping_add(g + AHEAD).cast::<u8>();
         let out = out.wrapping_add(8 * AHEAD).cast::<u8>();
         for at in [0, 64] {
-            line(priors.wrapping_add(at));
-            line(out.wrapping_add(at));
+            ask_cache(priors.wrapping_add(at));
+            ask_cache(out.wrapping_add(at));
         }
-        line(self.start.as_ptr().wrapping_add(c).cast());
+        let c = 8 * (g + AHEAD);
+        ask_cache(self.start.as_ptr().wrapping_add(c));
         if let Some(&j) = self.start.get(c) {
-            line(self.joints.as_ptr().wrapping_add(j as usize).cast());
+            ask_cache(self.joints.as_ptr().wrapping_add(j as usize));
         }
     }
 

@@ -173,7 +173,7 @@ pub(super) fn sbs_into<const K: usize>(
                 // where `o` is packed and `o[lead]` 32-byte aligned.
                 unsafe {
                     let (v, cl, o) = (&v[from..to], &cl[from..to], o.range(from, to));
-                    super::avx2::qlb::sbs(v, rows, table, cl, centres, o, s)
+                    super::avx2::qlb::about::<K, true>(v, rows, table, cl, centres, o, s)
                 }
             });
             return;
@@ -308,7 +308,9 @@ mod tests {
                 let sbs = both_ways(table, |table, out| unsafe {
                     let (v, of) = (rig.vertices(), cl.of_vertex());
                     let o = Dest::packed(out);
-                    super::super::avx2::qlb::sbs(v, rows, table, of, &centres, o, false)
+                    super::super::avx2::qlb::about::<K, true>(
+                        v, rows, table, of, &centres, o, false,
+                    )
                 });
                 // The ways to the signs gave the same numbers, bit for bit (`both_ways`), and
                 // the SIMD kernels (fused multiply-adds) are the scalar ones to rounding.

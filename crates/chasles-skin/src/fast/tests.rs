@@ -92,7 +92,7 @@ fn the_simd_kernels_take_8_influences() {
     let table = Antipodes::rows(&rows, 1003);
     // SAFETY: as in `both`, and every cluster index is below `padded.len()`.
     let done = unsafe {
-        avx2::qlb::sbs(
+        avx2::qlb::about::<_, true>(
             &rig.vertices,
             &rows,
             &table,
@@ -147,7 +147,7 @@ fn layouts<const K: usize>(n: usize) {
     let padded = qlb::padded_centres(&cl, &jt.dual_quats, rig.centres(), false);
     let sbs = |v: &[Vertex<K>], rows: &[qlb::Row], table: &Antipodes, o: Dest<'_>, s| {
         // SAFETY: as in `both`, and every cluster index is below `padded.len()`.
-        unsafe { avx2::qlb::sbs(v, rows, table, cl.of_vertex(), &padded, o, s) }
+        unsafe { avx2::qlb::about::<_, true>(v, rows, table, cl.of_vertex(), &padded, o, s) }
     };
     let mut buf = vec![[f32::NAN; 6]; n + 4];
     let (lead, streams) = simd_start(&Dest::packed(&mut buf), true);

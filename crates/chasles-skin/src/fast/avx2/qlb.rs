@@ -158,37 +158,23 @@ pub unsafe fn qlb<const K: usize>(
     o: Dest<'_>,
     stream: bool,
 ) -> usize {
-    unsafe { by_blend::<K, false>(v, rows, table, &[], &[], o, stream) }
+    unsafe { about::<K, false>(v, rows, table, &[], &[], o, stream) }
 }
 
-/// SBS for the first `v.len() / 8 * 8` vertices, each about its cluster's centre
-/// (`centres[cluster[i]]`, padded to 4 floats); returns how many were done.
-///
-/// # Safety
-/// As for [`qlb`], and every `cluster[i]` (for `i < v.len()`) must be below
-/// `centres.len()`.
-#[target_feature(enable = "avx2,fma")]
-pub unsafe fn sbs<const K: usize>(
-    v: &[Vertex<K>],
-    rows: &[[f32; ROW]],
-    table: &Antipodes,
-    cluster: &[u32],
-    centres: &[[f32; 4]],
-    o: Dest<'_>,
-    stream: bool,
-) -> usize {
-    unsafe { by_blend::<K, true>(v, rows, table, cluster, centres, o, stream) }
-}
-
-/// [`blocks`] with the blend the table allows: the dot products' signs ([`blend`]) where
+/// QLB (`SBS` false: each vertex about the blend of its joints' origins, `cluster` and
+/// `centres` unread) or SBS (each vertex about its cluster's centre, `centres[cluster[i]]`,
+/// padded to 4 floats) for the first `v.len() / 8 * 8` vertices; returns how many were
+/// done. The blend is the one the table allows: the dot products' signs ([`blend`]) where
 /// there is no table, else its copies ([`blend_copies`]), with or without offsets as a pair
-/// of the pose flips. QLB's and SBS's one dispatch.
+/// of the pose flips.
 ///
 /// # Safety
-/// Only from AVX2+FMA code ([`qlb`], [`sbs`]), with their preconditions.
+/// As for [`qlb`], and with `SBS` every `cluster[i]` (for `i < v.len()`) must be below
+/// `centres.len()`.
 #[allow(clippy::too_many_arguments)]
-#[inline(always)]
-unsafe fn by_blend<const K: usize, const SBS: bool>(
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+pub unsafe fn about<const K: usize, const SBS: bool>(
     v: &[Vertex<K>],
     rows: &[[f32; ROW]],
     table: &Antipodes,

@@ -414,7 +414,9 @@ fn sclerp<L: Lane, const K: usize>(q: &[[L; 8]; K], w: &[L; K], slots: usize) ->
     // builds in turn three times: two influences 121.1–122.8 → 124.5–126.1 M vertices/s,
     // CesiumMan 4.20–4.23× → 4.15–4.18× DQS's time, RiggedFigure unchanged).
     let both = L::and(zero.lt(w[0]), zero.lt(w[1.min(K - 1)]));
-    if slots == 2 && !L::any(L::and_not(both, zero.le(zero))) {
+    let every = zero.le(zero);
+    // No lane without both.
+    if slots == 2 && !L::any(L::and_not(both, every)) {
         return screw(&q[0], &q[1], w[1]);
     }
     for k in 0..slots {
