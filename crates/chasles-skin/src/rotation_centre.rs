@@ -126,6 +126,20 @@
 //! slots asked for with the hint to write (`prefetchw`), the palette in the rounds
 //! 1.23–1.30 against 1.20–1.27 ms (three runs each in turn).
 //!
+//! **A group ahead** (2026-12-05). Where AVX-512 runs, one call now solves a batch of up
+//! to 64 groups of eight (`wide::eights`; a batch is also a thread's unit of work), each
+//! group's system — its sums, transposes and normal equations with the Tikhonov term,
+//! twelve registers of lanes — made before the group before it is solved, picked and
+//! stored, so that one group's division runs while the next group's loads and sums come
+//! in (as the skinning kernels' loops take their next block ahead: `fast::avx2`'s module
+//! docs). Unlike the eight groups a call above, one group's system waits at a time. SBS's
+//! palette alone at 10⁵ vertices (85 709 clusters; a scratch loop, best of 30, the builds
+//! in turn three times, twice): 632–670 → 573–591 µs. Made first with arrays' `map` in
+//! `system` and a closure for a group's joints, both stayed calls compiled without
+//! AVX-512, their lanes' operations calls, and the palette took 1.2 ms; they are written
+//! out. Tried and not kept: the adjugate and determinant made ahead as well (13 registers
+//! carried), 570–586 against 573–590 µs.
+//!
 //! The reference and fast paths share this code, so their centres are the same numbers.
 //! (Past 500 lines for these docs: what was measured and tried, kept beside the code.)
 
@@ -191,6 +205,10 @@ type Slot = MaybeUninit<[f32; 4]>;
 
 /// Clusters at least this many are solved on all threads.
 const PARALLEL: usize = 256;
+
+/// Groups of eight clusters a call of the eight-lane solve (`wide::eights`), and a
+/// thread's unit of work.
+const BATCH: usize = 64;
 
 impl Clusters {
     /// Groups `vertices` vertices by their joint sets; `joints_of(v)` lists vertex v's
@@ -333,7 +351,7 @@ impl Clusters {
         // time, and the last few of those one by one.
         // Every slot of `out` is written once, straight from the lanes (it may start
         // uninitialized: no table of zeros is written first each pose).
-        let solve = |(g, out): (usize, &mut [Slot])| {
+        let group = |g: usize, out: &mut [Slot]| {
             let c = 8 * g;
             self.ask_ahead(g, priors, out.as_ptr().cast());
             let joints = |k: usize| self.joints(c + k);
@@ -356,10 +374,20 @@ impl Clusters {
                 }
             }
         };
+        // A batch's whole groups of eight in one call where AVX-512 may run (`eights`: each
+        // group's system made before the group before it is solved), the rest a group at
+        // a time.
+        let batch = |(k, out): (usize, &mut [Slot])| {
+            let g0 = k * BATCH;
+            let done = eights(self, g0, &motions, priors, lanes, out);
+            for (h, out) in out[done..].chunks_mut(8).enumerate() {
+                group(g0 + done / 8 + h, out);
+            }
+        };
         if parallel && self.len() >= PARALLEL {
-            out.par_chunks_mut(8).enumerate().for_each(solve);
+            out.par_chunks_mut(8 * BATCH).enumerate().for_each(batch);
         } else {
-            out.chunks_mut(8).enumerate().for_each(solve);
+            out.chunks_mut(8 * BATCH).enumerate().for_each(batch);
         }
     }
 
@@ -568,34 +596,46 @@ fn pick(x: [f64; 3], prior: [f64; 3], det: f64) -> Vec3<f32> {
 /// solved: the solution and the determinant.
 #[inline(always)]
 fn solve<X: Num>(f: impl Fn(usize) -> X, n: X, prior: [X; 3]) -> ([X; 3], X) {
+    let (a, b) = system(f, n, prior);
+    solve_symmetric(a, b)
+}
+
+/// [`solve`]'s normal equations with the Tikhonov term: A's lower triangle and b. Apart, so
+/// that the eight-lane solve can make a group's system before it ends the group before
+/// (`wide::eights`).
+#[inline(always)]
+fn system<X: Num>(f: impl Fn(usize) -> X, n: X, prior: [X; 3]) -> ([X; 6], [X; 3]) {
     // A = n G − SᵀS with G = Σ RᵀR = n I (the rotations are exact to f64's rounding), and
     // b = −(n U − SᵀT).
+    // Written out, without arrays' `map`: in the eight-lane solve of several groups a
+    // call (`wide::eights`) the maps stayed calls, and the lanes' operations in them.
+    let r = |i: usize| f(R + i);
     let (sts, stt) = gram(
-        [0, 1, 2, 3, 4, 5, 6, 7, 8].map(|i| f(R + i)),
-        [0, 1, 2].map(|i| f(T + i)),
+        [r(0), r(1), r(2), r(3), r(4), r(5), r(6), r(7), r(8)],
+        [f(T), f(T + 1), f(T + 2)],
     );
     let (nn, zero) = (n * n, X::splat(0.0));
-    let mut a = [
-        nn - sts[0],
-        zero - sts[1],
-        nn - sts[2],
-        zero - sts[3],
-        zero - sts[4],
-        nn - sts[5],
-    ];
     // One joint: A = I − RᵀR is rounding alone (about 1e-16, against the Tikhonov term's
     // floor of 1e-12), so it is made 0 (n − 1 is 0 there and at least 1 from two joints
     // on): the centre is the prior. No joints (n − 1 = −1): A is 0 already, and the centre
     // the prior, the origin.
     let many = (n - X::splat(1.0)).at_most_one();
-    a = a.map(|x| x * many);
-    let mut b = [0, 1, 2].map(|i| stt[i] - n * f(U + i));
+    let mut a = [
+        (nn - sts[0]) * many,
+        (zero - sts[1]) * many,
+        (nn - sts[2]) * many,
+        (zero - sts[3]) * many,
+        (zero - sts[4]) * many,
+        (nn - sts[5]) * many,
+    ];
+    let b = |i: usize| stt[i] - n * f(U + i);
+    let mut b = [b(0), b(1), b(2)];
     let lambda = X::splat(1e-6) * (a[0] + a[2] + a[5]) + X::splat(1e-12);
     for (i, d) in [0, 2, 5].into_iter().enumerate() {
         a[d] = a[d] + lambda;
         b[i] = b[i] + lambda * prior[i];
     }
-    solve_symmetric(a, b)
+    (a, b)
 }
 
 /// A centre padded to four floats, the fourth 0.
@@ -673,6 +713,30 @@ fn eight(
     }
     let _ = (joints, motions, priors, lanes.avx512, out);
     false
+}
+
+/// The whole groups of eight clusters in `out` (groups `g0` on) solved by
+/// [`wide::eights`] where AVX-512 is allowed; returns how many slots it wrote (none
+/// elsewhere: the caller solves them a group at a time, to the same numbers).
+fn eights(
+    clusters: &Clusters,
+    g0: usize,
+    motions: &Motions,
+    priors: &[Priors],
+    lanes: Lanes,
+    out: &mut [Slot],
+) -> usize {
+    #[cfg(target_arch = "x86_64")]
+    if lanes.avx512 {
+        let whole = out.len() / 8 * 8;
+        // SAFETY: `Lanes::allowed` found AVX-512F on this processor; `whole` is a multiple
+        // of 8, and its groups are whole groups of `clusters` (the caller's `out` starts at
+        // group `g0` and holds one slot a cluster).
+        unsafe { wide::eights(clusters, g0, motions, priors, &mut out[..whole]) };
+        return whole;
+    }
+    let _ = (clusters, g0, motions, priors, lanes.avx512, out);
+    0
 }
 
 #[cfg(target_arch = "x86_64")]

@@ -38,6 +38,42 @@
 //!   at 2·10⁴ vertices and 316–334 → 322–352 µs at 10⁵ (a scratch loop of the job alone,
 //!   three runs each); again on 2026-12-05 with the two blocks' transforms as one `Wide`
 //!   lane (each operation on both in turn): 302–319 → 326–338 µs at 10⁵ (four runs each).
+//!
+//! **The next block ahead** (2026-12-05). Each turn of the DQS loop now blends the next
+//! block — its loads, its chain of index, offset and copy, its transpose — before it
+//! transforms this one, and carries those 14 registers of lanes (blend, position, normal)
+//! into the next turn; LBS takes the next block up to its normals by the cofactors, not
+//! yet of unit length, and carries 9. In one turn a block's steps hang on one another —
+//! index, offset, copy, blend, transpose, norm, division, rotation — and the core had
+//! waited on that chain: now the next block's loads are under way while this one's
+//! division and rotation run. (Two blocks side by side in a turn, above, carried both
+//! blocks' blends whole and spilled them.) The job alone, one core, best of 15 (a scratch
+//! loop over `SkinningJob::run`), the builds in turn three times, ns a vertex: DQS
+//! 3.06–3.14 → 2.78–2.82 at 2·10⁴ vertices (the second-level cache) and 3.49–3.67 →
+//! 3.19–3.36 at 2·10⁵; LBS 3.75–3.84 → 3.40–3.42 and 4.22–4.48 → 3.87–4.13; with eight
+//! influences (5·10⁴ vertices) DQS 5.18–5.32 → 4.62–4.77 and LBS 7.56–8.06 → 6.76–6.99.
+//! With AVX2's sixteen registers alone (`set_avx512(false)`) DQS is unchanged (3.23–3.33
+//! against 3.20–3.38) and LBS 4.10–4.21 → 3.67–3.95. In `chasles skin --bench`
+//! (`--bench-vertices 100000,200000 --bench-threads 1 --bench-rounds 31`, with the same
+//! change in Log, QLB, SBS and SBS's centre solve, three runs each in turn) DQS over the
+//! careful glam DQS went 4.62–4.69× → 4.90–5.04× at 10⁵ and 4.42–4.62× → 4.78–4.90× at
+//! 2·10⁵. Tried on top of it and not kept (the same loop, ns a vertex):
+//! - DQS's transform split at its division (`‖b0‖²`, the terms its factor scales, p and n:
+//!   13 registers carried, the turn's end only the division and six multiply-adds):
+//!   2.78–2.82 → 3.06–3.19 at 2·10⁴;
+//! - the copies table's indices (`64 j₀` and `j₀·joints + jₖ`) made in lanes from the
+//!   head's words of joint indices, stored and read back a block ahead: 377 → 329
+//!   instructions a block, and no faster than the blends ahead alone (2.95–3.05 against
+//!   2.94–3.01 at 4096 and 2·10⁴ vertices);
+//! - each joint index by its own 16-bit load, again: 2.66–2.82 against 2.73–2.83;
+//! - the input asked for 128 or 256 vertices ahead rather than 64 (DQS at 2·10⁵ 3.32–3.56
+//!   → 3.49–3.96 and 3.85–4.04), or 256 ahead into the second-level cache as well (3.54–3.59
+//!   → 3.38–4.13; at 10⁶ 3.29–3.53 → 3.59–3.87);
+//! - the packed output streamed from 2¹⁶ vertices rather than [`super::STREAM_VERTICES`]
+//!   (at 2·10⁵ DQS 3.34–3.45 → 3.22–3.34, LBS unchanged): within the noise, and the output
+//!   would leave the cache that its reader finds it in.
+//!
+//! (Past 500 lines for these docs: what was measured and tried, kept beside the code.)
 
 use super::dest::Dest;
 use super::lane::{rotate, transform, two_over_norm2};
@@ -263,11 +299,36 @@ unsafe fn dqs_blocks<const K: usize, S: Store>(
     chasles::frame::align_frame();
     unsafe {
         let blocks = v.len() / 8;
+        if blocks == 0 {
+            return 0;
+        }
+        /// Block `i`'s blends (transposed into lanes), positions and normals.
+        #[inline(always)]
+        unsafe fn block<const K: usize>(
+            v: &[Vertex<K>],
+            i: usize,
+            blend: &impl Fn(&Vertex<K>) -> __m256,
+        ) -> ([__m256; 8], [__m256; 3], [__m256; 3]) {
+            unsafe {
+                let [px, py, pz, nx, ny, nz, _, _] = load_head(v, i);
+                let b = transpose8(eight(|l| blend(v.get_unchecked(i + l))));
+                (b, [px, py, pz], [nx, ny, nz])
+            }
+        }
+        // Each turn blends the next block before it transforms this one, so that the next
+        // block's chain of loads (index, offset, copy) is under way while this one's
+        // transform runs.
+        let mut cur = block(v, 0, &blend);
         for blk in 0..blocks {
             let i = blk * 8;
-            let [px, py, pz, nx, ny, nz, _, _] = load_head(v, i);
-            let b = transpose8(eight(|l| blend(v.get_unchecked(i + l))));
-            store_rows::<S>(&mut o, i, transform(b, [px, py, pz], [nx, ny, nz]), stream);
+            let next = if blk + 1 < blocks {
+                block(v, i + 8, &blend)
+            } else {
+                cur
+            };
+            let (b, p, n) = cur;
+            store_rows::<S>(&mut o, i, transform(b, p, n), stream);
+            cur = next;
         }
         blocks * 8
     }
@@ -353,41 +414,62 @@ unsafe fn lbs_blocks<const K: usize, S: Store>(
         let zero = _mm256_setzero_ps();
         let one = _mm256_set1_ps(1.0);
         let blocks = v.len() / 8;
+        if blocks == 0 {
+            return 0;
+        }
+        /// Block `i`'s positions moved by the blended matrices, its normals by their
+        /// cofactors (not yet of unit length), and its bind normals (in lanes).
+        #[inline(always)]
+        unsafe fn block<const K: usize>(v: &[Vertex<K>], i: usize, mb: *const f32) -> [__m256; 9] {
+            unsafe {
+                let [x, y, z, nx, ny, nz, _, _] = load_head(v, i);
+                let b = eight(|l| lbs_blend(v.get_unchecked(i + l), mb));
+                let [a0, a1, a2, a3, a4, a5, a6, a7] = transpose8(eight(|l| b[l].0));
+                // Row 2 of vertices l and l + 4 side by side, then 4×4 transposes per half.
+                let row2 = |l: usize| _mm256_set_m128(b[l + 4].1, b[l].1);
+                let h = transpose4_halves([row2(0), row2(1), row2(2), row2(3)]);
+                let a = [a0, a1, a2, a3, a4, a5, a6, a7, h[0], h[1], h[2], h[3]];
+                let mul = |p, q| _mm256_mul_ps(p, q);
+                let fma = |p, q, r| _mm256_fmadd_ps(p, q, r);
+                let fms = |p, q, r| _mm256_fmsub_ps(p, q, r);
+                // Row r times (x, y, z, 1).
+                let row = |r: usize| {
+                    fma(
+                        a[4 * r + 2],
+                        z,
+                        fma(a[4 * r + 1], y, fma(a[4 * r], x, a[4 * r + 3])),
+                    )
+                };
+                let (px, py, pz) = (row(0), row(1), row(2));
+                // Cofactors c = a·b − c·d, the second product rounded, the first fused.
+                let cof = |p, q, r, s| fms(p, q, mul(r, s));
+                let c00 = cof(a[5], a[10], a[6], a[9]);
+                let c01 = cof(a[6], a[8], a[4], a[10]);
+                let c02 = cof(a[4], a[9], a[5], a[8]);
+                let c10 = cof(a[2], a[9], a[1], a[10]);
+                let c11 = cof(a[0], a[10], a[2], a[8]);
+                let c12 = cof(a[1], a[8], a[0], a[9]);
+                let c20 = cof(a[1], a[6], a[2], a[5]);
+                let c21 = cof(a[2], a[4], a[0], a[6]);
+                let c22 = cof(a[0], a[5], a[1], a[4]);
+                let mx = fma(c02, nz, fma(c01, ny, mul(c00, nx)));
+                let my = fma(c12, nz, fma(c11, ny, mul(c10, nx)));
+                let mz = fma(c22, nz, fma(c21, ny, mul(c20, nx)));
+                [px, py, pz, mx, my, mz, nx, ny, nz]
+            }
+        }
+        let mut cur = block(v, 0, mb);
         for blk in 0..blocks {
             let i = blk * 8;
-            let [x, y, z, nx, ny, nz, _, _] = load_head(v, i);
-            let b = eight(|l| lbs_blend(v.get_unchecked(i + l), mb));
-            let [a0, a1, a2, a3, a4, a5, a6, a7] = transpose8(eight(|l| b[l].0));
-            // Row 2 of vertices l and l + 4 side by side, then 4×4 transposes per half.
-            let row2 = |l: usize| _mm256_set_m128(b[l + 4].1, b[l].1);
-            let h = transpose4_halves([row2(0), row2(1), row2(2), row2(3)]);
-            let a = [a0, a1, a2, a3, a4, a5, a6, a7, h[0], h[1], h[2], h[3]];
+            let next = if blk + 1 < blocks {
+                block(v, i + 8, mb)
+            } else {
+                cur
+            };
+            let [px, py, pz, mx, my, mz, nx, ny, nz] = cur;
+            cur = next;
             let mul = |p, q| _mm256_mul_ps(p, q);
             let fma = |p, q, r| _mm256_fmadd_ps(p, q, r);
-            let fms = |p, q, r| _mm256_fmsub_ps(p, q, r);
-            // Row r times (x, y, z, 1).
-            let row = |r: usize| {
-                fma(
-                    a[4 * r + 2],
-                    z,
-                    fma(a[4 * r + 1], y, fma(a[4 * r], x, a[4 * r + 3])),
-                )
-            };
-            let (px, py, pz) = (row(0), row(1), row(2));
-            // Cofactors c = a·b − c·d, the second product rounded, the first fused.
-            let cof = |p, q, r, s| fms(p, q, mul(r, s));
-            let c00 = cof(a[5], a[10], a[6], a[9]);
-            let c01 = cof(a[6], a[8], a[4], a[10]);
-            let c02 = cof(a[4], a[9], a[5], a[8]);
-            let c10 = cof(a[2], a[9], a[1], a[10]);
-            let c11 = cof(a[0], a[10], a[2], a[8]);
-            let c12 = cof(a[1], a[8], a[0], a[9]);
-            let c20 = cof(a[1], a[6], a[2], a[5]);
-            let c21 = cof(a[2], a[4], a[0], a[6]);
-            let c22 = cof(a[0], a[5], a[1], a[4]);
-            let mx = fma(c02, nz, fma(c01, ny, mul(c00, nx)));
-            let my = fma(c12, nz, fma(c11, ny, mul(c10, nx)));
-            let mz = fma(c22, nz, fma(c21, ny, mul(c20, nx)));
             let l2 = fma(mz, mz, fma(my, my, mul(mx, mx)));
             let ok = _mm256_cmp_ps::<_CMP_GT_OQ>(l2, zero);
             let inv = _mm256_div_ps(one, _mm256_sqrt_ps(l2));

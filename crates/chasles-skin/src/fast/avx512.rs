@@ -41,6 +41,11 @@
 //!   unchanged or a little faster (four influences 29.4–30.0 → 30.4–33.0), but sixteen
 //!   three times slower (45.0–45.2 → 14.4–15.0; CesiumMan 68.4–78.7 → 33.0–33.5), with a
 //!   third inlined copy of the update; why, not looked into.
+//! - The block's blend and head carried into the next turn and transformed there, after
+//!   the next block's loads and iteration (as the other kernels' loops take their next
+//!   block ahead: `avx2`'s module docs): CesiumMan 74.0–75.2 against 72.9–76.3 M
+//!   vertices/s (`chasles skin --rig … --bench --bench-threads 1`, two runs each in turn,
+//!   2026-12-05): a block's time is its iteration, not the chain to its stores.
 //!
 //! Where the time goes (2026-12-05, a 2-core Intel Xeon with AVX-512F, best of 20 runs
 //! over 10⁵ synthetic vertices of four influences, one core, M vertices/s). The processor

@@ -321,3 +321,88 @@ fn the_last_few_vertices_get_the_simd_kernels_numbers() {
         }
     }
 }
+
+/// The kernels whose loop takes the next block ahead before it ends this one (DQS, LBS,
+/// Log, QLB and SBS) on the first n vertices of a rig, n = 0 … 24 (no block, one, two and
+/// three, each with a few after): each does the whole blocks, writes the very bits it
+/// writes for those vertices in a run over the whole rig, and nothing past them. DQS and
+/// QLB with and without their antipodality tables, 4 and 8 influences.
+#[test]
+fn the_blocks_ahead_end_where_the_mesh_ends() {
+    if !simd(4) {
+        eprintln!("no AVX2+FMA here: nothing to compare");
+        return;
+    }
+    short_meshes::<4>();
+    short_meshes::<8>();
+}
+
+/// [`the_blocks_ahead_end_where_the_mesh_ends`] with K influences.
+fn short_meshes<const K: usize>() {
+    let rig = synthetic::rig_with::<K>(4099, 54, 9);
+    let jt = synthetic::joints(54, 9);
+    let (d8, m12) = (dual_quats8(&jt), matrices12(&jt));
+    let t = log::rows(&twists(&jt).unwrap());
+    let (copies, none) = (Antipodes::copies(&d8, 4099), Antipodes::default());
+    let rows = qlb::rows(&jt.dual_quats, rig.centres());
+    let qcopies = Antipodes::rows(&rows, 4099);
+    assert!(!copies.is_empty() && !qcopies.is_empty());
+    let cl = clusters(&rig);
+    let padded = qlb::padded_centres(&cl, &jt.dual_quats, rig.centres(), false);
+    let mark = f32::from_bits(0x7fc0_1234); // a NaN no kernel writes
+    type Run<'a, const K: usize> = Box<dyn Fn(&[Vertex<K>], Dest<'_>) -> usize + 'a>;
+    // SAFETY (each kernel): the processor has AVX2 and FMA (`simd`), the synthetic rig's
+    // joint indices are below 54 = every joint table's length, the tables are made from
+    // the joints they are used with, each output is as long as the vertices, and every
+    // cluster index is below `padded.len()`.
+    let kernels: [(&str, Run<'_, K>); 7] = [
+        (
+            "QLB",
+            Box::new(|v, o| unsafe { avx2::qlb::qlb(v, &rows, &qcopies, o, false) }),
+        ),
+        (
+            "QLB, no table",
+            Box::new(|v, o| unsafe { avx2::qlb::qlb(v, &rows, &none, o, false) }),
+        ),
+        (
+            "SBS",
+            Box::new(|v, o| unsafe {
+                avx2::qlb::about::<_, true>(v, &rows, &qcopies, cl.of_vertex(), &padded, o, false)
+            }),
+        ),
+        (
+            "LBS",
+            Box::new(|v, o| unsafe { avx2::lbs(v, &m12, &(), o, false) }),
+        ),
+        (
+            "DQS",
+            Box::new(|v, o| unsafe { avx2::dqs(v, &d8, &copies, o, false) }),
+        ),
+        (
+            "DQS, no table",
+            Box::new(|v, o| unsafe { avx2::dqs(v, &d8, &none, o, false) }),
+        ),
+        (
+            "Log",
+            Box::new(|v, o| unsafe { avx2::log::log(v, &t, &(), o, false) }),
+        ),
+    ];
+    for (name, k) in &kernels {
+        let mut all = vec![[f32::NAN; 6]; 4099];
+        assert_eq!(k(rig.vertices(), Dest::packed(&mut all)), 4096);
+        for n in 0..=24 {
+            let mut o = vec![[mark; 6]; n];
+            let done = k(&rig.vertices()[..n], Dest::packed(&mut o));
+            assert_eq!(done, n / 8 * 8, "{name}, {n} vertices");
+            let bits = |v: &[Out]| v.iter().flatten().map(|x| x.to_bits()).collect::<Vec<_>>();
+            assert_eq!(bits(&o[..done]), bits(&all[..done]), "{name}, {n} vertices");
+            assert!(
+                o[done..]
+                    .iter()
+                    .flatten()
+                    .all(|x| x.to_bits() == mark.to_bits()),
+                "{name}, {n} vertices: wrote past the blocks"
+            );
+        }
+    }
+}

@@ -8,7 +8,7 @@
 //! f32 in the lanes (`pick`'s test, one lane at a time from the stored lanes, had taken
 //! about a third of the eight-lane solve).
 
-use super::{solve, Motions, Num, Priors, Slot, FIELDS};
+use super::{solve, solve_symmetric, system, Clusters, Motions, Num, Priors, Slot, FIELDS};
 use std::arch::x86_64::*;
 use std::ops::{Add, Div, Mul, Sub};
 
@@ -208,24 +208,99 @@ pub(super) unsafe fn eight(
     out: &mut [Slot; 8],
 ) {
     chasles::frame::align_frame();
-    let s: [[__m512d; 2]; 8] = sums(joints, motions, _mm512_setzero_pd(), |a, m: &[f64; 8]| {
-        // SAFETY: `m` holds the eight f64 loaded.
-        _mm512_add_pd(a, unsafe { _mm512_loadu_pd(m.as_ptr()) })
+    end8(system8(joints, motions, priors), out)
+}
+
+/// Groups of eight clusters' centres, `g0` on, into `out` (eight slots a group, whole
+/// groups only), as [`eight`] on each, each group's system made before the group before
+/// it is solved: its loads and sums are under way while that group's division runs (the
+/// division ends each group's chain).
+///
+/// # Safety
+/// The processor must have AVX-512F, `out.len()` must be a multiple of 8 and the groups
+/// `g0 … g0 + out.len() / 8` must be whole groups of `clusters`.
+#[target_feature(enable = "avx512f")]
+pub(super) unsafe fn eights(
+    clusters: &Clusters,
+    g0: usize,
+    motions: &Motions,
+    priors: &[Priors],
+    out: &mut [Slot],
+) {
+    chasles::frame::align_frame();
+    let groups = out.len() / 8;
+    if groups == 0 {
+        return;
+    }
+    let at: *const [f32; 4] = out.as_ptr().cast();
+    /// Group `g0 + k`'s system, its tables ahead asked for (a function, not a closure: a
+    /// closure here stayed a call, compiled without AVX-512, its lanes' operations calls).
+    #[inline(always)]
+    fn group(
+        clusters: &Clusters,
+        g: usize,
+        motions: &Motions,
+        priors: &[Priors],
+        slots: *const [f32; 4],
+    ) -> System8 {
+        clusters.ask_ahead(g, priors, slots);
+        let j = |l: usize| clusters.joints(8 * g + l);
+        let joints = [j(0), j(1), j(2), j(3), j(4), j(5), j(6), j(7)];
+        system8(joints, motions, &priors[g])
+    }
+    let mut cur = group(clusters, g0, motions, priors, at);
+    for (k, out) in out.as_chunks_mut::<8>().0.iter_mut().enumerate() {
+        let next = if k + 1 < groups {
+            group(
+                clusters,
+                g0 + k + 1,
+                motions,
+                priors,
+                at.wrapping_add(8 * (k + 1)),
+            )
+        } else {
+            cur
+        };
+        end8(cur, out);
+        cur = next;
+    }
+}
+
+/// A group's system: A's lower triangle and b with the Tikhonov term, and the priors, in
+/// lanes.
+type System8 = ([W8; 6], [W8; 3], [W8; 3]);
+
+/// Eight clusters' systems ([`super::system`]) from their joints' motions: each one's sums
+/// over its joints in two registers, transposed into one register per field.
+#[inline(always)]
+fn system8(joints: [&[u16]; 8], motions: &Motions, priors: &Priors) -> System8 {
+    let s: [[__m512d; 2]; 8] = sums(joints, motions, W8::splat(0.0).0, |a, m: &[f64; 8]| {
+        // SAFETY: `m` holds the eight f64 loaded; a `W8` exists only where AVX-512F runs.
+        unsafe { _mm512_add_pd(a, _mm512_loadu_pd(m.as_ptr())) }
     });
-    let mut f = [W8(_mm512_setzero_pd()); FIELDS];
+    let mut f = [W8::splat(0.0); FIELDS];
     for r in 0..2 {
-        let rows = transpose8(core::array::from_fn(|c| s[c][r]));
+        // SAFETY: as above.
+        let rows = unsafe { transpose8(core::array::from_fn(|c| s[c][r])) };
         for (k, row) in rows.into_iter().enumerate() {
             f[8 * r + k] = W8(row);
         }
     }
     let n = joints.map(|j| j.len() as f64);
-    // SAFETY: `n` holds eight f64.
+    // SAFETY: `n` holds eight f64, and each row of priors eight f32; AVX-512F as above.
     let n = W8(unsafe { _mm512_loadu_pd(n.as_ptr()) });
-    // SAFETY: each row holds eight f32.
-    let prior = priors.map(|p| W8(_mm512_cvtps_pd(unsafe { _mm256_loadu_ps(p.as_ptr()) })));
-    let (x, det) = solve(|i| f[i], n, prior);
-    pick8(x, prior, det, out)
+    let prior = priors.map(|p| W8(unsafe { _mm512_cvtps_pd(_mm256_loadu_ps(p.as_ptr())) }));
+    let (a, b) = system(|i| f[i], n, prior);
+    (a, b, prior)
+}
+
+/// A group's centres from its system ([`super::solve_symmetric`], then [`pick8`]) into
+/// `out`.
+#[inline(always)]
+fn end8((a, b, prior): System8, out: &mut [Slot; 8]) {
+    let (x, det) = solve_symmetric(a, b);
+    // SAFETY: a `W8` exists only where AVX-512F runs.
+    unsafe { pick8(x, prior, det, out) }
 }
 
 /// [`pick4`] in eight lanes: the centres transposed out of the lanes two a register, four

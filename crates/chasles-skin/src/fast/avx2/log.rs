@@ -14,6 +14,15 @@
 //! `exp_twist` (which the scalar kernel runs), its steps written out here in lanes with the
 //! algebra's `cross` and `horner` — the generic `exp_twist` inlined here ran 6–9 % slower
 //! (measured side by side with `examples/best_of`), so this kernel keeps its own order.
+//!
+//! Each turn of the loop blends the next block (its loads, blend and transpose: twelve
+//! registers of lanes carried into the next turn) before it moves this one, as DQS's does
+//! (`super`'s module docs): the series' three chains of Horner steps, some forty cycles
+//! each, run while the next block's loads come in. The job alone, one core, best of 15, the
+//! builds in turn three times (2026-12-05), ns a vertex: 3.70–3.71 → 2.92–3.01 at 2·10⁴
+//! vertices and 4.01–4.20 → 3.39–3.54 at 2·10⁵; with AVX2's sixteen registers alone
+//! 3.74–3.86 → 3.14–3.25 and 4.27–4.31 → 3.77–3.90; with eight influences (5·10⁴
+//! vertices, the AVX2 build) 5.60–5.76 → 5.04–5.19.
 
 use super::super::dest::Dest;
 use super::super::lane::{cross, horner, EXP_A as A, EXP_B as B, EXP_C as C};
@@ -80,11 +89,33 @@ unsafe fn log_blocks<const K: usize, S: Store>(
     unsafe {
         let tb = t.as_ptr() as *const f32;
         let blocks = v.len() / 8;
+        if blocks == 0 {
+            return 0;
+        }
+        /// Block `i`'s blended twists (transposed into lanes), positions and normals.
+        #[inline(always)]
+        unsafe fn block<const K: usize>(
+            v: &[Vertex<K>],
+            i: usize,
+            tb: *const f32,
+        ) -> ([__m256; 6], [__m256; 6]) {
+            unsafe {
+                let [px, py, pz, nx, ny, nz, _, _] = load_head(v, i);
+                let [wx, wy, wz, vx_, vy, vz, _, _] =
+                    transpose8(eight(|l| blend(v.get_unchecked(i + l), tb)));
+                ([wx, wy, wz, vx_, vy, vz], [px, py, pz, nx, ny, nz])
+            }
+        }
+        let mut cur = block(v, 0, tb);
         for blk in 0..blocks {
             let i = blk * 8;
-            let [px, py, pz, nx, ny, nz, _, _] = load_head(v, i);
-            let b = transpose8(eight(|l| blend(v.get_unchecked(i + l), tb)));
-            let [wx, wy, wz, vx_, vy, vz, _, _] = b;
+            let next = if blk + 1 < blocks {
+                block(v, i + 8, tb)
+            } else {
+                cur
+            };
+            let ([wx, wy, wz, vx_, vy, vz], [px, py, pz, nx, ny, nz]) = cur;
+            cur = next;
             let mul = |a, b| _mm256_mul_ps(a, b);
             let add = |a, b| _mm256_add_ps(a, b);
             let fma = |a, b, c| _mm256_fmadd_ps(a, b, c);

@@ -12,6 +12,21 @@
 //! by 4×4 transposes within register halves, as LBS's row 2, instead of the third 8×8
 //! transpose — 12 fewer shuffles a block (24 → 12) and the same bits, but QLB 146–163 →
 //! 146–168 and SBS 145–175 → 141–168 M vertices/s: the shuffles do not bound these loops.
+//!
+//! Each turn of the loop (four influences) takes the next block as far as it goes without
+//! its rotation — its loads, blends, centres and transposes, then `2/‖q‖²`, the blended
+//! matrix applied to the centre and p − c — and carries those 14 registers of lanes into
+//! the next turn, where the rotations of p − c and of n end it: what DQS's loop does
+//! (`super`'s module docs), with a lighter carry. Carrying the block's 19 lanes of blends
+//! and centres with its position and normal (25 registers) instead, the compiler spilled
+//! them: QLB 5.52–5.62 → 5.25–5.47 ns a vertex at 2·10⁴, SBS 5.99–6.04 → 5.98–6.42 at
+//! 2·10⁵; and through a stack buffer of two blocks written and read as such, slower still
+//! (QLB 5.23–5.42 → 5.84–6.18). With the 14 (the job alone, one core, best of 15, the builds
+//! in turn five times, 2026-12-05, ns a vertex): QLB 5.23–5.38 → 4.90–5.01 at 2·10⁴
+//! vertices, SBS 5.01–5.27 → 4.61–4.76 there and 5.75–5.90 → 5.19–5.37 at 2·10⁵; with AVX2's
+//! sixteen registers alone SBS 5.49–5.61 → 5.35–5.37. Eight influences take each block in
+//! its own turn: ahead, their blends kept more registers alive and QLB ran 12.96–13.34 →
+//! 14.05–14.44 ns a vertex (5·10⁴ vertices).
 
 use super::super::dest::Dest;
 use super::super::{real_dot, Antipodes, Vertex};
@@ -222,6 +237,55 @@ unsafe fn blocks<const K: usize, const SBS: bool, S: Store>(
     chasles::frame::align_frame();
     unsafe {
         let blocks = v.len() / 8;
+        if blocks == 0 {
+            return 0;
+        }
+        /// Block `i`'s rotation quaternion and `2 / ‖q‖²` (lanes), its blended matrices
+        /// applied to the centres, its positions less the centres, and its normals.
+        #[inline(always)]
+        unsafe fn block<const K: usize, const SBS: bool>(
+            v: &[Vertex<K>],
+            i: usize,
+            cluster: &[u32],
+            centres: &[[f32; 4]],
+            blend: &impl Fn(&Vertex<K>) -> [__m256; 3],
+        ) -> ([__m256; 5], [__m256; 3], [__m256; 3], [__m256; 3]) {
+            unsafe {
+                let [px, py, pz, nx, ny, nz, _, _] = load_head(v, i);
+                let r = eight(
+                    #[inline(always)]
+                    |l| {
+                        let [a, b, c] = blend(v.get_unchecked(i + l));
+                        if SBS {
+                            let c = centres.get_unchecked(*cluster.get_unchecked(i + l) as usize);
+                            [a, b, _mm256_castps128_ps256(_mm_loadu_ps(c.as_ptr()))]
+                        } else {
+                            [a, b, c]
+                        }
+                    },
+                );
+                let lanes = |k: usize| transpose8(eight(|l| r[l][k]));
+                let [w0, x0, y0, z0, m00, m01, m02, m03] = lanes(0);
+                let [m10, m11, m12, m13, m20, m21, m22, m23] = lanes(1);
+                let [cx, cy, cz, _, _, _, _, _] = lanes(2);
+                let sub = |a, b| _mm256_sub_ps(a, b);
+                let fma = |a, b, c| _mm256_fmadd_ps(a, b, c);
+                let s = two_over_norm2(&[w0, x0, y0, z0]);
+                // y = Σ wₖ (Rₖ c + tₖ), the blended matrix applied to c.
+                let y = [
+                    fma(m02, cz, fma(m01, cy, fma(m00, cx, m03))),
+                    fma(m12, cz, fma(m11, cy, fma(m10, cx, m13))),
+                    fma(m22, cz, fma(m21, cy, fma(m20, cx, m23))),
+                ];
+                (
+                    [w0, x0, y0, z0, s],
+                    y,
+                    [sub(px, cx), sub(py, cy), sub(pz, cz)],
+                    [nx, ny, nz],
+                )
+            }
+        }
+        let mut cur = block::<K, SBS>(v, 0, cluster, centres, &blend);
         for blk in 0..blocks {
             let i = blk * 8;
             if SBS {
@@ -236,38 +300,23 @@ unsafe fn blocks<const K: usize, const SBS: bool, S: Store>(
                     super::super::ask_cache(c);
                 }
             }
-            let [px, py, pz, nx, ny, nz, _, _] = load_head(v, i);
-            let r = eight(
-                #[inline(always)]
-                |l| {
-                    let [a, b, c] = blend(v.get_unchecked(i + l));
-                    if SBS {
-                        let c = centres.get_unchecked(*cluster.get_unchecked(i + l) as usize);
-                        [a, b, _mm256_castps128_ps256(_mm_loadu_ps(c.as_ptr()))]
-                    } else {
-                        [a, b, c]
-                    }
-                },
-            );
-            let lanes = |k: usize| transpose8(eight(|l| r[l][k]));
-            let [w0, x0, y0, z0, m00, m01, m02, m03] = lanes(0);
-            let [m10, m11, m12, m13, m20, m21, m22, m23] = lanes(1);
-            let [cx, cy, cz, _, _, _, _, _] = lanes(2);
+            // Four influences take the next block ahead (below); eight take each block in
+            // its own turn (module docs).
+            let ahead = K == 4;
+            if !ahead && blk > 0 {
+                cur = block::<K, SBS>(v, i, cluster, centres, &blend);
+            }
+            let next = if ahead && blk + 1 < blocks {
+                block::<K, SBS>(v, i + 8, cluster, centres, &blend)
+            } else {
+                cur
+            };
+            let ([w0, x0, y0, z0, s], y, pc, n) = cur;
+            cur = next;
             let add = |a, b| _mm256_add_ps(a, b);
-            let sub = |a, b| _mm256_sub_ps(a, b);
-            let fma = |a, b, c| _mm256_fmadd_ps(a, b, c);
-            let s = two_over_norm2(&[w0, x0, y0, z0]);
-            // y = Σ wₖ (Rₖ c + tₖ), the blended matrix applied to c.
-            let y = [
-                fma(m02, cz, fma(m01, cy, fma(m00, cx, m03))),
-                fma(m12, cz, fma(m11, cy, fma(m10, cx, m13))),
-                fma(m22, cz, fma(m21, cy, fma(m20, cx, m23))),
-            ];
-            let v0 = [x0, y0, z0];
-            // x rotated by r / ‖r‖.
-            let rotate = |x| rotate(w0, v0, s, x);
-            let d = rotate([sub(px, cx), sub(py, cy), sub(pz, cz)]);
-            let n = rotate([nx, ny, nz]);
+            // p − c and n rotated by r / ‖r‖.
+            let rotate = |x| rotate(w0, [x0, y0, z0], s, x);
+            let (d, n) = (rotate(pc), rotate(n));
             store_rows::<S>(
                 &mut o,
                 i,
