@@ -127,7 +127,7 @@
 //! 1.23–1.30 against 1.20–1.27 ms (three runs each in turn).
 //!
 //! **A group ahead** (2026-12-05). Where AVX-512 runs, one call now solves a batch of up
-//! to 64 groups of eight (`wide::eights`; a batch is also a thread's unit of work), each
+//! to 16 groups of eight (`wide::eights`; a batch is also a thread's unit of work), each
 //! group's system — its sums, transposes and normal equations with the Tikhonov term,
 //! twelve registers of lanes — made before the group before it is solved, picked and
 //! stored, so that one group's division runs while the next group's loads and sums come
@@ -203,12 +203,12 @@ const AHEAD: usize = 16;
 /// table that may start uninitialized ([`Clusters::centres_vec`]).
 type Slot = MaybeUninit<[f32; 4]>;
 
-/// Clusters at least this many are solved on all threads.
-const PARALLEL: usize = 256;
-
 /// Groups of eight clusters a call of the eight-lane solve (`wide::eights`), and a
-/// thread's unit of work.
-const BATCH: usize = 64;
+/// thread's unit of work: 128 clusters.
+const BATCH: usize = 16;
+
+/// Clusters at least this many (two batches) are solved on all threads.
+const PARALLEL: usize = 2 * 8 * BATCH;
 
 impl Clusters {
     /// Groups `vertices` vertices by their joint sets; `joints_of(v)` lists vertex v's
@@ -347,20 +347,15 @@ impl Clusters {
         // The lanes where the fast path's SIMD kernels run (and not where `fast::set_simd`
         // or `fast::set_avx512` forbid them, so that the fallback is measured whole).
         let lanes = Lanes::allowed(crate::fast::uses_simd(4), crate::fast::uses_avx512(4));
-        // Eight clusters at a time where AVX-512 may run, else (and the last few) four at a
-        // time, and the last few of those one by one.
         // Every slot of `out` is written once, straight from the lanes (it may start
-        // uninitialized: no table of zeros is written first each pose).
+        // uninitialized: no table of zeros is written first each pose). A group of eight
+        // clusters that `eights` did not take: four at a time in AVX2's lanes, and the last
+        // few one by one.
         let group = |g: usize, out: &mut [Slot]| {
             let c = 8 * g;
             self.ask_ahead(g, priors, out.as_ptr().cast());
             let joints = |k: usize| self.joints(c + k);
             let p = &priors[g];
-            if let Ok(out) = <&mut [Slot; 8]>::try_from(&mut *out) {
-                if eight(core::array::from_fn(joints), &motions, p, lanes, out) {
-                    return;
-                }
-            }
             for (h, out) in out.chunks_mut(4).enumerate() {
                 let joints = |k: usize| joints(4 * h + k);
                 let p = p.map(|x| [0, 1, 2, 3].map(|k| x[4 * h + k]));
@@ -628,8 +623,8 @@ fn system<X: Num>(f: impl Fn(usize) -> X, n: X, prior: [X; 3]) -> ([X; 6], [X; 3
         (zero - sts[4]) * many,
         (nn - sts[5]) * many,
     ];
-    let b = |i: usize| stt[i] - n * f(U + i);
-    let mut b = [b(0), b(1), b(2)];
+    let bi = |i: usize| stt[i] - n * f(U + i);
+    let mut b = [bi(0), bi(1), bi(2)];
     let lambda = X::splat(1e-6) * (a[0] + a[2] + a[5]) + X::splat(1e-12);
     for (i, d) in [0, 2, 5].into_iter().enumerate() {
         a[d] = a[d] + lambda;
@@ -693,26 +688,6 @@ impl Lanes {
             }
         }
     }
-}
-
-/// Eight clusters' centres about their priors in one AVX-512 register a field
-/// ([`wide::eight`]) into `out`, padded, where allowed; `false` elsewhere (the caller takes
-/// them four at a time: the same numbers).
-fn eight(
-    joints: [&[u16]; 8],
-    motions: &Motions,
-    priors: &Priors,
-    lanes: Lanes,
-    out: &mut [Slot; 8],
-) -> bool {
-    #[cfg(target_arch = "x86_64")]
-    if lanes.avx512 {
-        // SAFETY: `Lanes::allowed` found AVX-512F on this processor.
-        unsafe { wide::eight(joints, motions, priors, out) };
-        return true;
-    }
-    let _ = (joints, motions, priors, lanes.avx512, out);
-    false
 }
 
 /// The whole groups of eight clusters in `out` (groups `g0` on) solved by

@@ -283,6 +283,42 @@ pub unsafe fn dqs<const K: usize>(
     }
 }
 
+/// A kernel's loop over `blocks` whole blocks of eight: `take(i)` makes the block of
+/// vertices `i … i + 7` as far as it goes without its last steps, and `end(i, t)` ends it
+/// and stores it. With `ahead`, each turn takes the next block before it ends this one,
+/// carrying what `take` made (a few registers of lanes) into the next turn, so that the next
+/// block's loads are under way while this one's last steps run (module docs, "The next
+/// block ahead"); without, each block is taken and ended in its own turn (`ahead` is a
+/// constant in every caller, so each compiles one loop). Returns the vertices done,
+/// `8 blocks`. Both closures are meant to be `#[inline(always)]`: the loop is a kernel's
+/// body, compiled in its caller's build.
+#[inline(always)]
+pub(super) fn blocks_ahead<T: Copy>(
+    blocks: usize,
+    ahead: bool,
+    take: impl Fn(usize) -> T,
+    mut end: impl FnMut(usize, T),
+) -> usize {
+    if blocks == 0 {
+        return 0;
+    }
+    let mut cur = take(0);
+    for blk in 0..blocks {
+        let i = 8 * blk;
+        if !ahead && blk > 0 {
+            cur = take(i);
+        }
+        let next = if ahead && blk + 1 < blocks {
+            take(i + 8)
+        } else {
+            cur
+        };
+        end(i, cur);
+        cur = next;
+    }
+    blocks * 8
+}
+
 /// The DQS kernel's body over whole blocks of eight for the layout `S`, with `blend` giving
 /// each vertex's blended dual quaternion.
 ///
@@ -298,39 +334,20 @@ unsafe fn dqs_blocks<const K: usize, S: Store>(
 ) -> usize {
     chasles::frame::align_frame();
     unsafe {
-        let blocks = v.len() / 8;
-        if blocks == 0 {
-            return 0;
-        }
-        /// Block `i`'s blends (transposed into lanes), positions and normals.
-        #[inline(always)]
-        unsafe fn block<const K: usize>(
-            v: &[Vertex<K>],
-            i: usize,
-            blend: &impl Fn(&Vertex<K>) -> __m256,
-        ) -> ([__m256; 8], [__m256; 3], [__m256; 3]) {
-            unsafe {
+        // The next block blended before this one is transformed (its chain of loads —
+        // index, offset, copy — under way while this one's transform runs).
+        blocks_ahead(
+            v.len() / 8,
+            true,
+            #[inline(always)]
+            |i| {
                 let [px, py, pz, nx, ny, nz, _, _] = load_head(v, i);
                 let b = transpose8(eight(|l| blend(v.get_unchecked(i + l))));
                 (b, [px, py, pz], [nx, ny, nz])
-            }
-        }
-        // Each turn blends the next block before it transforms this one, so that the next
-        // block's chain of loads (index, offset, copy) is under way while this one's
-        // transform runs.
-        let mut cur = block(v, 0, &blend);
-        for blk in 0..blocks {
-            let i = blk * 8;
-            let next = if blk + 1 < blocks {
-                block(v, i + 8, &blend)
-            } else {
-                cur
-            };
-            let (b, p, n) = cur;
-            store_rows::<S>(&mut o, i, transform(b, p, n), stream);
-            cur = next;
-        }
-        blocks * 8
+            },
+            #[inline(always)]
+            |i, (b, p, n)| store_rows::<S>(&mut o, i, transform(b, p, n), stream),
+        )
     }
 }
 
@@ -413,15 +430,13 @@ unsafe fn lbs_blocks<const K: usize, S: Store>(
         let mb = m.as_ptr() as *const f32;
         let zero = _mm256_setzero_ps();
         let one = _mm256_set1_ps(1.0);
-        let blocks = v.len() / 8;
-        if blocks == 0 {
-            return 0;
-        }
-        /// Block `i`'s positions moved by the blended matrices, its normals by their
-        /// cofactors (not yet of unit length), and its bind normals (in lanes).
-        #[inline(always)]
-        unsafe fn block<const K: usize>(v: &[Vertex<K>], i: usize, mb: *const f32) -> [__m256; 9] {
-            unsafe {
+        // The next block taken to its normals by the cofactors before this one's are made
+        // of unit length.
+        blocks_ahead(
+            v.len() / 8,
+            true,
+            #[inline(always)]
+            |i| {
                 let [x, y, z, nx, ny, nz, _, _] = load_head(v, i);
                 let b = eight(|l| lbs_blend(v.get_unchecked(i + l), mb));
                 let [a0, a1, a2, a3, a4, a5, a6, a7] = transpose8(eight(|l| b[l].0));
@@ -456,29 +471,20 @@ unsafe fn lbs_blocks<const K: usize, S: Store>(
                 let my = fma(c12, nz, fma(c11, ny, mul(c10, nx)));
                 let mz = fma(c22, nz, fma(c21, ny, mul(c20, nx)));
                 [px, py, pz, mx, my, mz, nx, ny, nz]
-            }
-        }
-        let mut cur = block(v, 0, mb);
-        for blk in 0..blocks {
-            let i = blk * 8;
-            let next = if blk + 1 < blocks {
-                block(v, i + 8, mb)
-            } else {
-                cur
-            };
-            let [px, py, pz, mx, my, mz, nx, ny, nz] = cur;
-            cur = next;
-            let mul = |p, q| _mm256_mul_ps(p, q);
-            let fma = |p, q, r| _mm256_fmadd_ps(p, q, r);
-            let l2 = fma(mz, mz, fma(my, my, mul(mx, mx)));
-            let ok = _mm256_cmp_ps::<_CMP_GT_OQ>(l2, zero);
-            let inv = _mm256_div_ps(one, _mm256_sqrt_ps(l2));
-            let mx = _mm256_blendv_ps(nx, mul(mx, inv), ok);
-            let my = _mm256_blendv_ps(ny, mul(my, inv), ok);
-            let mz = _mm256_blendv_ps(nz, mul(mz, inv), ok);
-            store_rows::<S>(&mut o, i, [px, py, pz, mx, my, mz], stream);
-        }
-        blocks * 8
+            },
+            #[inline(always)]
+            |i, [px, py, pz, mx, my, mz, nx, ny, nz]| {
+                let mul = |p, q| _mm256_mul_ps(p, q);
+                let fma = |p, q, r| _mm256_fmadd_ps(p, q, r);
+                let l2 = fma(mz, mz, fma(my, my, mul(mx, mx)));
+                let ok = _mm256_cmp_ps::<_CMP_GT_OQ>(l2, zero);
+                let inv = _mm256_div_ps(one, _mm256_sqrt_ps(l2));
+                let mx = _mm256_blendv_ps(nx, mul(mx, inv), ok);
+                let my = _mm256_blendv_ps(ny, mul(my, inv), ok);
+                let mz = _mm256_blendv_ps(nz, mul(mz, inv), ok);
+                store_rows::<S>(&mut o, i, [px, py, pz, mx, my, mz], stream);
+            },
+        )
     }
 }
 

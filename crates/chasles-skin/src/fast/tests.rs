@@ -325,8 +325,9 @@ fn the_last_few_vertices_get_the_simd_kernels_numbers() {
 /// The kernels whose loop takes the next block ahead before it ends this one (DQS, LBS,
 /// Log, QLB and SBS) on the first n vertices of a rig, n = 0 … 24 (no block, one, two and
 /// three, each with a few after): each does the whole blocks, writes the very bits it
-/// writes for those vertices in a run over the whole rig, and nothing past them. DQS and
-/// QLB with and without their antipodality tables, 4 and 8 influences.
+/// writes for those vertices in a run over the whole rig, and nothing past them. DQS, QLB
+/// and SBS with and without their antipodality tables, 4 and 8 influences. (A read past
+/// the n vertices would not show here: the slice lies within the rig's vertices.)
 #[test]
 fn the_blocks_ahead_end_where_the_mesh_ends() {
     if !simd(4) {
@@ -355,7 +356,7 @@ fn short_meshes<const K: usize>() {
     // joint indices are below 54 = every joint table's length, the tables are made from
     // the joints they are used with, each output is as long as the vertices, and every
     // cluster index is below `padded.len()`.
-    let kernels: [(&str, Run<'_, K>); 7] = [
+    let kernels: [(&str, Run<'_, K>); 8] = [
         (
             "QLB",
             Box::new(|v, o| unsafe { avx2::qlb::qlb(v, &rows, &qcopies, o, false) }),
@@ -368,6 +369,12 @@ fn short_meshes<const K: usize>() {
             "SBS",
             Box::new(|v, o| unsafe {
                 avx2::qlb::about::<_, true>(v, &rows, &qcopies, cl.of_vertex(), &padded, o, false)
+            }),
+        ),
+        (
+            "SBS, no table",
+            Box::new(|v, o| unsafe {
+                avx2::qlb::about::<_, true>(v, &rows, &none, cl.of_vertex(), &padded, o, false)
             }),
         ),
         (

@@ -264,17 +264,20 @@ fn eight_at_once_are_each_alone_bit_for_bit() {
         let lanes = Lanes::allowed(widths.0, widths.1);
         for shift in 0..sets.len() {
             let group: [&[u16]; 8] = core::array::from_fn(|k| sets[(k + shift) % sets.len()]);
-            let mut got = nan_slots();
-            if !eight(group, &m, &priors(&group, &bind), lanes, &mut got) {
+            let cl = Clusters::new(8, |v| group[v].iter().copied());
+            assert_eq!(cl.len(), 8);
+            let mut got: [Slot; 8] = nan_slots();
+            let done = eights(&cl, 0, &m, &cl.prior_table(&bind), lanes, &mut got);
+            if done == 0 {
                 assert!(!lanes.avx512, "eight at once where AVX-512 is allowed");
                 continue;
             }
-            assert!(lanes.avx512);
+            assert!(lanes.avx512 && done == 8);
             // SAFETY: the slots of `nan_slots` hold values.
             let got = unsafe { read_slots(got) };
-            for (set, got) in group.iter().zip(got) {
+            for (c, got) in got.into_iter().enumerate() {
                 let what = format!("shift {shift} lanes ({}, {})", lanes.avx2, lanes.avx512);
-                assert_alone(got, set, &m, &bind, &what);
+                assert_alone(got, cl.joints(c), &m, &bind, &what);
             }
         }
     }

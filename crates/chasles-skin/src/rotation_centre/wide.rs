@@ -17,7 +17,7 @@ use std::ops::{Add, Div, Mul, Sub};
 #[derive(Clone, Copy)]
 struct W(__m256d);
 
-/// Eight clusters' values of one quantity, as [`W`] for AVX-512F ([`eight`]).
+/// Eight clusters' values of one quantity, as [`W`] for AVX-512F ([`eights`]).
 #[derive(Clone, Copy)]
 struct W8(__m512d);
 
@@ -28,7 +28,7 @@ macro_rules! op {
             #[inline(always)]
             fn $f(self, o: $w) -> $w {
                 // SAFETY: a `W` is made only inside `four`, which runs with AVX2, and a
-                // `W8` only inside `eight`, which runs with AVX-512F.
+                // `W8` only inside `eights` and what it inlines, which run with AVX-512F.
                 $w(unsafe { $intrinsic(self.0, o.0) })
             }
         }
@@ -194,31 +194,16 @@ fn transpose8(a: [__m512d; 8]) -> [__m512d; 8] {
     ]
 }
 
-/// The centres of eight clusters about their priors, as [`four`] on AVX-512F's eight
-/// lanes: each one's sums over its joints in two registers, transposed into one register
-/// per field.
+/// Groups of eight clusters' centres about their priors, as [`four`] on AVX-512F's eight
+/// lanes, groups `g0 … g0 + out.len() / 8` (exclusive) into `out`, eight slots a group:
+/// each group's sums over its joints in two registers, transposed into one register per
+/// field ([`system8`]), then solved ([`end8`]). Each group's system is made before the
+/// group before it is solved, so that its loads and sums are under way while that group's
+/// division runs (the division ends each group's chain).
 ///
 /// # Safety
-/// The processor must have AVX-512F.
-#[target_feature(enable = "avx512f")]
-pub(super) unsafe fn eight(
-    joints: [&[u16]; 8],
-    motions: &Motions,
-    priors: &Priors,
-    out: &mut [Slot; 8],
-) {
-    chasles::frame::align_frame();
-    end8(system8(joints, motions, priors), out)
-}
-
-/// Groups of eight clusters' centres, `g0` on, into `out` (eight slots a group, whole
-/// groups only), as [`eight`] on each, each group's system made before the group before
-/// it is solved: its loads and sums are under way while that group's division runs (the
-/// division ends each group's chain).
-///
-/// # Safety
-/// The processor must have AVX-512F, `out.len()` must be a multiple of 8 and the groups
-/// `g0 … g0 + out.len() / 8` must be whole groups of `clusters`.
+/// The processor must have AVX-512F. (`out.len()` must be a multiple of 8 for every slot to
+/// be written, and the groups must be whole groups of `clusters`, or the indexing panics.)
 #[target_feature(enable = "avx512f")]
 pub(super) unsafe fn eights(
     clusters: &Clusters,
@@ -228,15 +213,20 @@ pub(super) unsafe fn eights(
     out: &mut [Slot],
 ) {
     chasles::frame::align_frame();
+    debug_assert!(out.len().is_multiple_of(8), "whole groups");
     let groups = out.len() / 8;
     if groups == 0 {
         return;
     }
     let at: *const [f32; 4] = out.as_ptr().cast();
-    /// Group `g0 + k`'s system, its tables ahead asked for (a function, not a closure: a
-    /// closure here stayed a call, compiled without AVX-512, its lanes' operations calls).
+    /// Group `g`'s system, the tables of the group [`super::AHEAD`] on asked for (`slots`:
+    /// group g's first slot). A function, not a closure: a closure here stayed a call,
+    /// compiled without AVX-512, its lanes' operations calls.
+    ///
+    /// # Safety
+    /// As for [`eights`].
     #[inline(always)]
-    fn group(
+    unsafe fn take(
         clusters: &Clusters,
         g: usize,
         motions: &Motions,
@@ -246,22 +236,19 @@ pub(super) unsafe fn eights(
         clusters.ask_ahead(g, priors, slots);
         let j = |l: usize| clusters.joints(8 * g + l);
         let joints = [j(0), j(1), j(2), j(3), j(4), j(5), j(6), j(7)];
-        system8(joints, motions, &priors[g])
+        // SAFETY: the caller's.
+        unsafe { system8(joints, motions, &priors[g]) }
     }
-    let mut cur = group(clusters, g0, motions, priors, at);
+    // SAFETY (each take and end8): AVX-512F, as the caller promises.
+    let mut cur = unsafe { take(clusters, g0, motions, priors, at) };
     for (k, out) in out.as_chunks_mut::<8>().0.iter_mut().enumerate() {
         let next = if k + 1 < groups {
-            group(
-                clusters,
-                g0 + k + 1,
-                motions,
-                priors,
-                at.wrapping_add(8 * (k + 1)),
-            )
+            let slots = at.wrapping_add(8 * (k + 1));
+            unsafe { take(clusters, g0 + k + 1, motions, priors, slots) }
         } else {
             cur
         };
-        end8(cur, out);
+        unsafe { end8(cur, out) };
         cur = next;
     }
 }
@@ -272,22 +259,28 @@ type System8 = ([W8; 6], [W8; 3], [W8; 3]);
 
 /// Eight clusters' systems ([`super::system`]) from their joints' motions: each one's sums
 /// over its joints in two registers, transposed into one register per field.
+///
+/// # Safety
+/// Only from code that runs with AVX-512F ([`eights`], into which it is inlined; it cannot
+/// carry `target_feature` with `inline(always)`).
 #[inline(always)]
-fn system8(joints: [&[u16]; 8], motions: &Motions, priors: &Priors) -> System8 {
-    let s: [[__m512d; 2]; 8] = sums(joints, motions, W8::splat(0.0).0, |a, m: &[f64; 8]| {
-        // SAFETY: `m` holds the eight f64 loaded; a `W8` exists only where AVX-512F runs.
-        unsafe { _mm512_add_pd(a, _mm512_loadu_pd(m.as_ptr())) }
-    });
+unsafe fn system8(joints: [&[u16]; 8], motions: &Motions, priors: &Priors) -> System8 {
+    // SAFETY (each intrinsic): AVX-512F, as the caller promises; `m` holds the eight f64
+    // loaded, `n` eight f64 and each row of priors eight f32.
+    let s: [[__m512d; 2]; 8] = sums(
+        joints,
+        motions,
+        W8::splat(0.0).0,
+        |a, m: &[f64; 8]| unsafe { _mm512_add_pd(a, _mm512_loadu_pd(m.as_ptr())) },
+    );
     let mut f = [W8::splat(0.0); FIELDS];
     for r in 0..2 {
-        // SAFETY: as above.
         let rows = unsafe { transpose8(core::array::from_fn(|c| s[c][r])) };
         for (k, row) in rows.into_iter().enumerate() {
             f[8 * r + k] = W8(row);
         }
     }
     let n = joints.map(|j| j.len() as f64);
-    // SAFETY: `n` holds eight f64, and each row of priors eight f32; AVX-512F as above.
     let n = W8(unsafe { _mm512_loadu_pd(n.as_ptr()) });
     let prior = priors.map(|p| W8(unsafe { _mm512_cvtps_pd(_mm256_loadu_ps(p.as_ptr())) }));
     let (a, b) = system(|i| f[i], n, prior);
@@ -296,10 +289,13 @@ fn system8(joints: [&[u16]; 8], motions: &Motions, priors: &Priors) -> System8 {
 
 /// A group's centres from its system ([`super::solve_symmetric`], then [`pick8`]) into
 /// `out`.
+///
+/// # Safety
+/// As for [`system8`].
 #[inline(always)]
-fn end8((a, b, prior): System8, out: &mut [Slot; 8]) {
+unsafe fn end8((a, b, prior): System8, out: &mut [Slot; 8]) {
     let (x, det) = solve_symmetric(a, b);
-    // SAFETY: a `W8` exists only where AVX-512F runs.
+    // SAFETY: the caller's.
     unsafe { pick8(x, prior, det, out) }
 }
 

@@ -26,7 +26,9 @@
 
 use super::super::dest::Dest;
 use super::super::lane::{cross, horner, EXP_A as A, EXP_B as B, EXP_C as C};
-use super::{by_layout, by_target, eight, joint_rows, load_head, store_rows, transpose8, Store};
+use super::{
+    blocks_ahead, by_layout, by_target, eight, joint_rows, load_head, store_rows, transpose8, Store,
+};
 use crate::fast::Vertex;
 use std::arch::x86_64::*;
 
@@ -88,59 +90,45 @@ unsafe fn log_blocks<const K: usize, S: Store>(
     chasles::frame::align_frame();
     unsafe {
         let tb = t.as_ptr() as *const f32;
-        let blocks = v.len() / 8;
-        if blocks == 0 {
-            return 0;
-        }
-        /// Block `i`'s blended twists (transposed into lanes), positions and normals.
-        #[inline(always)]
-        unsafe fn block<const K: usize>(
-            v: &[Vertex<K>],
-            i: usize,
-            tb: *const f32,
-        ) -> ([__m256; 6], [__m256; 6]) {
-            unsafe {
+        // The next block blended before this one is moved (the series' chains of Horner
+        // steps run while its loads come in).
+        blocks_ahead(
+            v.len() / 8,
+            true,
+            #[inline(always)]
+            |i| {
                 let [px, py, pz, nx, ny, nz, _, _] = load_head(v, i);
                 let [wx, wy, wz, vx_, vy, vz, _, _] =
                     transpose8(eight(|l| blend(v.get_unchecked(i + l), tb)));
                 ([wx, wy, wz, vx_, vy, vz], [px, py, pz, nx, ny, nz])
-            }
-        }
-        let mut cur = block(v, 0, tb);
-        for blk in 0..blocks {
-            let i = blk * 8;
-            let next = if blk + 1 < blocks {
-                block(v, i + 8, tb)
-            } else {
-                cur
-            };
-            let ([wx, wy, wz, vx_, vy, vz], [px, py, pz, nx, ny, nz]) = cur;
-            cur = next;
-            let mul = |a, b| _mm256_mul_ps(a, b);
-            let add = |a, b| _mm256_add_ps(a, b);
-            let fma = |a, b, c| _mm256_fmadd_ps(a, b, c);
-            let s = fma(wz, wz, fma(wy, wy, mul(wx, wx)));
-            let (ca, cb, cc) = (horner(&A, s), horner(&B, s), horner(&C, s));
-            let w = [wx, wy, wz];
-            // Component c of ω × x.
-            let cross = |x: [__m256; 3], c: usize| cross(w, x, c);
-            let (p, n, t) = ([px, py, pz], [nx, ny, nz], [vx_, vy, vz]);
-            // u = B p + C v; e = A p + B v + ω × u; p' = p + v + ω × e (each written out: no
-            // array maps, which can stay calls).
-            let u = |c: usize| fma(cb, p[c], mul(cc, t[c]));
-            let u = [u(0), u(1), u(2)];
-            let e = |c: usize| add(fma(ca, p[c], mul(cb, t[c])), cross(u, c));
-            let e = [e(0), e(1), e(2)];
-            let q = |c: usize| add(add(p[c], t[c]), cross(e, c));
-            let q = [q(0), q(1), q(2)];
-            // n' = n + ω × (A n + B ω × n).
-            let f = |c: usize| fma(ca, n[c], mul(cb, cross(n, c)));
-            let f = [f(0), f(1), f(2)];
-            let m = |c: usize| add(n[c], cross(f, c));
-            let m = [m(0), m(1), m(2)];
-            store_rows::<S>(&mut o, i, [q[0], q[1], q[2], m[0], m[1], m[2]], stream);
-        }
-        blocks * 8
+            },
+            #[inline(always)]
+            |i, ([wx, wy, wz, vx_, vy, vz], [px, py, pz, nx, ny, nz])| {
+                let mul = |a, b| _mm256_mul_ps(a, b);
+                let add = |a, b| _mm256_add_ps(a, b);
+                let fma = |a, b, c| _mm256_fmadd_ps(a, b, c);
+                let s = fma(wz, wz, fma(wy, wy, mul(wx, wx)));
+                let (ca, cb, cc) = (horner(&A, s), horner(&B, s), horner(&C, s));
+                let w = [wx, wy, wz];
+                // Component c of ω × x.
+                let cross = |x: [__m256; 3], c: usize| cross(w, x, c);
+                let (p, n, t) = ([px, py, pz], [nx, ny, nz], [vx_, vy, vz]);
+                // u = B p + C v; e = A p + B v + ω × u; p' = p + v + ω × e (each written out: no
+                // array maps, which can stay calls).
+                let u = |c: usize| fma(cb, p[c], mul(cc, t[c]));
+                let u = [u(0), u(1), u(2)];
+                let e = |c: usize| add(fma(ca, p[c], mul(cb, t[c])), cross(u, c));
+                let e = [e(0), e(1), e(2)];
+                let q = |c: usize| add(add(p[c], t[c]), cross(e, c));
+                let q = [q(0), q(1), q(2)];
+                // n' = n + ω × (A n + B ω × n).
+                let f = |c: usize| fma(ca, n[c], mul(cb, cross(n, c)));
+                let f = [f(0), f(1), f(2)];
+                let m = |c: usize| add(n[c], cross(f, c));
+                let m = [m(0), m(1), m(2)];
+                store_rows::<S>(&mut o, i, [q[0], q[1], q[2], m[0], m[1], m[2]], stream);
+            },
+        )
     }
 }
 

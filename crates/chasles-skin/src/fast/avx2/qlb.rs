@@ -31,7 +31,8 @@
 use super::super::dest::Dest;
 use super::super::{real_dot, Antipodes, Vertex};
 use super::{
-    by_target, eight, load_head, rotate, store_rows, transpose8, two_over_norm2, Store, PREFETCH,
+    blocks_ahead, by_target, eight, load_head, rotate, store_rows, transpose8, two_over_norm2,
+    Store, PREFETCH,
 };
 use std::arch::x86_64::*;
 
@@ -236,21 +237,26 @@ unsafe fn blocks<const K: usize, const SBS: bool, S: Store>(
 ) -> usize {
     chasles::frame::align_frame();
     unsafe {
-        let blocks = v.len() / 8;
-        if blocks == 0 {
-            return 0;
-        }
-        /// Block `i`'s rotation quaternion and `2 / ‖q‖²` (lanes), its blended matrices
-        /// applied to the centres, its positions less the centres, and its normals.
-        #[inline(always)]
-        unsafe fn block<const K: usize, const SBS: bool>(
-            v: &[Vertex<K>],
-            i: usize,
-            cluster: &[u32],
-            centres: &[[f32; 4]],
-            blend: &impl Fn(&Vertex<K>) -> [__m256; 3],
-        ) -> ([__m256; 5], [__m256; 3], [__m256; 3], [__m256; 3]) {
-            unsafe {
+        // Four influences take the next block as far as it goes without its rotation
+        // before this one is rotated; eight take each block in its own turn (module docs).
+        blocks_ahead(
+            v.len() / 8,
+            K == 4,
+            #[inline(always)]
+            |i| {
+                if SBS {
+                    // The centres of the block PREFETCH vertices ahead: a rig of many
+                    // clusters reads its centre table at random (on the synthetic rig,
+                    // 3·10⁵ centres of 16 bytes), and the loads would otherwise wait on the
+                    // cache misses.
+                    for l in i + PREFETCH..(i + PREFETCH + 8).min(v.len()) {
+                        // A prefetch of any address is harmless; the pointer is never read.
+                        let c = centres
+                            .as_ptr()
+                            .wrapping_add(*cluster.get_unchecked(l) as usize);
+                        super::super::ask_cache(c);
+                    }
+                }
                 let [px, py, pz, nx, ny, nz, _, _] = load_head(v, i);
                 let r = eight(
                     #[inline(always)]
@@ -277,60 +283,23 @@ unsafe fn blocks<const K: usize, const SBS: bool, S: Store>(
                     fma(m12, cz, fma(m11, cy, fma(m10, cx, m13))),
                     fma(m22, cz, fma(m21, cy, fma(m20, cx, m23))),
                 ];
+                // The rotation's quaternion and 2 / ‖q‖², y, p − c and n.
                 (
                     [w0, x0, y0, z0, s],
                     y,
                     [sub(px, cx), sub(py, cy), sub(pz, cz)],
                     [nx, ny, nz],
                 )
-            }
-        }
-        let mut cur = block::<K, SBS>(v, 0, cluster, centres, &blend);
-        for blk in 0..blocks {
-            let i = blk * 8;
-            if SBS {
-                // The centres of the block PREFETCH vertices ahead: a rig of many clusters
-                // reads its centre table at random (on the synthetic rig, 3·10⁵ centres of
-                // 16 bytes), and the loads would otherwise wait on the cache misses.
-                for l in i + PREFETCH..(i + PREFETCH + 8).min(v.len()) {
-                    // A prefetch of any address is harmless; the pointer is never read.
-                    let c = centres
-                        .as_ptr()
-                        .wrapping_add(*cluster.get_unchecked(l) as usize);
-                    super::super::ask_cache(c);
-                }
-            }
-            // Four influences take the next block ahead (below); eight take each block in
-            // its own turn (module docs).
-            let ahead = K == 4;
-            if !ahead && blk > 0 {
-                cur = block::<K, SBS>(v, i, cluster, centres, &blend);
-            }
-            let next = if ahead && blk + 1 < blocks {
-                block::<K, SBS>(v, i + 8, cluster, centres, &blend)
-            } else {
-                cur
-            };
-            let ([w0, x0, y0, z0, s], y, pc, n) = cur;
-            cur = next;
-            let add = |a, b| _mm256_add_ps(a, b);
-            // p − c and n rotated by r / ‖r‖.
-            let rotate = |x| rotate(w0, [x0, y0, z0], s, x);
-            let (d, n) = (rotate(pc), rotate(n));
-            store_rows::<S>(
-                &mut o,
-                i,
-                [
-                    add(y[0], d[0]),
-                    add(y[1], d[1]),
-                    add(y[2], d[2]),
-                    n[0],
-                    n[1],
-                    n[2],
-                ],
-                stream,
-            );
-        }
-        blocks * 8
+            },
+            #[inline(always)]
+            |i, ([w0, x0, y0, z0, s], y, pc, n)| {
+                let add = |a, b| _mm256_add_ps(a, b);
+                // p − c and n rotated by r / ‖r‖.
+                let rotate = |x| rotate(w0, [x0, y0, z0], s, x);
+                let (d, n) = (rotate(pc), rotate(n));
+                let p = [add(y[0], d[0]), add(y[1], d[1]), add(y[2], d[2])];
+                store_rows::<S>(&mut o, i, [p[0], p[1], p[2], n[0], n[1], n[2]], stream);
+            },
+        )
     }
 }
