@@ -134,7 +134,9 @@
 //! in (as the skinning kernels' loops take their next block ahead: `fast::avx2`'s module
 //! docs). Unlike the eight groups a call above, one group's system waits at a time. SBS's
 //! palette alone at 10⁵ vertices (85 709 clusters; a scratch loop, best of 30, the builds
-//! in turn three times, twice): 632–670 → 573–591 µs. Made first with arrays' `map` in
+//! in turn three times, twice): 632–670 → 573–591 µs, with batches of 64 groups (16, for
+//! more threads' work on smaller rigs, measured the same: 556–585 against 558–574 µs,
+//! three runs each in turn). Made first with arrays' `map` in
 //! `system` and a closure for a group's joints, both stayed calls compiled without
 //! AVX-512, their lanes' operations calls, and the palette took 1.2 ms; they are written
 //! out. Tried and not kept: the adjugate and determinant made ahead as well (13 registers

@@ -45,7 +45,16 @@
 //!   the next block's loads and iteration (as the other kernels' loops take their next
 //!   block ahead: `avx2`'s module docs): CesiumMan 74.0–75.2 against 72.9–76.3 M
 //!   vertices/s (`chasles skin --rig … --bench --bench-threads 1`, two runs each in turn,
-//!   2026-12-05): a block's time is its iteration, not the chain to its stores.
+//!   2026-12-05): a block's time is its iteration, not the chain to its stores. By
+//!   influence count (`examples/dib_influences`, one run each): one influence 212 → 245 M
+//!   vertices/s, two and four unchanged (131.9 → 131.8, 44.7 → 44.6), CesiumMan 83.4 →
+//!   82.9 (its vertices of one influence are 5 % of its time).
+//! - Two blocks in a row whose every vertex has two influences, their ScLERPs interleaved
+//!   as one `Wide` lane of two (the chain of a product, a logarithm, an exponential, a
+//!   product and a normalization, side by side): the lane operations' closures stayed
+//!   calls (`perf report`: `_mm512_castps_si512` and the logarithm's closure among the
+//!   top symbols), two influences 133.5 → 36.4 M vertices/s and CesiumMan 83.2 → 48.0
+//!   (`examples/dib_influences`, one run each, 2026-12-05).
 //!
 //! Where the time goes (2026-12-05, a 2-core Intel Xeon with AVX-512F, best of 20 runs
 //! over 10⁵ synthetic vertices of four influences, one core, M vertices/s). The processor
