@@ -390,6 +390,40 @@ pub(crate) fn ask_cache<T>(p: *const T) {
     let _ = p;
 }
 
+/// A loop of `count` turns, `end(k, take(k))` for k = 0 … count − 1. With `ahead`, each
+/// turn takes item k + 1 before it ends item k, carrying what `take` made (a few registers
+/// of lanes) into the next turn, so that the next item's loads are under way while this
+/// one's last steps run; without, each item is taken and ended in its own turn. The
+/// kernels' blocks of eight (`avx2::blocks_ahead`, whose module docs have the figures, "The
+/// next block ahead") and the centre solve's groups of eight clusters
+/// (`rotation_centre::wide::eights`) run on it. `ahead` is a constant in every caller, so
+/// each compiles one loop; both closures are meant to be `#[inline(always)]`: the loop is a
+/// kernel's body, compiled in its caller's build.
+#[inline(always)]
+pub(crate) fn take_ahead<T: Copy>(
+    count: usize,
+    ahead: bool,
+    take: impl Fn(usize) -> T,
+    mut end: impl FnMut(usize, T),
+) {
+    if count == 0 {
+        return;
+    }
+    let mut cur = take(0);
+    for k in 0..count {
+        if !ahead && k > 0 {
+            cur = take(k);
+        }
+        let next = if ahead && k + 1 < count {
+            take(k + 1)
+        } else {
+            cur
+        };
+        end(k, cur);
+        cur = next;
+    }
+}
+
 /// Vertices per chunk, the job's unit of work (`job`'s grid: the first chunk may be up to 7
 /// longer, so that the others' streamed output starts a 64-byte line, and the last up to 7
 /// longer).

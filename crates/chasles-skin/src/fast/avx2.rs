@@ -283,15 +283,11 @@ pub unsafe fn dqs<const K: usize>(
     }
 }
 
-/// A kernel's loop over `blocks` whole blocks of eight: `take(i)` makes the block of
-/// vertices `i … i + 7` as far as it goes without its last steps, and `end(i, t)` ends it
-/// and stores it. With `ahead`, each turn takes the next block before it ends this one,
-/// carrying what `take` made (a few registers of lanes) into the next turn, so that the next
-/// block's loads are under way while this one's last steps run (module docs, "The next
-/// block ahead"); without, each block is taken and ended in its own turn (`ahead` is a
-/// constant in every caller, so each compiles one loop). Returns the vertices done,
-/// `8 blocks`. Both closures are meant to be `#[inline(always)]`: the loop is a kernel's
-/// body, compiled in its caller's build.
+/// A kernel's loop over `blocks` whole blocks of eight ([`super::take_ahead`] by blocks):
+/// `take(i)` makes the block of vertices `i … i + 7` as far as it goes without its last
+/// steps, and `end(i, t)` ends it and stores it, with `ahead` the next block taken before
+/// this one ends (module docs, "The next block ahead"). Returns the vertices done,
+/// `8 blocks`.
 #[inline(always)]
 pub(super) fn blocks_ahead<T: Copy>(
     blocks: usize,
@@ -299,23 +295,14 @@ pub(super) fn blocks_ahead<T: Copy>(
     take: impl Fn(usize) -> T,
     mut end: impl FnMut(usize, T),
 ) -> usize {
-    if blocks == 0 {
-        return 0;
-    }
-    let mut cur = take(0);
-    for blk in 0..blocks {
-        let i = 8 * blk;
-        if !ahead && blk > 0 {
-            cur = take(i);
-        }
-        let next = if ahead && blk + 1 < blocks {
-            take(i + 8)
-        } else {
-            cur
-        };
-        end(i, cur);
-        cur = next;
-    }
+    super::take_ahead(
+        blocks,
+        ahead,
+        #[inline(always)]
+        |b| take(8 * b),
+        #[inline(always)]
+        |b, t| end(8 * b, t),
+    );
     blocks * 8
 }
 
@@ -430,6 +417,8 @@ unsafe fn lbs_blocks<const K: usize, S: Store>(
         let mb = m.as_ptr() as *const f32;
         let zero = _mm256_setzero_ps();
         let one = _mm256_set1_ps(1.0);
+        let mul = |p, q| _mm256_mul_ps(p, q);
+        let fma = |p, q, r| _mm256_fmadd_ps(p, q, r);
         // The next block taken to its normals by the cofactors before this one's are made
         // of unit length.
         blocks_ahead(
@@ -444,8 +433,6 @@ unsafe fn lbs_blocks<const K: usize, S: Store>(
                 let row2 = |l: usize| _mm256_set_m128(b[l + 4].1, b[l].1);
                 let h = transpose4_halves([row2(0), row2(1), row2(2), row2(3)]);
                 let a = [a0, a1, a2, a3, a4, a5, a6, a7, h[0], h[1], h[2], h[3]];
-                let mul = |p, q| _mm256_mul_ps(p, q);
-                let fma = |p, q, r| _mm256_fmadd_ps(p, q, r);
                 let fms = |p, q, r| _mm256_fmsub_ps(p, q, r);
                 // Row r times (x, y, z, 1).
                 let row = |r: usize| {
@@ -474,8 +461,6 @@ unsafe fn lbs_blocks<const K: usize, S: Store>(
             },
             #[inline(always)]
             |i, [px, py, pz, mx, my, mz, nx, ny, nz]| {
-                let mul = |p, q| _mm256_mul_ps(p, q);
-                let fma = |p, q, r| _mm256_fmadd_ps(p, q, r);
                 let l2 = fma(mz, mz, fma(my, my, mul(mx, mx)));
                 let ok = _mm256_cmp_ps::<_CMP_GT_OQ>(l2, zero);
                 let inv = _mm256_div_ps(one, _mm256_sqrt_ps(l2));

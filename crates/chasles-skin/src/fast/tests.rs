@@ -413,3 +413,46 @@ fn short_meshes<const K: usize>() {
         }
     }
 }
+
+/// [`take_ahead`] ends every item once, with what its own `take` made, in order; ahead, item
+/// k + 1 is taken before item k ends (and never one past the last), otherwise each is taken
+/// in its own turn just before it ends: the calls in order, written out.
+#[test]
+fn take_ahead_takes_the_next_item_before_it_ends_this_one() {
+    use std::cell::RefCell;
+    let calls = |count: usize, ahead: bool| {
+        let calls = RefCell::new(Vec::new());
+        take_ahead(
+            count,
+            ahead,
+            |k| {
+                calls.borrow_mut().push(format!("take {k}"));
+                10 * k + 7
+            },
+            |k, t| calls.borrow_mut().push(format!("end {k} with {t}")),
+        );
+        calls.into_inner()
+    };
+    for ahead in [false, true] {
+        assert!(calls(0, ahead).is_empty());
+        assert_eq!(calls(1, ahead), ["take 0", "end 0 with 7"]);
+    }
+    let ahead = [
+        "take 0",
+        "take 1",
+        "end 0 with 7",
+        "take 2",
+        "end 1 with 17",
+        "end 2 with 27",
+    ];
+    assert_eq!(calls(3, true), ahead);
+    let turn = [
+        "take 0",
+        "end 0 with 7",
+        "take 1",
+        "end 1 with 17",
+        "take 2",
+        "end 2 with 27",
+    ];
+    assert_eq!(calls(3, false), turn);
+}

@@ -215,9 +215,6 @@ pub(super) unsafe fn eights(
     chasles::frame::align_frame();
     debug_assert!(out.len().is_multiple_of(8), "whole groups");
     let groups = out.len() / 8;
-    if groups == 0 {
-        return;
-    }
     let at: *const [f32; 4] = out.as_ptr().cast();
     /// Group `g`'s system, the tables of the group [`super::AHEAD`] on asked for (`slots`:
     /// group g's first slot). A function, not a closure: a closure here stayed a call,
@@ -239,18 +236,16 @@ pub(super) unsafe fn eights(
         // SAFETY: the caller's.
         unsafe { system8(joints, motions, &priors[g]) }
     }
+    let slots = out.as_chunks_mut::<8>().0;
     // SAFETY (each take and end8): AVX-512F, as the caller promises.
-    let mut cur = unsafe { take(clusters, g0, motions, priors, at) };
-    for (k, out) in out.as_chunks_mut::<8>().0.iter_mut().enumerate() {
-        let next = if k + 1 < groups {
-            let slots = at.wrapping_add(8 * (k + 1));
-            unsafe { take(clusters, g0 + k + 1, motions, priors, slots) }
-        } else {
-            cur
-        };
-        unsafe { end8(cur, out) };
-        cur = next;
-    }
+    crate::fast::take_ahead(
+        groups,
+        true,
+        #[inline(always)]
+        |k| unsafe { take(clusters, g0 + k, motions, priors, at.wrapping_add(8 * k)) },
+        #[inline(always)]
+        |k, system| unsafe { end8(system, &mut slots[k]) },
+    );
 }
 
 /// A group's system: A's lower triangle and b with the Tikhonov term, and the priors, in
