@@ -83,10 +83,14 @@
 //! over their first clips at five times (none and one: CesiumMan 1773 and 3912,
 //! RiggedFigure 713 and 322, the Fox 15 and 180; `examples/dib_step`, 2026-12-05). An
 //! iterating block there is DLB's start, one update and the pass that shows it converged,
-//! so refilling converged lanes would gain nothing; that pass is what is left (the bound
-//! above, measured again the same day with `examples/dib_influences`: CesiumMan 74.3 →
-//! 84.8 M vertices/s, 4.31× → 3.57× DQS's time; four influences 47.6 → 58.2, 7.28× →
-//! 5.31×). Stopping after an update whose successor a bound shows below the precision was
+//! so refilling converged lanes would gain nothing; that pass was what was left (the
+//! evening of 2026-12-05: it now takes the update by one product, no logarithm,
+//! `lane::dib::convergence`, which with ScLERP as a weighted sum, `lane::dib::sclerp`, took
+//! four influences from 7.5–7.7× to 6.4–7.1× DQS's time and CesiumMan from 4.32× to
+//! 3.88–3.90×). Leaving the old pass out altogether (the bound above, which breaks the
+//! rule), measured with `examples/dib_influences` earlier that day: CesiumMan 74.3 → 84.8
+//! M vertices/s, 4.31× → 3.57× DQS's time; four influences 47.6 → 58.2, 7.28× → 5.31×.
+//! Stopping after an update whose successor a bound shows below the precision was
 //! looked at in f64 and not built. The step's remainder's leading terms bound the next
 //! update by about ‖x̂‖ (A⁴ + A³B + ‖x̂‖ A), with A and B the largest rotation and
 //! translation parts of the logarithms (measured: at most 0.06 of it on the characters,

@@ -5,10 +5,12 @@
 //! algebra's `lane::dib` on `__m256`; with AVX-512F sixteen, `avx512` on `__m512`, to the
 //! same bits: the algorithm branch-free in lanes, the logarithm and
 //! exponential by series, and a second-order step to the same fixed point under the same
-//! stopping rule, which needs one update where the paper's step needs two; the two kernels
+//! stopping rule, which needs one update where the paper's step needs two, the pass that
+//! shows it converged taking the update by one product and no logarithm; the two kernels
 //! both end within the stopping rule's reach of the exact blend, the SIMD one nearer
 //! it; a vertex of one influence takes no update there, and one of two takes ScLERP in
-//! closed form — Lemma 3 — to rounding of the exact blend). Elsewhere, and for the last few
+//! closed form — Lemma 3, as a weighted sum of its two joints — to rounding of the exact
+//! blend). Elsewhere, and for the last few
 //! vertices, each vertex's influences are gathered on the stack and blended by the library's
 //! allocation-free [`dib_convex`]: the same calls in the same order as the reference path
 //! ([`crate::skinning`]), so equal numbers (a test checks it on every model and clip). A block

@@ -20,8 +20,8 @@
 //!
 //! **One and two influences** (the paper's own identities): DIB of one transform is that
 //! transform, so a lane of one influence keeps DLB's start; DIB of two is ScLERP (Lemma 3),
-//! which a lane of two influences takes in closed form, `q̂ₐ exp(t log(q̂ₐ* q̂_b))` with
-//! the lane logarithm and exponential ([`sclerp`]: one product, one logarithm, no moments,
+//! which a lane of two influences takes in closed form, `q̂ₐ exp(t log(q̂ₐ* q̂_b))` written
+//! as a weighted sum of the two ([`mod@sclerp`], whose module docs derive it: no moments,
 //! no DLB sum to step from and no pass to show convergence); only lanes of three or more
 //! iterate, and a block with none makes no update at all. The rules look at a lane's own
 //! weights only, so a vertex's numbers do not depend on its block-mates (the kernel's tests
@@ -143,12 +143,16 @@
 //! (a positive dual number, which normalizing removes) is left out, and `½ ln‖r0‖²` is taken
 //! as `½ (‖r0‖² − 1)` (r̂ is a product of unit dual quaternions: off by under 1e-14).
 
+mod convergence;
+mod sclerp;
 mod second_order;
 
 use super::wide::Wide;
 use super::{dot, dqmul, horner, taylor, Lane};
 use crate::skinning::{DIB_PRECISION, DIB_UPDATES};
 use chasles::blend::STALL_FACTOR;
+use convergence::update_by_sum;
+use sclerp::sclerp;
 use second_order::Spread;
 
 /// `h(v) = θ/n = acos(1 − v)/√(v (2 − v))` on `0 ≤ v ≤ 1` (`v = 1 − w = 1 − cos θ`),
@@ -291,6 +295,15 @@ fn keep_going<L: Lane>(norm: L, last: L) -> L::Mask {
     L::and_not(stuck, L::and(above, finite))
 }
 
+/// Takes the update's `norm` into the lanes' stopping rule ([`keep_going`]): whether every
+/// lane has stopped; `last` becomes `norm`.
+#[inline(always)]
+fn stopped<L: Lane>(norm: L, active: &mut L::Mask, last: &mut L) -> bool {
+    *active = L::and(*active, keep_going(norm, *last));
+    *last = norm;
+    !L::any(*active)
+}
+
 /// A vertex's weights `raw` (in slots of K) as DIB takes them: the positive ones scaled to
 /// sum to 1 (in the scalar kernel's order), the others 0; which slots are used; and how
 /// many slots count — trailing slots unused in every lane are left out (in a mesh, vertices
@@ -359,14 +372,23 @@ pub(in crate::fast) fn dib<L: Lane, const K: usize>(
             wu[k] = L::select(active, w[k], zero);
         }
         let mut last = L::splat(f32::INFINITY);
-        for _ in 0..DIB_UPDATES {
+        for k in 0..DIB_UPDATES {
+            // After the first update, the pass that shows whether it converged takes the
+            // update by one product ([`update_by_sum`]); a lane that goes on takes it again
+            // with its moments.
+            if k > 0 {
+                let x = update_by_sum(&b, q, &wu, slots);
+                if stopped(dot(&x, &x).sqrt(), &mut active, &mut last) {
+                    break;
+                }
+            }
             let (x, spread) = update(&b, q, &wu, slots);
-            let norm = dot(&x, &x).sqrt();
-            active = L::and(active, keep_going(norm, last));
-            if !L::any(active) {
+            // The vector parts' norm, as `update_by_sum`'s: the logarithms' scalar parts are
+            // 0 but for rounding (`r̂` is unit), and so left out of the kernel altogether.
+            let vector = [x[1], x[2], x[3], x[5], x[6], x[7]];
+            if k == 0 && stopped(dot(&vector, &vector).sqrt(), &mut active, &mut last) {
                 break;
             }
-            last = norm;
             let next = renormalize(&dqmul(&b, &exp(&spread.step(&x))));
             b = eight(|c| L::select(active, next[c], b[c]));
         }
@@ -397,47 +419,6 @@ fn dlb<L: Lane, const K: usize>(q: &[[L; 8]; K], w: &[L; K], slots: usize) -> [L
     normalize(&sum)
 }
 
-/// ScLERP in each lane from its first influence of positive weight `q̂ₐ` to its second
-/// `q̂_b` at the second's weight `t` (Kavan et al. eq. 4 written as the definition,
-/// `q̂ₐ exp(t log(q̂ₐ* q̂_b))`, with the lane logarithm taking `±` the relative dual
-/// quaternion with `w ≥ 0`: the shorter screw): DIB's blend of a lane of two influences
-/// (Lemma 3), whose convex weights are `1 − t` and `t`. Lanes of other counts get a number
-/// that [`dib`] does not keep.
-#[inline(always)]
-fn sclerp<L: Lane, const K: usize>(q: &[[L; 8]; K], w: &[L; K], slots: usize) -> [L; 8] {
-    let (zero, one) = (L::splat(0.0), L::splat(1.0));
-    // The first and second slots of positive weight (slots 0 and 1 in a `FastRig::new`).
-    let (mut a, mut b, mut t, mut seen) = (q[0], q[0], zero, zero);
-    // Where every lane's two are slots 0 and 1 (a block of a `FastRig::new`'s vertices of
-    // two influences), the loop below would pick them: taken as they are, the same bits
-    // without the loop's selects (2026-12-05, `examples/dib_influences`, sixteen lanes, the
-    // builds in turn three times: two influences 121.1–122.8 → 124.5–126.1 M vertices/s,
-    // CesiumMan 4.20–4.23× → 4.15–4.18× DQS's time, RiggedFigure unchanged).
-    let both = L::and(zero.lt(w[0]), zero.lt(w[1.min(K - 1)]));
-    let every = zero.le(zero);
-    // No lane without both.
-    if slots == 2 && !L::any(L::and_not(both, every)) {
-        return screw(&q[0], &q[1], w[1]);
-    }
-    for k in 0..slots {
-        let used = zero.lt(w[k]);
-        let first = L::and(used, seen.lt(L::splat(0.5)));
-        let second = L::and(used, L::and(L::splat(0.5).lt(seen), seen.lt(L::splat(1.5))));
-        a = eight(|c| L::select(first, q[k][c], a[c]));
-        b = eight(|c| L::select(second, q[k][c], b[c]));
-        t = L::select(second, w[k], t);
-        seen = seen.add(L::select(used, one, zero));
-    }
-    screw(&a, &b, t)
-}
-
-/// `â exp(t log(â* b̂))`, renormalized: [`sclerp`]'s formula.
-#[inline(always)]
-fn screw<L: Lane>(a: &[L; 8], b: &[L; 8], t: L) -> [L; 8] {
-    let l = log(&dqmul(&conjugate(a), b));
-    renormalize(&dqmul(a, &exp(&eight(|c| l[c].mul(t)))))
-}
-
 /// `q̂*`, the quaternion conjugate of both parts (the vector parts negated), in each lane.
 #[inline(always)]
 fn conjugate<L: Lane>(q: &[L; 8]) -> [L; 8] {
@@ -466,10 +447,11 @@ fn conjugate<L: Lane>(q: &[L; 8]) -> [L; 8] {
 /// (`FastRig<8>`, 5·10⁴ synthetic vertices cut to 3, 4, 5 and 8 influences, best of 15,
 /// two runs each): 3 influences 42.2–42.3 → 46.0 M vertices/s, 5 32.1–32.7 → 34.6–35.5, 4
 /// and 8 unchanged. (The pass that shows
-/// the update converged does not need the moments, but a kernel that left them out there,
+/// the update converged does not need the moments; a kernel that left only them out there,
 /// taking the logarithms again with their moments where a lane goes on, was 3–5 % slower:
 /// 16.7 → 16.2 M vertices/s on four influences, 38.3 → 36.4 on two — a third copy of this
-/// code, inlined, costs more than the 18 multiply-adds a logarithm it saves.)
+/// code, inlined, cost more than the 18 multiply-adds a logarithm it saved. The pass now
+/// takes no logarithm at all: [`update_by_sum`].)
 #[inline(always)]
 fn update<L: Lane, const K: usize>(
     b: &[L; 8],
