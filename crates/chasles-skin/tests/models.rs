@@ -468,8 +468,9 @@ fn reach(method: Method) -> f32 {
 /// update from DLB's start, then the pass that finds the next below `DIB_PRECISION`) ends
 /// within the stopping rule's reach. On every character's clips, each vertex of two
 /// influences against DIB in f64 to 1e-13: the fast path's normals and positions within
-/// 1e-6 (relatively). When written: 0.9e-7–4.4e-7 on the five models, where the
-/// reference's reached 1.1e-7 and 2.2e-7 on SimpleSkin and RiggedSimple, 1.1e-6 on the
+/// 1e-6 (relatively). When written: 0.4e-7–4.6e-7 on the five models (ScLERP as a
+/// weighted sum, `fast::lane::dib::sclerp`; 0.9e-7–4.4e-7 by the logarithm and
+/// exponential), where the reference's reached 1.1e-7 and 2.2e-7 on SimpleSkin and RiggedSimple, 1.1e-6 on the
 /// Fox, 1.3e-5 on RiggedFigure and 1.8e-5 on CesiumMan.
 #[test]
 fn dib_of_two_influences_is_sclerp_to_rounding() {

@@ -108,7 +108,8 @@
 //! and joints put in lanes), its 1678 of two 2.74 (ScLERP in closed form) and its 1137 of
 //! three or four 7.37 (DLB's start, one update and the pass that shows it converged): 5 %,
 //! 34 % and 61 % of its time. Tried the same day and not kept: DQS's transform with its
-//! factor `2/‖b0‖²` taken as 2 (DIB's blends are unit to 1e-8, so one division and a
+//! factor `2/‖b0‖²` taken as 2 (DIB's blends were unit to 1e-8 — its pairs' are now to
+//! 4.8e-7 in `‖b0‖²`, not normalized after `lane::dib::sclerp` — so one division and a
 //! norm fewer a block): CesiumMan 4.12–4.22× against 4.14–4.17× DQS's time, one influence
 //! 1.44–1.46× against 1.47–1.53× (three runs each in turn), within the noise.
 

@@ -21,7 +21,7 @@
 //! exponential took two dual quaternion products, two longer series and a normalization
 //! after; the result is unit to rounding without one (`‖b0‖²` within 4.8e-7 of 1, the
 //! parts orthogonal to 8.4e-8), and the transform divides by `‖b0‖²` anyway. Within 4.0e-7
-//! of f64's `sclerp` at every angle from 178° down to 1e-7 rad and none (the logarithm and
+//! of f64's `sclerp` at every angle from 178° down to 1.5e-7 rad and none (the logarithm and
 //! exponential: 4.2e-7; `two_joints_end_at_sclerp`), and on the characters' clips within
 //! 4.6e-7 of f64's DIB, as before (`dib_of_two_influences_is_sclerp_to_rounding`). Best
 //! of 30 at 10⁵ vertices, one core, sixteen lanes, the builds in turn twice

@@ -185,12 +185,12 @@ fn the_lane_log_of_products_is_f64s() {
 }
 
 /// The pass that shows convergence takes the update by one product ([`update_by_sum`]):
-/// its vector parts are f64's `Σ wᵢ log(b̂* q̂ᵢ)` of the same f32 numbers about as closely
-/// as [`update`]'s — within 1.2e-6 of the logarithms' weighted size `Σ wᵢ ‖log(b̂* q̂ᵢ)‖`
-/// against 8e-7 (9.6e-7 and 6.5e-7 when written) far from the blend, over rotations of
-/// every angle, either hemisphere, moves of up to 4 and one to four influences — and at
-/// the blend itself (DIB in f64, rounded to f32) its norm is below a tenth of the
-/// precision (7.4e-7 at most when written), as `update`'s is.
+/// its vector parts are f64's `Σ wᵢ log(b̂* q̂ᵢ)` of the same f32 numbers as closely as
+/// [`update`]'s — within 8e-7 of the logarithms' weighted size `Σ wᵢ ‖log(b̂* q̂ᵢ)‖` far
+/// from the blend (both 3.9e-7 when written), over rotations of every angle, either
+/// hemisphere, moves of up to 4 and one to four influences — and at the blend itself (DIB
+/// in f64, rounded to f32) its norm is below a tenth of the precision (5.4e-7 at most when
+/// written), as `update`'s is.
 #[test]
 fn the_update_by_one_product_is_the_updates() {
     let mut next = uniform(0x5EED_0FD1_B5A1_1C0D);
@@ -209,7 +209,7 @@ fn the_update_by_one_product_is_the_updates() {
             .map(|k| (DualQuat::from_array(q[k].map(f64::from)), f64::from(w[k])))
             .unzip();
         // Far from the blend: at a random pose, or the blend itself.
-        let at_blend = i % 2 == 1;
+        let at_blend = (i / 4) % 2 == 1;
         let b = if at_blend {
             let (b, _) = chasles::blend::dib::dib(&q64, &w64, 1e-13, 200).unwrap();
             b.to_array().map(|c| c as f32)
@@ -250,7 +250,7 @@ fn the_update_by_one_product_is_the_updates() {
             worst_update = worst_update.max(off([1, 2, 3, 5, 6, 7].map(|c| full[c])));
         }
     }
-    assert!(worst_sum <= 1.2e-6, "by one product {worst_sum}");
+    assert!(worst_sum <= 8e-7, "by one product {worst_sum}");
     assert!(worst_update <= 8e-7, "by the logarithms {worst_update}");
     assert!(worst_at_blend < 0.1 * DIB_PRECISION, "{worst_at_blend}");
 }
@@ -321,8 +321,8 @@ fn the_second_order_step_leaves_a_smaller_residual() {
 }
 
 /// Lemma 3 on one lane: a blend of two joints is ScLERP, taken in closed form (the dual
-/// Slerp, [`screw`]) — within 1e-6 (relative to 1 + |x|) of the library's f64 `sclerp` at
-/// every relative angle up to 178° and down to 1e-7 rad and none (the dual weights' limit
+/// Slerp, `sclerp::screw`) — within 1e-6 (relative to 1 + |x|) of the library's f64 `sclerp` at
+/// every relative angle up to 178° and down to 1.5e-7 rad and none (the dual weights' limit
 /// at Ω = 0), moved by up to 2, either hemisphere; unit to rounding though not normalized
 /// after — and where DIB's update would stop at once (it is below the precision). One
 /// joint gives the joint itself.
