@@ -28,6 +28,19 @@
 //! CesiumMan 85.9–86.1 → 93.6–96.2 (4.32× → 3.88–3.90×), the Fox 135.0–138.8 →
 //! 155.4–158.6, RiggedFigure 75.2–77.8 → 84.5–84.9, one influence unchanged; eight lanes
 //! four influences 30.2–32.1 → 35.4–36.6, CesiumMan 59.7–59.9 → 67.3–68.6.
+//!
+//! Tried and not kept (the same evening): the second-order step by sums as well, so that
+//! the kernel takes no logarithm at all. By the same isometry, `⟨b̂* q̂, X̂⟩ = ⟨q̂, b̂ X̂⟩`
+//! with `X̂ = (0, x̂)`, the moments' product is `M x̂ = Σ wᵢ x̂ᵢ (x̂ᵢ·x̂) = vec b̂* Σ wᵢ
+//! (hᵢ + ε gᵢ)² ⟨q̂ᵢ, b̂ X̂⟩ q̂ᵢ` (the hemisphere signs meet squared) and
+//! `tr M = Σ wᵢ (hᵢ + ε gᵢ)² (1 − ĉᵢ²)`: each update became this pass, which kept each
+//! influence's `wᵢ (hᵢ + ε gᵢ)²` and the trace, and a second pass over the influences
+//! after `x̂` (a dual dot product and a weighted sum each, and two products). Its step was
+//! the moments' to 5.6e-7 of its size, and by count about 5 % fewer operations an
+//! iterating block, but it ran no faster (`examples/dib_influences`, two runs each in
+//! turn): four influences 51.7–52.6 → 50.2–50.3 M vertices/s, CesiumMan 3.92–4.01× →
+//! 3.90–3.91× DQS's time, RiggedFigure 3.10–3.13× → 3.32×: the second pass waits on `x̂`,
+//! and each influence's coefficients are held across it.
 
 use super::super::{dot, dqmul, horner, Lane};
 use super::{conjugate, eight, H, H_S};
