@@ -67,8 +67,8 @@ pub(super) fn sclerp<L: Lane, const K: usize>(q: &[[L; 8]; K], w: &[L; K], slots
 
 /// `â exp(t log(â* b̂))`: [`sclerp`]'s formula, taken as the dual Slerp
 /// `Ŵₐ(ĉ) â + Ŵ_b(ĉ) b̂` with dual weights of the dual angle's cosine `ĉ = ⟨â, b̂⟩` (module
-/// docs): two dual dot products and a weighted sum where the
-/// logarithm and exponential took two dual quaternion products.
+/// docs): two dual dot products and a weighted sum, where the logarithm and exponential
+/// took two dual quaternion products.
 #[inline(always)]
 fn screw<L: Lane>(a: &[L; 8], b: &[L; 8], t: L) -> [L; 8] {
     let one = L::splat(1.0);
