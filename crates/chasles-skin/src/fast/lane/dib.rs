@@ -421,6 +421,17 @@ fn dlb<L: Lane, const K: usize>(q: &[[L; 8]; K], w: &[L; K], slots: usize) -> [L
     normalize(&sum)
 }
 
+/// The dual dot product `⟨â, b̂⟩ = c + ε c_ε` — the scalar parts of `â* b̂`, `c = ⟨a0, b0⟩`,
+/// `c_ε = ⟨a0, bε⟩ + ⟨aε, b0⟩` — taken to `c ≥ 0` (those of `±â* b̂`, as [`log`]'s `w ≥ 0`:
+/// the shorter screw): `(|c|, ±c_ε, c)`, `c` itself for its sign. [`mod@sclerp`]'s ScLERP
+/// and [`update_by_sum`]'s pass both start from it.
+#[inline(always)]
+fn shorter_dot<L: Lane>(a: &[L; 8], b: &[L; 8]) -> (L, L, L) {
+    let c = dot(&a[..4], &b[..4]);
+    let c_du = dot(&a[..4], &b[4..]).add(dot(&a[4..], &b[..4]));
+    (c.flip_by_sign_of(c), c_du.flip_by_sign_of(c), c)
+}
+
 /// `q̂*`, the quaternion conjugate of both parts (the vector parts negated), in each lane.
 #[inline(always)]
 fn conjugate<L: Lane>(q: &[L; 8]) -> [L; 8] {

@@ -42,8 +42,8 @@
 //! 3.90–3.91× DQS's time, RiggedFigure 3.10–3.13× → 3.32×: the second pass waits on `x̂`,
 //! and each influence's coefficients are held across it.
 
-use super::super::{dot, dqmul, horner, Lane};
-use super::{conjugate, eight, H, H_S};
+use super::super::{dqmul, horner, Lane};
+use super::{conjugate, eight, shorter_dot, H, H_S};
 
 /// The update `x̂ = Σ wᵢ log(b̂* q̂ᵢ)`'s vector parts by one product, `b̂* Σ (αᵢ + ε βᵢ) q̂ᵢ`
 /// (module docs; `sᵢ`, the sign of `⟨b0, qᵢ0⟩`, takes `±r̂` to `w ≥ 0` as the logarithm
@@ -67,9 +67,7 @@ pub(super) fn update_by_sum<L: Lane, const K: usize>(
             break;
         }
         // `r̂`'s scalar parts, taken to `w ≥ 0` (`log`'s `±r̂`).
-        let c = dot(&b[..4], &qk[..4]);
-        let c_du = dot(&b[..4], &qk[4..]).add(dot(&b[4..], &qk[..4]));
-        let (wr, wd) = (c.flip_by_sign_of(c), c_du.flip_by_sign_of(c));
+        let (wr, wd, c) = shorter_dot(b, qk);
         let v = one.sub(wr);
         let (h, h_s) = (horner(&H, v), horner(&H_S, v));
         let g = zero.sub(wd.mul(h_s.add(h_s).madd(wr, one)));

@@ -29,8 +29,8 @@
 //! → 2.23–2.28× DQS's time) with the normalization kept; leaving it out, 157.2–158.2 →
 //! 163.1–166.9, CesiumMan 4.02–4.05× → 3.91–3.92×.
 
-use super::super::{dot, horner, Lane};
-use super::{eight, D_SINC, H, SINC};
+use super::super::{horner, Lane};
+use super::{eight, shorter_dot, D_SINC, H, SINC};
 
 /// ScLERP in each lane from its first influence of positive weight `q̂ₐ` to its second
 /// `q̂_b` at the second's weight `t` (Kavan et al. eq. 4, `q̂ₐ (q̂ₐ* q̂_b)ᵗ`, along the
@@ -72,10 +72,9 @@ pub(super) fn sclerp<L: Lane, const K: usize>(q: &[[L; 8]; K], w: &[L; K], slots
 #[inline(always)]
 fn screw<L: Lane>(a: &[L; 8], b: &[L; 8], t: L) -> [L; 8] {
     let one = L::splat(1.0);
-    let c = dot(&a[..4], &b[..4]);
-    let c_du = dot(&a[..4], &b[4..]).add(dot(&a[4..], &b[..4]));
     // The shorter screw: `b̂` or `−b̂`, whichever has `c ≥ 0`.
-    let (c_du, v) = (c_du.flip_by_sign_of(c), one.sub(c.flip_by_sign_of(c)));
+    let (w, c_du, c) = shorter_dot(a, b);
+    let v = one.sub(w);
     // h = Ω/sin Ω = 1/sinc Ω, u = Ω² = h² sin² Ω, sin² Ω = v (2 − v).
     let h = horner(&H, v);
     let u = h.mul(h).mul(v.mul(L::splat(2.0).sub(v)));
